@@ -1,0 +1,68 @@
+/* isoterra — orbit camera and 4x4 matrices (column-major, GL style). */
+#include "render.h"
+
+#include <math.h>
+#include <string.h>
+
+void mat4_mul(float out[16], const float a[16], const float b[16])
+{
+	float r[16];
+	for (int c = 0; c < 4; c++)
+		for (int row = 0; row < 4; row++) {
+			float s = 0.0f;
+			for (int k = 0; k < 4; k++)
+				s += a[k * 4 + row] * b[c * 4 + k];
+			r[c * 4 + row] = s;
+		}
+	memcpy(out, r, sizeof(r));
+}
+
+static void look_at(float m[16], const float eye[3], const float at[3])
+{
+	float f[3] = { at[0] - eye[0], at[1] - eye[1], at[2] - eye[2] };
+	float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+	for (int i = 0; i < 3; i++)
+		f[i] /= fl;
+	float up[3] = { 0.0f, 1.0f, 0.0f };
+	float s[3] = { f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0] };
+	float sl = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+	for (int i = 0; i < 3; i++)
+		s[i] /= sl;
+	float u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0] };
+	float v[16] = {
+		s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0,
+		-(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]),
+		-(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]),
+		f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2], 1,
+	};
+	memcpy(m, v, sizeof(v));
+}
+
+static void perspective(float m[16], float fovy_deg, float aspect, float zn, float zf)
+{
+	float f = 1.0f / tanf(fovy_deg * (float)M_PI / 360.0f);
+	memset(m, 0, sizeof(float) * 16);
+	m[0] = f / aspect;
+	m[5] = f;
+	m[10] = (zf + zn) / (zn - zf);
+	m[11] = -1.0f;
+	m[14] = 2.0f * zf * zn / (zn - zf);
+}
+
+void camera_orbit(struct camera *c, const struct params *p, const struct grid *g, float t, float aspect)
+{
+	float size = g->cell * (float)g->nx;
+	float center[3] = { g->origin[0] + 0.5f * size, g->origin[1] + 0.5f * g->cell * (float)g->ny,
+			    g->origin[2] + 0.5f * g->cell * (float)g->nz };
+	float yaw = (p->cam_yaw + p->cam_spin * t) * (float)M_PI / 180.0f;
+	float pitch = p->cam_pitch * (float)M_PI / 180.0f;
+	float dist = p->cam_dist * size;
+	c->eye[0] = center[0] + dist * cosf(pitch) * cosf(yaw);
+	c->eye[1] = center[1] + dist * sinf(pitch);
+	c->eye[2] = center[2] + dist * cosf(pitch) * sinf(yaw);
+	/* aim a little below the centre: terrain sits in the lower half */
+	float at[3] = { center[0], center[1] - 0.12f * size, center[2] };
+	look_at(c->view, c->eye, at);
+	perspective(c->proj, p->fov, aspect, 0.01f * size, 8.0f * size + dist);
+	mat4_mul(c->viewproj, c->proj, c->view);
+}

@@ -1,0 +1,254 @@
+/* isoterra — command line over the parameter table. */
+#include "cli.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#ifndef ISOTERRA_VERSION
+#define ISOTERRA_VERSION "0.1.0"
+#endif
+
+enum opt_kind { OPT_PARAM, OPT_NO_BOOL, OPT_SET, OPT_PRESET, OPT_CONFIG, OPT_HELP, OPT_VERSION, OPT_LIST_PRESETS };
+
+struct opt {
+	enum opt_kind kind;
+	const struct param_info *pi; /* OPT_PARAM, OPT_NO_BOOL */
+	const char *value;           /* NULL for flags */
+};
+
+static bool is_bool_word(const char *s)
+{
+	static const char *const words[] = { "1", "0", "true", "false", "on", "off", "yes", "no" };
+	for (size_t i = 0; i < sizeof(words) / sizeof(words[0]); i++)
+		if (!strcmp(s, words[i]))
+			return true;
+	return false;
+}
+
+/* Option name between "--" and '=' with '-' folded to '_'; false if too long. */
+static bool opt_key(const char *arg, char *key, size_t len)
+{
+	size_t n = strcspn(arg + 2, "=");
+	if (n >= len)
+		return false;
+	for (size_t i = 0; i < n; i++)
+		key[i] = arg[2 + i] == '-' ? '_' : arg[2 + i];
+	key[n] = 0;
+	return true;
+}
+
+/* Decodes argv[*i] (and its value argument) into o; advances *i. */
+static int next_opt(int argc, char **argv, int *i, struct opt *o, char *err, size_t errlen)
+{
+	const char *arg = argv[*i];
+	(*i)++;
+	memset(o, 0, sizeof(*o));
+	if (!strcmp(arg, "-h")) {
+		o->kind = OPT_HELP;
+		return 0;
+	}
+	if (arg[0] != '-' || !strcmp(arg, "-") || !strcmp(arg, "--")) {
+		snprintf(err, errlen, "unexpected argument '%s' (options only, see --help)", arg);
+		return -1;
+	}
+	char key[64];
+	const char *eq = strchr(arg, '=');
+	int optlen = eq ? (int)(eq - arg) : (int)strlen(arg);
+	if (arg[1] != '-' || !opt_key(arg, key, sizeof(key)) || !key[0]) {
+		snprintf(err, errlen, "unknown option '%.*s' (see --help)", optlen, arg);
+		return -1;
+	}
+
+	bool takes_value = true, optional_bool = false;
+	if (!strcmp(key, "help")) {
+		o->kind = OPT_HELP;
+		takes_value = false;
+	} else if (!strcmp(key, "version")) {
+		o->kind = OPT_VERSION;
+		takes_value = false;
+	} else if (!strcmp(key, "list_presets")) {
+		o->kind = OPT_LIST_PRESETS;
+		takes_value = false;
+	} else if (!strcmp(key, "set")) {
+		o->kind = OPT_SET;
+	} else if (!strcmp(key, "preset")) {
+		o->kind = OPT_PRESET;
+	} else if (!strcmp(key, "config")) {
+		o->kind = OPT_CONFIG;
+	} else if ((o->pi = params_find(key)) != NULL) {
+		o->kind = OPT_PARAM;
+		optional_bool = o->pi->type == PT_BOOL;
+	} else if (!strncmp(key, "no_", 3) && (o->pi = params_find(key + 3)) && o->pi->type == PT_BOOL) {
+		o->kind = OPT_NO_BOOL;
+		takes_value = false;
+	} else {
+		snprintf(err, errlen, "unknown option '%.*s' (see --help)", optlen, arg);
+		return -1;
+	}
+
+	if (!takes_value) {
+		if (eq) {
+			snprintf(err, errlen, "option '%.*s' takes no value", optlen, arg);
+			return -1;
+		}
+		return 0;
+	}
+	if (eq) {
+		o->value = eq + 1;
+	} else if (optional_bool) {
+		/* --flag alone means true; "--flag false" is accepted too. */
+		if (*i < argc && is_bool_word(argv[*i]))
+			o->value = argv[(*i)++];
+		else
+			o->value = "true";
+	} else {
+		if (*i >= argc || !strncmp(argv[*i], "--", 2)) {
+			snprintf(err, errlen, "option '%s' needs a value", arg);
+			return -1;
+		}
+		o->value = argv[(*i)++];
+	}
+	return 0;
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+	size_t n = strlen(s), m = strlen(suffix);
+	return n > m && strcasecmp(s + n - m, suffix) == 0;
+}
+
+int cli_parse_size(const char *s, int *w, int *h)
+{
+	long v[2];
+	const char *c = s;
+	for (int k = 0; k < 2; k++) {
+		if (*c < '0' || *c > '9')
+			return -1;
+		char *end;
+		v[k] = strtol(c, &end, 10);
+		if (end - c > 6 || v[k] < 16 || v[k] > 16384)
+			return -1;
+		c = end;
+		if (k == 0 && *c++ != 'x')
+			return -1;
+	}
+	if (*c)
+		return -1;
+	*w = (int)v[0];
+	*h = (int)v[1];
+	return 0;
+}
+
+static int validate(const struct params *p, char *err, size_t errlen)
+{
+	int w, h;
+	if (cli_parse_size(p->size, &w, &h) < 0) {
+		snprintf(err, errlen, "size: '%s' is not WxH with W and H in 16..16384", p->size);
+		return -1;
+	}
+	if (!ends_with(p->out, ".png")) {
+		snprintf(err, errlen, "out: '%s' must end in .png", p->out);
+		return -1;
+	}
+	if (p->export_mesh[0] && !ends_with(p->export_mesh, ".ply")) {
+		snprintf(err, errlen, "export_mesh: '%s' must end in .ply", p->export_mesh);
+		return -1;
+	}
+	return 0;
+}
+
+static void list_presets(void)
+{
+	printf("presets (--preset NAME, applied before --config and other options):\n");
+	for (size_t i = 0; i < preset_count; i++)
+		printf("  %-14s %s\n", presets[i].name, presets[i].help);
+}
+
+void cli_print_help(const char *argv0)
+{
+	const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
+	const char *prog = slash ? slash + 1 : argv0 && argv0[0] ? argv0 : "isoterra";
+	printf("usage: %s [options]\n"
+	       "Procedural terrain on the GPU (OpenGL ES 3.1 compute, headless EGL).\n"
+	       "\n"
+	       "  --size WxH             output size, 16..16384 each (default 1280x720)\n"
+	       "  --grid N               cells per axis of the extracted volume\n"
+	       "  --count N              frames to render, then exit\n"
+	       "  --out FILE.png         output image (%%d in the name: one file per frame)\n"
+	       "  --export-mesh FILE.ply write the last frame's mesh as binary PLY\n"
+	       "  --preset NAME          start from a preset (see --list-presets)\n"
+	       "  --config FILE          'name = value' lines, applied after the preset\n"
+	       "  --platform NAME        EGL platform: auto|device|surfaceless\n"
+	       "  --shader-dir DIR       load shaders from DIR instead of the built-in copies\n"
+	       "  --set NAME=VALUE       set any parameter below\n"
+	       "  --help, --version, --list-presets\n"
+	       "\n"
+	       "Every parameter is --name VALUE or --name=VALUE ('-' or '_' in names);\n"
+	       "booleans also --name / --no-name.  --preset and --config apply first, then\n"
+	       "the other options in order, so explicit options win.\n"
+	       "\n"
+	       "Application:\n", prog);
+	params_print_help(stdout, P_APP);
+	printf("\nTerrain (shader uniforms):\n");
+	params_print_help(stdout, P_SHADER);
+}
+
+enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, size_t errlen)
+{
+	struct opt o;
+	char e[512];
+	params_defaults(p);
+
+	/* Pass 1: syntax, and the options that exit at once. */
+	for (int i = 1; i < argc;) {
+		if (next_opt(argc, argv, &i, &o, err, errlen) < 0)
+			return CLI_ERROR;
+		switch (o.kind) {
+		case OPT_HELP:
+			cli_print_help(argc > 0 ? argv[0] : NULL);
+			return CLI_EXIT_OK;
+		case OPT_VERSION:
+			printf("isoterra %s\n", ISOTERRA_VERSION);
+			return CLI_EXIT_OK;
+		case OPT_LIST_PRESETS:
+			list_presets();
+			return CLI_EXIT_OK;
+		default:
+			break;
+		}
+	}
+	/* Pass 2: presets, 3: config files, 4: everything else in order. */
+	for (int pass = 2; pass <= 4; pass++) {
+		for (int i = 1; i < argc;) {
+			if (next_opt(argc, argv, &i, &o, err, errlen) < 0)
+				return CLI_ERROR;
+			int rc = 0;
+			if (pass == 2 && o.kind == OPT_PRESET) {
+				rc = params_apply_preset(p, o.value, e, sizeof(e));
+			} else if (pass == 3 && o.kind == OPT_CONFIG) {
+				rc = params_load_config_file(p, o.value, e, sizeof(e));
+			} else if (pass == 4 && o.kind == OPT_PARAM) {
+				rc = params_set(p, o.pi->name, o.value, e, sizeof(e));
+			} else if (pass == 4 && o.kind == OPT_NO_BOOL) {
+				rc = params_set(p, o.pi->name, "false", e, sizeof(e));
+			} else if (pass == 4 && o.kind == OPT_SET) {
+				const char *eq = strchr(o.value, '=');
+				char name[64];
+				if (!eq || eq == o.value || (size_t)(eq - o.value) >= sizeof(name)) {
+					snprintf(err, errlen, "option '--set' needs NAME=VALUE, got '%s'", o.value);
+					return CLI_ERROR;
+				}
+				snprintf(name, sizeof(name), "%.*s", (int)(eq - o.value), o.value);
+				rc = params_set(p, name, eq + 1, e, sizeof(e));
+			}
+			if (rc < 0) {
+				snprintf(err, errlen, "%s", e);
+				return CLI_ERROR;
+			}
+		}
+	}
+	return validate(p, err, errlen) < 0 ? CLI_ERROR : CLI_RUN;
+}

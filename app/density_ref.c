@@ -1,0 +1,255 @@
+/* isoterra — CPU reference of the density function: shaders/density.glsl and
+ * shaders/fractal.glsl, term by term, in plain C float (same operations in
+ * the same order).  Differences to the GPU come from libm vs GLSL sin/cos/
+ * pow/sqrt and FMA contraction only (~1e-6 relative), except for
+ * noise=texture, where the GPU's hardware trilinear filter is approximated
+ * here by exact fp32 trilinear interpolation (see tests/test_density.c). */
+#include "density_ref.h"
+
+#include <math.h>
+
+/* keep in sync with fractal.glsl */
+#define NOISE_TEX_GAIN 0.864f
+#define NOISE_MEAN_ABS 0.2205f
+#define NOISE_MEAN_SQ 0.0734f
+static const float worley_mean[4] = { 0.5205f, 0.7167f, 0.8451f, 0.9437f };
+static const float octave_shift[3] = { 17.31f, -9.17f, 23.53f };
+#define PI_F 3.14159265358979f
+
+/* values of the FIELD_/SHAPE_/... enums (index in the params.def choices) */
+enum { FIELD_TERRAIN, FIELD_TORUS, FIELD_BUMPS, FIELD_RIPPLE, FIELD_SPHERE, FIELD_CHECKER };
+enum { SHAPE_GROUND, SHAPE_PLANET, SHAPE_CAVES };
+enum { NOISE_ALU, NOISE_TEXTURE };
+enum { FRACTAL_GEISS, FRACTAL_FBM, FRACTAL_TURBULENCE, FRACTAL_RIDGED, FRACTAL_MULTIFRACTAL, FRACTAL_HETERO,
+       FRACTAL_WORLEY };
+enum { TERRACE_OFF, TERRACE_PRE, TERRACE_POST };
+
+static inline float clampf(float x, float lo, float hi)
+{
+	return x < lo ? lo : (x > hi ? hi : x);
+}
+
+static inline float sat(float x)
+{
+	return clampf(x, 0.0f, 1.0f);
+}
+
+static inline float smooth01(float t)
+{
+	t = clampf(t, 0.0f, 1.0f);
+	return t * t * (3.0f - 2.0f * t);
+}
+
+/* ---- fractal.glsl ------------------------------------------------------- */
+
+static void octave_point(const struct params *p, const struct noise_set *ns, const float ws[3], int i, float freq,
+			 float out[3])
+{
+	float x = ws[0] * freq, y = ws[1] * freq, z = ws[2] * freq;
+	if (i < p->rotated_octaves && i < 4) {
+		const float *r = ns->rot[i];
+		float rx = r[0] * x + r[1] * y + r[2] * z;
+		float ry = r[3] * x + r[4] * y + r[5] * z;
+		float rz = r[6] * x + r[7] * y + r[8] * z;
+		x = rx;
+		y = ry;
+		z = rz;
+	}
+	float fi = (float)i;
+	out[0] = x + fi * octave_shift[0];
+	out[1] = y + fi * octave_shift[1];
+	out[2] = z + fi * octave_shift[2];
+}
+
+static float octave_noise(const struct params *p, const struct noise_set *ns, const float q[3], int i)
+{
+	if (p->noise == NOISE_TEXTURE)
+		return noise_tex_sample(ns, i % 3, q[0], q[1], q[2], (i / 3) & 3) * NOISE_TEX_GAIN;
+	return noise_perlin(ns, q[0], q[1], q[2]);
+}
+
+static float fractal_ref(const struct params *p, const struct noise_set *ns, const float ws[3])
+{
+	float freq = p->noise_freq;
+	float ga = 1.0f, hw = 1.0f;
+	float hstep = powf(p->lacunarity, -p->hurst);
+	float sum = 0.0f, center = 0.0f;
+	float weight = 1.0f;
+	float es = p->ridge_offset * p->ridge_offset - 2.0f * p->ridge_offset * NOISE_MEAN_ABS + NOISE_MEAN_SQ;
+	float ew = 1.0f;
+	float wc = p->worley_c1 * worley_mean[0] + p->worley_c2 * worley_mean[1] + p->worley_c3 * worley_mean[2] +
+		   p->worley_c4 * worley_mean[3];
+	if (p->fractal == FRACTAL_MULTIFRACTAL) {
+		sum = 1.0f;
+		center = 1.0f;
+	}
+	for (int i = 0; i < p->octaves; i++) {
+		float q[3];
+		octave_point(p, ns, ws, i, freq, q);
+		if (p->fractal == FRACTAL_WORLEY) {
+			float F[4];
+			noise_worley(ns, q[0], q[1], q[2], i, F);
+			float v = p->worley_c1 * F[0] + p->worley_c2 * F[1] + p->worley_c3 * F[2] + p->worley_c4 * F[3];
+			sum += ga * (v - wc);
+		} else {
+			float n = octave_noise(p, ns, q, i);
+			switch (p->fractal) {
+			case FRACTAL_FBM:
+				sum += hw * n;
+				break;
+			case FRACTAL_TURBULENCE:
+				sum += ga * (fabsf(n) - NOISE_MEAN_ABS);
+				break;
+			case FRACTAL_RIDGED: {
+				float s = p->ridge_offset - fabsf(n);
+				s = s * s * weight;
+				sum += hw * s;
+				weight = clampf(s * p->ridge_gain, 0.0f, 1.0f);
+				center += hw * es * ew;
+				ew = fminf(es * ew * p->ridge_gain, 1.0f);
+				break;
+			}
+			case FRACTAL_MULTIFRACTAL:
+				sum *= p->mf_offset + p->mf_contrast * hw * n;
+				center *= p->mf_offset;
+				break;
+			case FRACTAL_HETERO:
+				if (i == 0) {
+					sum = p->mf_offset + n;
+					center = p->mf_offset;
+				} else {
+					sum += (n + p->mf_offset) * hw * sum;
+					center += p->mf_offset * hw * center;
+				}
+				break;
+			default: /* FRACTAL_GEISS */
+				sum += ga * n;
+				break;
+			}
+		}
+		freq *= p->lacunarity;
+		ga *= p->gain;
+		hw *= hstep;
+	}
+	return sum - center;
+}
+
+/* ---- density.glsl ------------------------------------------------------- */
+
+static float test_field(const struct params *p, float x, float y, float z)
+{
+	float s = p->field_scale;
+	float inv = 1.0f / s;
+	float qx = x * inv, qy = y * inv, qz = z * inv;
+	float v;
+	switch (p->field) {
+	case FIELD_TORUS: {
+		float r = 0.6f - sqrtf(qx * qx + qz * qz);
+		v = 0.16f - r * r - qy * qy;
+		break;
+	}
+	case FIELD_BUMPS:
+		v = sinf(5.0f * qx) * cosf(5.0f * qz) * 0.2f - qy;
+		break;
+	case FIELD_RIPPLE:
+		v = sinf(10.0f * (qx * qx + qz * qz)) * 0.1f - qy;
+		break;
+	case FIELD_SPHERE:
+		v = 1.0f - sqrtf(qx * qx + qy * qy + qz * qz);
+		break;
+	default: /* FIELD_CHECKER */
+		v = cosf(PI_F * qx) * cosf(PI_F * qy) * cosf(PI_F * qz);
+		break;
+	}
+	return v * s;
+}
+
+static void domain_warp(const struct params *p, const struct noise_set *ns, const float ws[3], float w[3])
+{
+	float x = ws[0] * p->warp_freq, y = ws[1] * p->warp_freq, z = ws[2] * p->warp_freq;
+	if (p->noise == NOISE_TEXTURE) {
+		for (int c = 0; c < 3; c++)
+			w[c] = noise_tex_sample(ns, 1, x, y, z, c) * NOISE_TEX_GAIN;
+		return;
+	}
+	w[0] = noise_perlin(ns, x + 11.3f, y + 47.9f, z + 23.1f);
+	w[1] = noise_perlin(ns, x + 71.7f, y + 5.3f, z + 89.9f);
+	w[2] = noise_perlin(ns, x + 37.1f, y + 63.7f, z + 13.9f);
+}
+
+static float terrace_term(const struct params *p, float y)
+{
+	float u = y * (1.0f / p->terrace_step);
+	float f = u - floorf(u);
+	return -p->terrace_strength * p->terrace_step * (f - f * f * (3.0f - 2.0f * f));
+}
+
+static float shelf_term(const struct params *p, float y)
+{
+	float dy = y - p->shelf_y;
+	float w = dy >= 0.0f ? p->shelf_width : 3.0f * p->shelf_width;
+	return p->shelf_strength * (1.0f - smooth01(fabsf(dy) * (1.0f / w)));
+}
+
+float density_ref(const struct params *p, const struct noise_set *ns, float x, float y, float z)
+{
+	x += p->time * p->scroll_speed;
+	if (p->field != FIELD_TERRAIN)
+		return test_field(p, x, y, z);
+
+	const float orig[3] = { x, y, z };
+	float ws[3] = { x, y, z };
+	if (p->warp_amp != 0.0f) {
+		float w[3];
+		domain_warp(p, ns, orig, w);
+		for (int c = 0; c < 3; c++)
+			ws[c] += w[c] * p->warp_amp;
+	}
+
+	float d;
+	if (p->shape == SHAPE_PLANET) {
+		float cx = ws[0] - 0.0f, cy = ws[1] - (-p->planet_radius), cz = ws[2] - 0.0f;
+		d = p->planet_radius - sqrtf(cx * cx + cy * cy + cz * cz);
+	} else if (p->shape == SHAPE_CAVES) {
+		d = p->cave_bias;
+	} else {
+		d = -ws[1] * p->ground_slope;
+	}
+
+	d += p->noise_amp * fractal_ref(p, ns, ws);
+
+	d += sat((p->floor_y - orig[1]) * p->floor_sharpness) * p->floor_strength;
+
+	if (p->terrace == TERRACE_PRE)
+		d += terrace_term(p, orig[1]);
+	else if (p->terrace == TERRACE_POST)
+		d += terrace_term(p, ws[1]);
+
+	if (p->shelf == TERRACE_PRE) /* same off|pre|post choices */
+		d += shelf_term(p, orig[1]);
+	else if (p->shelf == TERRACE_POST)
+		d += shelf_term(p, ws[1]);
+
+	if (p->flat_spot) {
+		float dx = orig[0] - p->flat_x, dz = orig[2] - p->flat_z;
+		float dist = sqrtf(dx * dx + dz * dz);
+		float amount = sat((p->flat_outer - dist) * (1.0f / fmaxf(p->flat_outer - p->flat_inner, 1e-4f))) * 0.9f;
+		d = d + amount * ((p->flat_y - orig[1]) - d);
+	}
+	return d;
+}
+
+void density_ref_volume(const struct params *p, const struct noise_set *ns, const float origin[3], float cell,
+			int nx, int ny, int nz, float *out)
+{
+	int sx = nx + 3, sy = ny + 3, sz = nz + 3;
+	for (int k = 0; k < sz; k++)
+		for (int j = 0; j < sy; j++)
+			for (int i = 0; i < sx; i++) {
+				float x = origin[0] + (float)(i - 1) * cell;
+				float y = origin[1] + (float)(j - 1) * cell;
+				float z = origin[2] + (float)(k - 1) * cell;
+				out[((size_t)k * (size_t)sy + (size_t)j) * (size_t)sx + (size_t)i] =
+					density_ref(p, ns, x, y, z);
+			}
+}

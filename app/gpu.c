@@ -1,0 +1,94 @@
+/* isoterra — GLES 3.1 capability checks, KHR_debug routing, error checks. */
+#include "gpu.h"
+#include "log.h"
+
+#include <EGL/egl.h>
+#include <GLES2/gl2ext.h>
+#include <stdio.h>
+#include <string.h>
+
+static void GL_APIENTRY debug_cb(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+				 const GLchar *message, const void *user)
+{
+	(void)source;
+	(void)id;
+	(void)length;
+	(void)user;
+	enum log_level lvl = LOG_DEBUG;
+	if (type == GL_DEBUG_TYPE_ERROR_KHR || severity == GL_DEBUG_SEVERITY_HIGH_KHR)
+		lvl = LOG_WARN;
+	else if (severity == GL_DEBUG_SEVERITY_MEDIUM_KHR)
+		lvl = LOG_INFO;
+	log_msg(lvl, "GL: %s", message);
+}
+
+static bool has_ext(const char *exts, const char *name)
+{
+	size_t n = strlen(name);
+	for (const char *p = exts; p && (p = strstr(p, name)); p += n)
+		if ((p == exts || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0))
+			return true;
+	return false;
+}
+
+int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen)
+{
+	memset(caps, 0, sizeof(*caps));
+	const char *ver = (const char *)glGetString(GL_VERSION);
+	const char *ren = (const char *)glGetString(GL_RENDERER);
+	if (!ver) {
+		snprintf(err, errlen, "no current GL context (glGetString(GL_VERSION) failed)");
+		return -1;
+	}
+	int major = 0, minor = 0;
+	if (sscanf(ver, "OpenGL ES %d.%d", &major, &minor) != 2) {
+		snprintf(err, errlen, "not an OpenGL ES context: '%s'", ver);
+		return -1;
+	}
+	if (major < 3 || (major == 3 && minor < 1)) {
+		snprintf(err, errlen, "OpenGL ES 3.1 with compute shaders is required, the driver gives '%s'", ver);
+		return -1;
+	}
+	snprintf(caps->version, sizeof(caps->version), "%s", ver);
+	snprintf(caps->renderer, sizeof(caps->renderer), "%s", ren ? ren : "?");
+	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &caps->max_ssbo_size);
+	for (int i = 0; i < 3; i++)
+		glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, (GLuint)i, &caps->max_group_count[i]);
+	if (gpu_check("capability query") < 0) {
+		snprintf(err, errlen, "querying compute limits failed (is this really GLES 3.1?)");
+		return -1;
+	}
+	const char *exts = (const char *)glGetString(GL_EXTENSIONS);
+	caps->khr_debug = has_ext(exts, "GL_KHR_debug");
+	if (caps->khr_debug) {
+		PFNGLDEBUGMESSAGECALLBACKKHRPROC cb =
+			(PFNGLDEBUGMESSAGECALLBACKKHRPROC)eglGetProcAddress("glDebugMessageCallbackKHR");
+		PFNGLDEBUGMESSAGECONTROLKHRPROC ctl =
+			(PFNGLDEBUGMESSAGECONTROLKHRPROC)eglGetProcAddress("glDebugMessageControlKHR");
+		if (cb && ctl) {
+			cb(debug_cb, NULL);
+			/* errors and warnings always; everything in debug mode */
+			ctl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, NULL, debug ? GL_TRUE : GL_FALSE);
+			ctl(GL_DONT_CARE, GL_DEBUG_TYPE_ERROR_KHR, GL_DONT_CARE, 0, NULL, GL_TRUE);
+			ctl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_HIGH_KHR, 0, NULL, GL_TRUE);
+			if (debug)
+				glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR);
+			glEnable(GL_DEBUG_OUTPUT_KHR);
+			(void)glGetError();
+		}
+	}
+	log_debug("GL: %s / %s, max SSBO %d bytes, max groups %d x %d x %d", caps->renderer, caps->version,
+		  caps->max_ssbo_size, caps->max_group_count[0], caps->max_group_count[1], caps->max_group_count[2]);
+	return 0;
+}
+
+int gpu_check(const char *what)
+{
+	GLenum e = glGetError();
+	if (e == GL_NO_ERROR)
+		return 0;
+	log_error("%s: GL error 0x%04x", what, e);
+	while (glGetError() != GL_NO_ERROR)
+		;
+	return -1;
+}

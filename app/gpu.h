@@ -1,0 +1,46 @@
+/* isoterra — GL helpers and the shader loader.
+ *
+ * Shaders live in shaders/ (GLSL ES 3.10), embedded into the binary at build
+ * time; shader_set_dir() makes the loader read them from disk instead (live
+ * editing).  The host expands  #include "file"  and prefixes every program
+ * with the #version line, the parameter uniforms (params_glsl_decls) and the
+ * caller's #defines.  Compile errors are reported as file:line. */
+#ifndef ISOTERRA_GPU_H
+#define ISOTERRA_GPU_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <GLES3/gl31.h>
+
+#include "params.h"
+
+struct embedded_file {
+	const char *name;
+	const char *text;
+};
+extern const struct embedded_file embedded_shaders[];
+extern const size_t embedded_shader_count;
+
+void shader_set_dir(const char *dir); /* NULL or "" = embedded */
+/* Raw text of one shader file (malloc'd), or NULL with err. */
+char *shader_read(const char *name, char *err, size_t errlen);
+/* Compute program from one .comp file.  defines: extra "#define X Y\n" lines
+ * or NULL.  Returns 0 with a file:line message in err on failure. */
+GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen);
+GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen);
+/* Sets every u_<name> uniform the program uses from the parameter table. */
+void gpu_set_param_uniforms(GLuint prog, const struct params *p);
+
+/* Capabilities and checks. */
+struct gpu_caps {
+	int max_ssbo_size;          /* GL_MAX_SHADER_STORAGE_BLOCK_SIZE */
+	int max_group_count[3];     /* GL_MAX_COMPUTE_WORK_GROUP_COUNT */
+	bool khr_debug;
+	char renderer[128], version[128];
+};
+/* Checks GLES >= 3.1 with compute; fills caps.  0 or -1 with err. */
+int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen);
+/* glGetError() != GL_NO_ERROR -> logs "what: GL error 0x..." and returns -1. */
+int gpu_check(const char *what);
+
+#endif

@@ -1,0 +1,16 @@
+/* isoterra — procedural GPU terrain: entry point. */
+#include "app.h"
+
+int main(int argc, char **argv)
+{
+	struct params p;
+	char err[512];
+	switch (cli_parse(argc, argv, &p, err, sizeof(err))) {
+	case CLI_EXIT_OK: return 0;
+	case CLI_ERROR:
+		log_error("%s", err);
+		return 2;
+	case CLI_RUN: break;
+	}
+	return run_headless(&p);
+}

@@ -1,0 +1,122 @@
+/* isoterra — CPU reference Marching Cubes (plain C), same tables, same
+ * vertex ownership and output order as the GPU passes. */
+#include "mc.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static float D(const struct grid *g, const float *dens, int i, int j, int k)
+{
+	return dens[grid_dens_index(g, i, j, k)];
+}
+
+static void gradient(const struct grid *g, const float *dens, int i, int j, int k, float out[3])
+{
+	out[0] = D(g, dens, i + 1, j, k) - D(g, dens, i - 1, j, k);
+	out[1] = D(g, dens, i, j + 1, k) - D(g, dens, i, j - 1, k);
+	out[2] = D(g, dens, i, j, k + 1) - D(g, dens, i, j, k - 1);
+}
+
+static int vmask(const struct grid *g, const float *dens, float iso, int x, int y, int z)
+{
+	if (x > g->nx || y > g->ny || z > g->nz)
+		return 0;
+	int in0 = D(g, dens, x, y, z) > iso, m = 0;
+	if (x < g->nx && y <= g->ny && z <= g->nz && in0 != (D(g, dens, x + 1, y, z) > iso))
+		m |= 1;
+	if (y < g->ny && in0 != (D(g, dens, x, y + 1, z) > iso))
+		m |= 2;
+	if (z < g->nz && in0 != (D(g, dens, x, y, z + 1) > iso))
+		m |= 4;
+	return m;
+}
+
+int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct mesh *out)
+{
+	const struct mc_tables *t = mc_get_tables();
+	const int ox = g->nx + 1, oy = g->ny + 1, oz = g->nz + 1;
+	const size_t owners = (size_t)ox * oy * oz;
+	uint32_t *base = malloc(sizeof(uint32_t) * (owners + 1));
+	uint8_t *mask = malloc(owners);
+	if (!base || !mask) {
+		free(base);
+		free(mask);
+		return -1;
+	}
+	/* pass 1: vertex ownership and prefix sum; triangle count */
+	uint64_t nv = 0, nt = 0;
+	for (int z = 0; z < oz; z++)
+		for (int y = 0; y < oy; y++)
+			for (int x = 0; x < ox; x++) {
+				size_t c = (size_t)x + (size_t)ox * ((size_t)y + (size_t)oy * z);
+				int m = vmask(g, dens, iso, x, y, z);
+				mask[c] = (uint8_t)m;
+				base[c] = (uint32_t)nv;
+				nv += (uint64_t)((m & 1) + ((m >> 1) & 1) + ((m >> 2) & 1));
+				if (x < g->nx && y < g->ny && z < g->nz) {
+					int cs = 0;
+					for (int n = 0; n < 8; n++)
+						cs |= (D(g, dens, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) > iso) << n;
+					nt += t->tri_count[cs];
+				}
+			}
+	if (nv > UINT32_MAX || nt > UINT32_MAX / 3 || mesh_alloc(out, (uint32_t)nv, (uint32_t)nt) < 0) {
+		free(base);
+		free(mask);
+		return -1;
+	}
+	/* pass 2: vertices */
+	uint32_t v = 0;
+	for (int z = 0; z < oz; z++)
+		for (int y = 0; y < oy; y++)
+			for (int x = 0; x < ox; x++) {
+				size_t c = (size_t)x + (size_t)ox * ((size_t)y + (size_t)oy * z);
+				for (int s = 0; s < 3; s++) {
+					if (!(mask[c] & (1 << s)))
+						continue;
+					int x1 = x + (s == 0), y1 = y + (s == 1), z1 = z + (s == 2);
+					float d0 = D(g, dens, x, y, z), d1 = D(g, dens, x1, y1, z1);
+					float tt = (d0 - iso) / (d0 - d1);
+					float p0[3] = { (float)x, (float)y, (float)z };
+					float g0[3], g1[3];
+					gradient(g, dens, x, y, z, g0);
+					gradient(g, dens, x1, y1, z1, g1);
+					float n[3], len = 0.0f;
+					for (int a = 0; a < 3; a++) {
+						float pa = p0[a] + (a == s ? tt : 0.0f);
+						out->pos[3 * v + a] = g->origin[a] + pa * g->cell;
+						n[a] = g0[a] + (g1[a] - g0[a]) * tt;
+						len += n[a] * n[a];
+					}
+					len = sqrtf(len);
+					for (int a = 0; a < 3; a++)
+						out->nrm[3 * v + a] = len > 1e-20f ? -n[a] / len : (a == 1 ? 1.0f : 0.0f);
+					v++;
+				}
+			}
+	/* pass 3: triangles */
+	uint32_t tri = 0;
+	for (int z = 0; z < g->nz; z++)
+		for (int y = 0; y < g->ny; y++)
+			for (int x = 0; x < g->nx; x++) {
+				int cs = 0;
+				for (int n = 0; n < 8; n++)
+					cs |= (D(g, dens, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) > iso) << n;
+				for (int k = 0; k < t->tri_count[cs] * 3; k++) {
+					int e = t->tri[cs][k];
+					int qx = x + t->edge_owner[e][0], qy = y + t->edge_owner[e][1], qz = z + t->edge_owner[e][2];
+					int s = t->edge_owner[e][3];
+					size_t c = (size_t)qx + (size_t)ox * ((size_t)qy + (size_t)oy * qz);
+					uint32_t rank = 0;
+					for (int b = 0; b < s; b++)
+						rank += (mask[c] >> b) & 1;
+					out->idx[3 * tri + (uint32_t)(k % 3)] = base[c] + rank;
+					if (k % 3 == 2)
+						tri++;
+				}
+			}
+	free(base);
+	free(mask);
+	return 0;
+}

@@ -1,0 +1,85 @@
+/* isoterra — the parameter table.
+ *
+ * Every tunable lives in one table (params.def): name, type, range, default
+ * and help.  The table drives the command line (--name value), the config
+ * file (name = value), the shader uniforms (u_name, for P_SHADER entries) and,
+ * later, the GPIO controls. */
+#ifndef ISOTERRA_PARAMS_H
+#define ISOTERRA_PARAMS_H
+
+#include <stddef.h>
+#include <stdbool.h>
+#include <stdio.h>
+
+enum param_type { PT_FLOAT, PT_INT, PT_BOOL, PT_ENUM, PT_STRING };
+
+enum param_flags {
+	P_SHADER = 1 << 0, /* exposed to GLSL as "uniform <type> u_<name>;" */
+	P_APP = 1 << 1,    /* application option (size, out, ...) */
+	P_LIVE = 1 << 2,   /* sensible to change live (knobs) */
+};
+
+#define PARAM_STR_MAX 256
+
+struct params {
+#define PF(name, def, lo, hi, flags, help) float name;
+#define PI(name, def, lo, hi, flags, help) int name;
+#define PB(name, def, flags, help) bool name;
+#define PE(name, def, choices, flags, help) int name;
+#define PS(name, def, flags, help) char name[PARAM_STR_MAX];
+#include "params.def"
+#undef PF
+#undef PI
+#undef PB
+#undef PE
+#undef PS
+};
+
+struct param_info {
+	const char *name;
+	enum param_type type;
+	size_t offset;
+	double def, lo, hi;   /* numeric default and inclusive range */
+	const char *def_str;  /* PT_STRING default */
+	const char *choices;  /* PT_ENUM: "a|b|c", index = value */
+	unsigned flags;
+	const char *help;
+};
+
+extern const struct param_info param_table[];
+extern const size_t param_count;
+
+void params_defaults(struct params *p);
+const struct param_info *params_find(const char *name);
+/* Accepts '-' for '_' in names.  Returns 0, or -1 with a one-line message in err. */
+int params_set(struct params *p, const char *name, const char *value, char *err, size_t errlen);
+/* Value as text ("0.5", "true", "alu", ...). */
+void params_format(const struct params *p, const struct param_info *pi, char *buf, size_t len);
+/* Numeric value of a FLOAT/INT/BOOL/ENUM entry. */
+double params_get_number(const struct params *p, const struct param_info *pi);
+void params_set_number(struct params *p, const struct param_info *pi, double v);
+/* Enum choice name -> index, or -1. */
+int params_enum_index(const struct param_info *pi, const char *choice);
+/* Help text: one entry a line (or two), for --help. */
+void params_print_help(FILE *f, unsigned flag_mask);
+/* GLSL declarations of every P_SHADER entry and enum constants, NUL-terminated;
+ * returns the number of bytes written (excluding NUL) or -1 if buf too small. */
+int params_glsl_decls(char *buf, size_t len);
+/* True when two parameter sets give the same terrain (all P_SHADER equal). */
+bool params_same_terrain(const struct params *a, const struct params *b);
+
+/* Presets: named key=value lists applied over the defaults. */
+struct preset {
+	const char *name;
+	const char *help;
+	const char *settings; /* "key=value;key=value;..." */
+};
+extern const struct preset presets[];
+extern const size_t preset_count;
+int params_apply_preset(struct params *p, const char *name, char *err, size_t errlen);
+/* Parse "key = value" config text (# comments, blank lines).  On error, err
+ * gets "FILE:LINE: message". */
+int params_load_config_text(struct params *p, const char *text, const char *fname, char *err, size_t errlen);
+int params_load_config_file(struct params *p, const char *path, char *err, size_t errlen);
+
+#endif

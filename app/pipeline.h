@@ -1,0 +1,68 @@
+/* isoterra — the GPU terrain pipeline: density -> Marching Cubes
+ * classification -> HistoPyramid -> vertex and index generation ->
+ * indirect draw.  No CPU read-back in the frame loop; the *_read functions
+ * below are for tests, export and end-of-run reports. */
+#ifndef ISOTERRA_PIPELINE_H
+#define ISOTERRA_PIPELINE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <GLES3/gl31.h>
+
+#include "params.h"
+#include "mesh.h"
+#include "grid.h"
+
+/* The grid the parameters describe (--grid N cells over the vol_* cube). */
+void grid_from_params(struct grid *g, const struct params *p);
+
+struct extract_stats {
+	uint64_t triangles_needed, vertices_needed;   /* what the field asked for */
+	uint32_t triangles, vertices;                 /* what was written (clamped) */
+	uint32_t triangle_capacity, vertex_capacity;
+	bool overflow;
+};
+
+struct pipeline;
+
+enum compaction { COMPACT_HP = 0, COMPACT_ATOMIC = 1, COMPACT_NONE = 2 };
+
+/* Creates buffers and programs for grid g.  Capacities: max_tris/max_verts
+ * (0 = automatic).  Returns NULL with err. */
+struct pipeline *pipeline_create(const struct grid *g, const struct params *p, char *err, size_t errlen);
+void pipeline_destroy(struct pipeline *pl);
+
+/* Runs the density pass only (benchmarks). */
+int pipeline_density(struct pipeline *pl, const struct params *p);
+/* Runs density + extraction with the compaction method in p->compaction. */
+int pipeline_run(struct pipeline *pl, const struct params *p);
+/* Draw state for the renderer: vertex buffer (vec4 position, vec4 normal per
+ * vertex, 32 bytes), element buffer (uint32, may be 0 when not indexed) and
+ * the indirect command buffer (DrawElementsIndirectCommand at offset 0, or
+ * DrawArraysIndirectCommand when indexed is false). */
+struct pipeline_draw {
+	GLuint vbo, ibo, indirect;
+	GLintptr indirect_offset;
+	bool indexed;
+};
+void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d);
+
+/* ---- read-back (tests, export, reports; never in the frame loop) ------- */
+/* (nx+3)*(ny+3)*(nz+3) densities, one-sample margin, x fastest. */
+int pipeline_read_density(struct pipeline *pl, float *out);
+/* 0 when the canaries after the output buffers are intact, 1 when
+ * something wrote past a capacity, -1 on read error. */
+int pipeline_check_guards(struct pipeline *pl);
+int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st);
+/* The extracted mesh (indexed; for atomic/none the triangles are unshared). */
+int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
+/* HistoPyramid test hook: builds the pyramid over n level-0 cell bytes
+ * (bits 0..2 triangle count, bits 3..5 vertex mask) with the same shaders,
+ * returns the totals (triangles, vertices), the (cell, rank) of every output
+ * key of component comp (0 triangles, 1 vertices) and every cell's prefix
+ * sum.  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
+ * context.  0 or -1 with err. */
+int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
+		uint32_t *key_rank, uint32_t *prefix, char *err, size_t errlen);
+
+#endif

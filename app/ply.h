@@ -1,0 +1,14 @@
+/* isoterra — binary little-endian PLY export (MeshLab, Blender). */
+#ifndef ISOTERRA_PLY_H
+#define ISOTERRA_PLY_H
+
+#include <stddef.h>
+#include "mesh.h"
+
+/* Writes vertices (x y z nx ny nz float) and faces (uchar count, uint
+ * indices) atomically (temp file + rename).  0 or -1 with err. */
+int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen);
+/* Reads back a file written by ply_write (used by the tests). */
+int ply_read(struct mesh *m, const char *path, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,175 @@
+/* isoterra — offscreen rendering: multisampled colour+depth FBO, lit draw of
+ * the mesh with the pipeline's indirect command, resolve and read-back. */
+#include "render.h"
+#include "gpu.h"
+#include "log.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct renderer {
+	int w, h, samples;
+	GLuint fbo_ms, rb_color_ms, rb_depth;
+	GLuint fbo, rb_color;
+	GLuint prog, vao;
+	GLint l_viewproj, l_eye, l_fog;
+};
+
+static const char *fbo_status(GLenum s)
+{
+	switch (s) {
+	case GL_FRAMEBUFFER_COMPLETE: return "complete";
+	case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "incomplete attachment";
+	case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "missing attachment";
+	case GL_FRAMEBUFFER_UNSUPPORTED: return "unsupported";
+	case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "incomplete multisample";
+	default: return "unknown status";
+	}
+}
+
+struct renderer *renderer_create(int width, int height, char *err, size_t errlen)
+{
+	struct renderer *r = calloc(1, sizeof(*r));
+	if (!r) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	r->w = width;
+	r->h = height;
+	GLint max_samples = 0, max_rb = 0;
+	glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+	glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
+	if (width > max_rb || height > max_rb) {
+		snprintf(err, errlen, "--size %dx%d exceeds the GL renderbuffer limit %d", width, height, max_rb);
+		free(r);
+		return NULL;
+	}
+	r->samples = max_samples >= 4 ? 4 : 0;
+
+	glGenRenderbuffers(1, &r->rb_color);
+	glBindRenderbuffer(GL_RENDERBUFFER, r->rb_color);
+	glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+	glGenFramebuffers(1, &r->fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+	glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->rb_color);
+
+	glGenRenderbuffers(1, &r->rb_depth);
+	glBindRenderbuffer(GL_RENDERBUFFER, r->rb_depth);
+	if (r->samples) {
+		glGenRenderbuffers(1, &r->rb_color_ms);
+		glBindRenderbuffer(GL_RENDERBUFFER, r->rb_color_ms);
+		glRenderbufferStorageMultisample(GL_RENDERBUFFER, r->samples, GL_RGBA8, width, height);
+		glBindRenderbuffer(GL_RENDERBUFFER, r->rb_depth);
+		glRenderbufferStorageMultisample(GL_RENDERBUFFER, r->samples, GL_DEPTH_COMPONENT24, width, height);
+		glGenFramebuffers(1, &r->fbo_ms);
+		glBindFramebuffer(GL_FRAMEBUFFER, r->fbo_ms);
+		glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->rb_color_ms);
+	} else {
+		glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+	}
+	glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->rb_depth);
+	GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+	if (st != GL_FRAMEBUFFER_COMPLETE || gpu_check("framebuffer setup") < 0) {
+		snprintf(err, errlen, "cannot create a %dx%d render target: framebuffer %s", width, height, fbo_status(st));
+		renderer_destroy(r);
+		return NULL;
+	}
+	r->prog = gpu_graphics_program("render.vert", "render.frag", NULL, err, errlen);
+	if (!r->prog) {
+		renderer_destroy(r);
+		return NULL;
+	}
+	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
+	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
+	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
+	glGenVertexArrays(1, &r->vao);
+	return r;
+}
+
+void renderer_destroy(struct renderer *r)
+{
+	if (!r)
+		return;
+	if (r->prog)
+		glDeleteProgram(r->prog);
+	if (r->vao)
+		glDeleteVertexArrays(1, &r->vao);
+	GLuint fb[2] = { r->fbo, r->fbo_ms };
+	glDeleteFramebuffers(2, fb);
+	GLuint rb[3] = { r->rb_color, r->rb_color_ms, r->rb_depth };
+	glDeleteRenderbuffers(3, rb);
+	free(r);
+}
+
+int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
+{
+	glBindFramebuffer(GL_FRAMEBUFFER, r->samples ? r->fbo_ms : r->fbo);
+	glViewport(0, 0, r->w, r->h);
+	/* sky colour (linear -> the shader's fog colour matches it) */
+	glClearColor(0.62f, 0.74f, 0.88f, 1.0f);
+	glClearDepthf(1.0f);
+	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+	glEnable(GL_DEPTH_TEST);
+	glDepthFunc(GL_LESS);
+	glDisable(GL_CULL_FACE); /* the volume's cut sides show back faces */
+
+	glUseProgram(r->prog);
+	gpu_set_param_uniforms(r->prog, p);
+	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
+	glUniform3fv(r->l_eye, 1, c->eye);
+	glUniform1f(r->l_fog, 0.35f / (p->vol_size * p->cam_dist * 2.0f));
+
+	glBindVertexArray(r->vao);
+	glBindBuffer(GL_ARRAY_BUFFER, d->vbo);
+	glEnableVertexAttribArray(0);
+	glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, (const void *)0);
+	glEnableVertexAttribArray(1);
+	glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 32, (const void *)16);
+	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, d->indirect);
+	if (d->indexed) {
+		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, d->ibo);
+		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)d->indirect_offset);
+	} else {
+		glDrawArraysIndirect(GL_TRIANGLES, (const void *)d->indirect_offset);
+	}
+	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+	glBindVertexArray(0);
+	glUseProgram(0);
+	return gpu_check("draw");
+}
+
+int renderer_read(struct renderer *r, struct image *img)
+{
+	if (r->samples) {
+		glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
+		glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo);
+		glBlitFramebuffer(0, 0, r->w, r->h, 0, 0, r->w, r->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+	}
+	glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+	img->width = r->w;
+	img->height = r->h;
+	img->rgba = malloc((size_t)r->w * r->h * 4);
+	if (!img->rgba)
+		return -1;
+	glPixelStorei(GL_PACK_ALIGNMENT, 1);
+	glReadPixels(0, 0, r->w, r->h, GL_RGBA, GL_UNSIGNED_BYTE, img->rgba);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	if (gpu_check("read pixels") < 0) {
+		free(img->rgba);
+		img->rgba = NULL;
+		return -1;
+	}
+	/* GL's first row is the bottom one */
+	size_t row = (size_t)r->w * 4;
+	uint8_t *tmp = malloc(row);
+	if (!tmp)
+		return -1;
+	for (int y = 0; y < r->h / 2; y++) {
+		uint8_t *a = img->rgba + row * y, *b = img->rgba + row * (r->h - 1 - y);
+		memcpy(tmp, a, row);
+		memcpy(a, b, row);
+		memcpy(b, tmp, row);
+	}
+	free(tmp);
+	return 0;
+}

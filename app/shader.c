@@ -1,0 +1,316 @@
+/* isoterra — shader loader: embedded or on-disk sources, host-side
+ * #include expansion, file:line error reports. */
+#include "gpu.h"
+#include "log.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char shader_dir[PARAM_STR_MAX];
+
+void shader_set_dir(const char *dir)
+{
+	snprintf(shader_dir, sizeof(shader_dir), "%s", dir ? dir : "");
+}
+
+char *shader_read(const char *name, char *err, size_t errlen)
+{
+	if (!shader_dir[0]) {
+		for (size_t i = 0; i < embedded_shader_count; i++)
+			if (!strcmp(embedded_shaders[i].name, name))
+				return strdup(embedded_shaders[i].text);
+		snprintf(err, errlen, "shader '%s' is not embedded in this binary", name);
+		return NULL;
+	}
+	char path[PARAM_STR_MAX * 2];
+	snprintf(path, sizeof(path), "%s/%s", shader_dir, name);
+	FILE *f = fopen(path, "rb");
+	if (!f) {
+		snprintf(err, errlen, "cannot open shader '%s': %s", path, strerror(errno));
+		return NULL;
+	}
+	if (fseek(f, 0, SEEK_END) != 0) {
+		fclose(f);
+		snprintf(err, errlen, "cannot read shader '%s'", path);
+		return NULL;
+	}
+	long n = ftell(f);
+	if (n < 0 || n > (1 << 22) || fseek(f, 0, SEEK_SET) != 0) {
+		fclose(f);
+		snprintf(err, errlen, "cannot read shader '%s' (size)", path);
+		return NULL;
+	}
+	char *buf = malloc((size_t)n + 1);
+	if (!buf || fread(buf, 1, (size_t)n, f) != (size_t)n) {
+		free(buf);
+		fclose(f);
+		snprintf(err, errlen, "cannot read shader '%s'", path);
+		return NULL;
+	}
+	fclose(f);
+	buf[n] = 0;
+	return buf;
+}
+
+/* ---- source assembly ------------------------------------------------ */
+
+#define MAX_FILES 32
+
+struct srcbuf {
+	char *s;
+	size_t len, cap;
+	const char *files[MAX_FILES]; /* source-string number -> file name */
+	int nfiles;
+	char names[MAX_FILES][64];
+};
+
+static int sb_add(struct srcbuf *b, const char *s, size_t n)
+{
+	if (b->len + n + 1 > b->cap) {
+		size_t nc = b->cap ? b->cap : 16384;
+		while (nc < b->len + n + 1)
+			nc *= 2;
+		char *ns = realloc(b->s, nc);
+		if (!ns)
+			return -1;
+		b->s = ns;
+		b->cap = nc;
+	}
+	memcpy(b->s + b->len, s, n);
+	b->len += n;
+	b->s[b->len] = 0;
+	return 0;
+}
+
+static int sb_printf(struct srcbuf *b, const char *fmt, int a, int c)
+{
+	char tmp[64];
+	int n = snprintf(tmp, sizeof(tmp), fmt, a, c);
+	return sb_add(b, tmp, (size_t)n);
+}
+
+static int expand(struct srcbuf *b, const char *name, int depth, char *err, size_t errlen)
+{
+	if (depth > 8) {
+		snprintf(err, errlen, "%s: #include nested too deeply", name);
+		return -1;
+	}
+	for (int i = 1; i < b->nfiles; i++)
+		if (!strcmp(b->names[i], name))
+			return 0; /* each file once per program */
+	if (b->nfiles >= MAX_FILES) {
+		snprintf(err, errlen, "%s: too many #include files", name);
+		return -1;
+	}
+	int id = b->nfiles++;
+	snprintf(b->names[id], sizeof(b->names[id]), "%s", name);
+	char *text = shader_read(name, err, errlen);
+	if (!text)
+		return -1;
+	int rc = sb_printf(b, "#line 1 %d\n", id, 0);
+	int lineno = 0;
+	for (char *line = text; rc == 0 && line && *line;) {
+		char *nl = strchr(line, '\n');
+		size_t n = nl ? (size_t)(nl - line) + 1 : strlen(line);
+		lineno++;
+		char *p = line;
+		while (*p == ' ' || *p == '\t')
+			p++;
+		if (!strncmp(p, "#include", 8)) {
+			char *q1 = strchr(p, '"');
+			char *q2 = q1 ? strchr(q1 + 1, '"') : NULL;
+			if (!q1 || !q2 || (nl && q2 > nl) || q2 - q1 - 1 >= 63) {
+				snprintf(err, errlen, "%s:%d: malformed #include (use #include \"file\")", name, lineno);
+				free(text);
+				return -1;
+			}
+			char inc[64];
+			snprintf(inc, sizeof(inc), "%.*s", (int)(q2 - q1 - 1), q1 + 1);
+			char e2[512];
+			if (expand(b, inc, depth + 1, e2, sizeof(e2)) < 0) {
+				snprintf(err, errlen, "%s:%d: %s", name, lineno, e2);
+				free(text);
+				return -1;
+			}
+			rc = sb_printf(b, "#line %d %d\n", lineno + 1, id);
+		} else {
+			rc = sb_add(b, line, n);
+			if (rc == 0 && !nl)
+				rc = sb_add(b, "\n", 1);
+		}
+		line = nl ? nl + 1 : NULL;
+	}
+	free(text);
+	if (rc < 0)
+		snprintf(err, errlen, "%s: out of memory", name);
+	return rc;
+}
+
+static int assemble(struct srcbuf *b, const char *stage_define, const char *file, const char *defines, char *err,
+		    size_t errlen)
+{
+	memset(b, 0, sizeof(*b));
+	snprintf(b->names[0], sizeof(b->names[0]), "<prelude>");
+	b->nfiles = 1;
+	static char decls[16384];
+	if (params_glsl_decls(decls, sizeof(decls)) < 0) {
+		snprintf(err, errlen, "parameter declarations too long");
+		return -1;
+	}
+	const char *head = "#version 310 es\n"
+			   "precision highp float;\nprecision highp int;\n"
+			   "precision highp sampler3D;\nprecision highp usampler3D;\n"
+			   "precision highp image3D;\n";
+	if (sb_add(b, head, strlen(head)) || sb_add(b, stage_define, strlen(stage_define)) ||
+	    sb_add(b, decls, strlen(decls)) || (defines && sb_add(b, defines, strlen(defines)))) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	return expand(b, file, 0, err, errlen);
+}
+
+/* Rewrites the driver's "N:L(C): msg" (Mesa) or "ERROR: N:L: msg" prefixes
+ * to "file:L: msg"; one line of the log (the first error) goes to err. */
+static void format_log(const struct srcbuf *b, const char *log, const char *fallback, char *err, size_t errlen)
+{
+	const char *line = log;
+	const char *pick = NULL;
+	while (line && *line) {
+		if (strstr(line, "error") || strstr(line, "ERROR")) {
+			pick = line;
+			break;
+		}
+		line = strchr(line, '\n');
+		if (line)
+			line++;
+	}
+	if (!pick)
+		pick = log;
+	const char *nl = strchr(pick, '\n');
+	int n = nl ? (int)(nl - pick) : (int)strlen(pick);
+	const char *p = pick;
+	if (!strncmp(p, "ERROR: ", 7))
+		p += 7;
+	int src, ln, consumed = 0;
+	if (sscanf(p, "%d:%d%n", &src, &ln, &consumed) == 2 && src >= 0 && src < b->nfiles) {
+		const char *rest = p + consumed;
+		if (*rest == '(') {
+			const char *close = strchr(rest, ')');
+			if (close && close < pick + n)
+				rest = close + 1;
+		}
+		if (*rest == ':')
+			rest++;
+		while (*rest == ' ')
+			rest++;
+		int rn = (int)(pick + n - rest);
+		snprintf(err, errlen, "%s:%d: %.*s", b->names[src], ln, rn > 0 ? rn : 0, rest);
+	} else {
+		snprintf(err, errlen, "%s: %.*s", fallback, n, pick);
+	}
+}
+
+static GLuint compile(GLenum type, const char *stage_define, const char *file, const char *defines, char *err,
+		      size_t errlen)
+{
+	struct srcbuf b;
+	if (assemble(&b, stage_define, file, defines, err, errlen) < 0) {
+		free(b.s);
+		return 0;
+	}
+	GLuint sh = glCreateShader(type);
+	if (!sh) {
+		snprintf(err, errlen, "%s: glCreateShader failed (0x%x)", file, glGetError());
+		free(b.s);
+		return 0;
+	}
+	const char *src = b.s;
+	glShaderSource(sh, 1, &src, NULL);
+	glCompileShader(sh);
+	GLint ok = 0;
+	glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+	if (!ok) {
+		GLint len = 0;
+		glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
+		char *log = calloc(1, (size_t)(len > 0 ? len : 1) + 1);
+		if (log)
+			glGetShaderInfoLog(sh, len, NULL, log);
+		format_log(&b, log ? log : "(no log)", file, err, errlen);
+		if (log && log_get_level() >= LOG_DEBUG)
+			log_debug("full compile log of %s:\n%s", file, log);
+		free(log);
+		glDeleteShader(sh);
+		sh = 0;
+	}
+	free(b.s);
+	return sh;
+}
+
+static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t errlen)
+{
+	GLuint prog = glCreateProgram();
+	if (!prog) {
+		snprintf(err, errlen, "%s: glCreateProgram failed", what);
+		return 0;
+	}
+	for (int i = 0; i < n; i++)
+		glAttachShader(prog, shaders[i]);
+	glLinkProgram(prog);
+	for (int i = 0; i < n; i++)
+		glDeleteShader(shaders[i]);
+	GLint ok = 0;
+	glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+	if (!ok) {
+		char log[1024] = "";
+		glGetProgramInfoLog(prog, sizeof(log), NULL, log);
+		char *nl = strchr(log, '\n');
+		if (nl && nl[1] == 0)
+			*nl = 0;
+		snprintf(err, errlen, "%s: link failed: %s", what, log);
+		glDeleteProgram(prog);
+		return 0;
+	}
+	return prog;
+}
+
+GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen)
+{
+	GLuint sh = compile(GL_COMPUTE_SHADER, "#define STAGE_COMPUTE 1\n", file, defines, err, errlen);
+	if (!sh)
+		return 0;
+	return link(&sh, 1, file, err, errlen);
+}
+
+GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen)
+{
+	GLuint sh[2];
+	sh[0] = compile(GL_VERTEX_SHADER, "#define STAGE_VERTEX 1\n", vs_file, defines, err, errlen);
+	if (!sh[0])
+		return 0;
+	sh[1] = compile(GL_FRAGMENT_SHADER, "#define STAGE_FRAGMENT 1\n", fs_file, defines, err, errlen);
+	if (!sh[1]) {
+		glDeleteShader(sh[0]);
+		return 0;
+	}
+	return link(sh, 2, vs_file, err, errlen);
+}
+
+void gpu_set_param_uniforms(GLuint prog, const struct params *p)
+{
+	for (size_t i = 0; i < param_count; i++) {
+		const struct param_info *pi = &param_table[i];
+		if (!(pi->flags & P_SHADER))
+			continue;
+		char name[80];
+		snprintf(name, sizeof(name), "u_%s", pi->name);
+		GLint loc = glGetUniformLocation(prog, name);
+		if (loc < 0)
+			continue;
+		if (pi->type == PT_FLOAT)
+			glProgramUniform1f(prog, loc, (float)params_get_number(p, pi));
+		else
+			glProgramUniform1i(prog, loc, (int)params_get_number(p, pi));
+	}
+}

@@ -1,0 +1,192 @@
+/* isoterra — pipeline benchmark.
+ *
+ * For 64^3, 128^3 and 256^3 cells (7 octaves, the GPU Gems density with ALU
+ * Perlin noise): the bare density pass, the full pipeline (density +
+ * HistoPyramid extraction), their ratio, Mvoxels/s and triangles/s; then the
+ * same field through the three compaction methods (HistoPyramid, atomic
+ * append, none) and the two noise sources (ALU, 16^3 textures), all as
+ * ratios against a baseline measured in the same run.
+ *
+ * usage: bench_pipeline [--quick] [--platform NAME] [--sizes 64,128,256]
+ * Times are wall-clock around glFinish(), median of repeated runs. */
+#include "app.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+static double now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+enum what { DENSITY_ONLY, FULL };
+
+/* median ms of repeated runs (at least min_reps, until ~budget ms) */
+static double time_runs(struct pipeline *pl, const struct params *p, enum what w, int min_reps, double budget)
+{
+	double t[64];
+	int n = 0;
+	double start = now_ms();
+	/* warm-up (shader JIT, first-touch of buffers) */
+	if (w == DENSITY_ONLY)
+		pipeline_density(pl, p);
+	else
+		pipeline_run(pl, p);
+	glFinish();
+	while (n < 64 && (n < min_reps || now_ms() - start < budget)) {
+		double t0 = now_ms();
+		int rc = w == DENSITY_ONLY ? pipeline_density(pl, p) : pipeline_run(pl, p);
+		glFinish();
+		if (rc < 0)
+			return -1;
+		t[n++] = now_ms() - t0;
+	}
+	qsort(t, (size_t)n, sizeof(double), cmp_d);
+	return t[n / 2];
+}
+
+static void machine(const struct gpu_caps *caps)
+{
+	char cpu[256] = "unknown CPU";
+	FILE *f = fopen("/proc/cpuinfo", "r");
+	if (f) {
+		char line[512];
+		while (fgets(line, sizeof(line), f))
+			if (!strncmp(line, "model name", 10)) {
+				char *c = strchr(line, ':');
+				if (c) {
+					snprintf(cpu, sizeof(cpu), "%s", c + 2);
+					cpu[strcspn(cpu, "\n")] = 0;
+				}
+				break;
+			}
+		fclose(f);
+	}
+	printf("machine: %s, %ld cores\n", cpu, sysconf(_SC_NPROCESSORS_ONLN));
+	printf("GL: %s | %s\n", caps->renderer, caps->version);
+}
+
+int main(int argc, char **argv)
+{
+	const char *plat_name = "auto";
+	int quick = 0;
+	int sizes[8] = { 64, 128, 256 }, nsizes = 3;
+	for (int i = 1; i < argc; i++) {
+		if (!strcmp(argv[i], "--quick"))
+			quick = 1;
+		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
+			plat_name = argv[++i];
+		else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) {
+			nsizes = 0;
+			for (char *s = strtok(argv[++i], ","); s && nsizes < 8; s = strtok(NULL, ","))
+				sizes[nsizes++] = atoi(s);
+		} else {
+			fprintf(stderr, "usage: %s [--quick] [--platform NAME] [--sizes 64,128,256]\n", argv[0]);
+			return 2;
+		}
+	}
+	log_set_level(LOG_WARN);
+	char err[512];
+	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
+	struct platform *plat = platform_open(&po, err, sizeof(err));
+	if (!plat) {
+		fprintf(stderr, "bench: %s\n", err);
+		return 1;
+	}
+	struct gpu_caps caps;
+	if (gpu_init(&caps, false, err, sizeof(err)) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		return 1;
+	}
+	machine(&caps);
+	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
+	double budget = quick ? 300 : 2000;
+
+	printf("%-6s %12s %12s %8s %10s %12s %10s\n", "grid", "density ms", "full ms", "ratio", "Mvox/s", "Mtris/s",
+	       "triangles");
+	for (int s = 0; s < nsizes; s++) {
+		struct params p;
+		params_defaults(&p);
+		p.octaves = 7;
+		p.grid = sizes[s];
+		struct grid g;
+		grid_from_params(&g, &p);
+		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		if (!pl) {
+			printf("%-6d n/a: %s\n", sizes[s], err);
+			continue;
+		}
+		double td = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
+		double tf = time_runs(pl, &p, FULL, 3, budget);
+		struct extract_stats st;
+		pipeline_read_stats(pl, &st);
+		double vox = (double)g.nx * g.ny * g.nz;
+		printf("%-6d %12.2f %12.2f %8.3f %10.1f %12.2f %10u%s\n", sizes[s], td, tf, tf / td, vox / (tf * 1e3),
+		       st.triangles / (tf * 1e3), st.triangles, st.overflow ? " (overflow)" : "");
+		pipeline_destroy(pl);
+	}
+
+	int cmp_grid = quick ? 64 : 128;
+	printf("\ncompaction methods, same field, grid %d^3 (ratio = time / HistoPyramid time):\n", cmp_grid);
+	for (int gsz = 64; gsz <= cmp_grid; gsz *= 2) {
+		struct params p;
+		params_defaults(&p);
+		p.octaves = 7;
+		p.grid = gsz;
+		struct grid g;
+		grid_from_params(&g, &p);
+		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		if (!pl) {
+			printf("  %d^3: n/a: %s\n", gsz, err);
+			continue;
+		}
+		double base = 0;
+		const char *names[] = { "histopyramid", "atomic-append", "none (15 verts/cell)" };
+		for (int m = 0; m < 3; m++) {
+			p.compaction = m;
+			double t = time_runs(pl, &p, FULL, 3, budget);
+			struct extract_stats st;
+			pipeline_read_stats(pl, &st);
+			if (t < 0) {
+				printf("  %d^3 %-22s n/a (buffer over the GL limit)\n", gsz, names[m]);
+				continue;
+			}
+			if (m == 0)
+				base = t;
+			printf("  %d^3 %-22s %10.2f ms  ratio %6.3f  drawn triangles %u\n", gsz, names[m], t, t / base,
+			       st.triangles);
+		}
+		pipeline_destroy(pl);
+	}
+
+	printf("\nnoise source, density pass, grid %d^3, 9 octaves (ratio = time / ALU time):\n", cmp_grid);
+	{
+		struct params p;
+		params_defaults(&p);
+		p.grid = cmp_grid;
+		struct grid g;
+		grid_from_params(&g, &p);
+		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		if (pl) {
+			double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
+			p.noise = 1;
+			double tt = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
+			printf("  alu (improved Perlin)   %10.2f ms  ratio 1.000\n", ta);
+			printf("  texture (16^3 volumes)  %10.2f ms  ratio %.3f\n", tt, tt / ta);
+			pipeline_destroy(pl);
+		}
+	}
+	platform_close(plat);
+	return 0;
+}

@@ -1,0 +1,316 @@
+/* isoterra — EGL pieces shared by every backend: platform display, config,
+ * GLES 3.1 context, GL_VERSION check, EGL_KHR_debug routing. */
+#include "platform.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include <GLES3/gl31.h>
+
+#include "log.h"
+
+bool egl_common_has_ext(const char *list, const char *ext)
+{
+	size_t n = strlen(ext);
+	if (!list || !n)
+		return false;
+	for (const char *s = list; (s = strstr(s, ext)) != NULL; s += n) {
+		bool start = s == list || s[-1] == ' ';
+		bool end = s[n] == 0 || s[n] == ' ';
+		if (start && end)
+			return true;
+	}
+	return false;
+}
+
+const char *egl_common_client_exts(void)
+{
+	/* NULL (EGL_BAD_DISPLAY) when EGL_EXT_client_extensions is missing. */
+	const char *s = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+	if (!s) {
+		(void)eglGetError();
+		return "";
+	}
+	return s;
+}
+
+const char *egl_common_error_name(EGLint e)
+{
+	switch (e) {
+#define E(x) case x: return #x;
+	E(EGL_SUCCESS) E(EGL_NOT_INITIALIZED) E(EGL_BAD_ACCESS) E(EGL_BAD_ALLOC)
+	E(EGL_BAD_ATTRIBUTE) E(EGL_BAD_CONFIG) E(EGL_BAD_CONTEXT)
+	E(EGL_BAD_CURRENT_SURFACE) E(EGL_BAD_DISPLAY) E(EGL_BAD_MATCH)
+	E(EGL_BAD_NATIVE_PIXMAP) E(EGL_BAD_NATIVE_WINDOW) E(EGL_BAD_PARAMETER)
+	E(EGL_BAD_SURFACE) E(EGL_CONTEXT_LOST) E(EGL_BAD_DEVICE_EXT)
+#undef E
+	default: return "unknown EGL error";
+	}
+}
+
+/* ---- EGL_KHR_debug ------------------------------------------------------- */
+
+/* The driver's last error message: added to our one-line failure reason.
+ * Drivers also report errors they recover from (Mesa: "DRI2: failed to load
+ * driver" before falling back to swrast), so these only go to the debug log. */
+static char last_error[160];
+
+static void last_error_clear(void)
+{
+	last_error[0] = 0;
+}
+
+/* err = "<what> failed: EGL_BAD_xxx (driver message)". */
+static void egl_fail(char *err, size_t errlen, const char *what)
+{
+	EGLint e = eglGetError();
+	if (last_error[0])
+		snprintf(err, errlen, "%s failed: %s (%s)", what, egl_common_error_name(e), last_error);
+	else
+		snprintf(err, errlen, "%s failed: %s", what, egl_common_error_name(e));
+}
+
+static void EGLAPIENTRY debug_cb(EGLenum error, const char *command, EGLint type,
+                                 EGLLabelKHR thread_label, EGLLabelKHR object_label,
+                                 const char *message)
+{
+	(void)thread_label;
+	(void)object_label;
+	const char *cmd = command ? command : "EGL";
+	const char *msg = message ? message : "";
+	switch (type) {
+	case EGL_DEBUG_MSG_CRITICAL_KHR:
+		log_error("EGL: %s: %s (%s)", cmd, msg, egl_common_error_name((EGLint)error));
+		break;
+	case EGL_DEBUG_MSG_ERROR_KHR:
+		snprintf(last_error, sizeof(last_error), "%s", msg);
+		log_debug("EGL: %s: %s (%s)", cmd, msg, egl_common_error_name((EGLint)error));
+		break;
+	case EGL_DEBUG_MSG_WARN_KHR:
+		log_warn("EGL: %s: %s", cmd, msg);
+		break;
+	default:
+		log_debug("EGL: %s: %s", cmd, msg);
+		break;
+	}
+}
+
+void egl_common_debug_callback(bool enable, bool verbose)
+{
+	if (!egl_common_has_ext(egl_common_client_exts(), "EGL_KHR_debug"))
+		return;
+	PFNEGLDEBUGMESSAGECONTROLKHRPROC control =
+		(PFNEGLDEBUGMESSAGECONTROLKHRPROC)eglGetProcAddress("eglDebugMessageControlKHR");
+	if (!control)
+		return;
+	const EGLAttrib attribs[] = {
+		EGL_DEBUG_MSG_CRITICAL_KHR, EGL_TRUE,
+		EGL_DEBUG_MSG_ERROR_KHR, EGL_TRUE,
+		EGL_DEBUG_MSG_WARN_KHR, verbose ? EGL_TRUE : EGL_FALSE,
+		EGL_DEBUG_MSG_INFO_KHR, verbose ? EGL_TRUE : EGL_FALSE,
+		EGL_NONE,
+	};
+	EGLint rc = enable ? control(debug_cb, attribs) : control(NULL, NULL);
+	if (rc != EGL_SUCCESS)
+		log_warn("eglDebugMessageControlKHR failed: %s", egl_common_error_name(rc));
+}
+
+/* ---- display ------------------------------------------------------------- */
+
+int egl_common_open_display(struct platform *p, EGLenum platform, void *native,
+                            char *err, size_t errlen)
+{
+	const char *cexts = egl_common_client_exts();
+	if (!egl_common_has_ext(cexts, "EGL_EXT_platform_base")) {
+		snprintf(err, errlen, "EGL_EXT_platform_base not supported by this EGL");
+		return -1;
+	}
+	PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+		(PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+	if (!get_display) {
+		snprintf(err, errlen, "eglGetPlatformDisplayEXT not found in this EGL");
+		return -1;
+	}
+	last_error_clear();
+	EGLDisplay dpy = get_display(platform, native, NULL);
+	if (dpy == EGL_NO_DISPLAY) {
+		egl_fail(err, errlen, "eglGetPlatformDisplayEXT");
+		return -1;
+	}
+	EGLint major = 0, minor = 0;
+	last_error_clear();
+	if (!eglInitialize(dpy, &major, &minor)) {
+		egl_fail(err, errlen, "eglInitialize");
+		return -1;
+	}
+	p->dpy = dpy;
+	log_debug("EGL %d.%d, vendor '%s'", major, minor, eglQueryString(dpy, EGL_VENDOR));
+	return 0;
+}
+
+/* ---- context ------------------------------------------------------------- */
+
+static int choose_config(struct platform *p, EGLint renderable, EGLint surface_type, bool no_config_ok,
+                         char *err, size_t errlen)
+{
+	const EGLint attribs[] = {
+		EGL_RENDERABLE_TYPE, renderable,
+		/* The default is EGL_WINDOW_BIT; 0 matches every config. */
+		EGL_SURFACE_TYPE, surface_type,
+		EGL_RED_SIZE, surface_type ? 8 : 0,
+		EGL_GREEN_SIZE, surface_type ? 8 : 0,
+		EGL_BLUE_SIZE, surface_type ? 8 : 0,
+		EGL_NONE,
+	};
+	EGLint n = 0;
+	last_error_clear();
+	if (!eglChooseConfig(p->dpy, attribs, &p->config, 1, &n)) {
+		egl_fail(err, errlen, "eglChooseConfig");
+		return -1;
+	}
+	if (n >= 1)
+		return 0;
+	if (no_config_ok) {
+		p->config = EGL_NO_CONFIG_KHR;
+		log_debug("no OpenGL ES 3 EGLConfig; using EGL_KHR_no_config_context");
+		return 0;
+	}
+	snprintf(err, errlen, "no EGLConfig supports OpenGL ES 3 on this display");
+	return -1;
+}
+
+static EGLContext create_context(struct platform *p, bool egl15, bool khr_cc, bool debug)
+{
+	EGLint a[16], n = 0;
+	if (egl15) {
+		a[n++] = EGL_CONTEXT_MAJOR_VERSION;
+		a[n++] = 3;
+		a[n++] = EGL_CONTEXT_MINOR_VERSION;
+		a[n++] = 1;
+		if (debug) {
+			a[n++] = EGL_CONTEXT_OPENGL_DEBUG;
+			a[n++] = EGL_TRUE;
+		}
+	} else if (khr_cc) {
+		a[n++] = EGL_CONTEXT_MAJOR_VERSION_KHR;
+		a[n++] = 3;
+		a[n++] = EGL_CONTEXT_MINOR_VERSION_KHR;
+		a[n++] = 1;
+		if (debug) {
+			a[n++] = EGL_CONTEXT_FLAGS_KHR;
+			a[n++] = EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR;
+		}
+	} else {
+		/* Plain EGL 1.4: ask for ES 3 and check GL_VERSION afterwards. */
+		a[n++] = EGL_CONTEXT_CLIENT_VERSION;
+		a[n++] = 3;
+	}
+	a[n++] = EGL_NONE;
+	return eglCreateContext(p->dpy, p->config, EGL_NO_CONTEXT, a);
+}
+
+static int check_gl_version(struct platform *p, char *err, size_t errlen)
+{
+	const char *ver = (const char *)glGetString(GL_VERSION);
+	const char *ren = (const char *)glGetString(GL_RENDERER);
+	if (!ver) {
+		snprintf(err, errlen, "glGetString(GL_VERSION) failed (GL error 0x%04x)", glGetError());
+		return -1;
+	}
+	int major = 0, minor = 0;
+	/* "OpenGL ES 3.2 Mesa 22.3.6"; ES 1.x says "OpenGL ES-CM 1.1". */
+	if (sscanf(ver, "OpenGL ES %d.%d", &major, &minor) != 2) {
+		snprintf(err, errlen, "context is not OpenGL ES 3.1 (GL_VERSION is '%s')", ver);
+		return -1;
+	}
+	if (major < 3 || (major == 3 && minor < 1)) {
+		snprintf(err, errlen, "context does not support OpenGL ES 3.1 (got %s)", ver);
+		return -1;
+	}
+	snprintf(p->device_desc, sizeof(p->device_desc), "%s", ren ? ren : "unknown renderer");
+	log_debug("GL_VERSION '%s', GL_RENDERER '%s'", ver, p->device_desc);
+	return 0;
+}
+
+int egl_common_make_context(struct platform *p, const struct platform_options *opt,
+                            EGLint surface_type, char *err, size_t errlen)
+{
+	EGLint major = 1, minor = 0;
+	const char *ver = eglQueryString(p->dpy, EGL_VERSION);
+	const char *exts = eglQueryString(p->dpy, EGL_EXTENSIONS);
+	if (!ver || sscanf(ver, "%d.%d", &major, &minor) != 2 || !exts) {
+		egl_fail(err, errlen, "eglQueryString");
+		return -1;
+	}
+	bool egl15 = major > 1 || (major == 1 && minor >= 5);
+	bool khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
+	bool surfaceless = egl_common_has_ext(exts, "EGL_KHR_surfaceless_context");
+	bool no_config = egl_common_has_ext(exts, "EGL_KHR_no_config_context") ||
+	                 egl_common_has_ext(exts, "EGL_MESA_configless_context");
+	bool headless = surface_type == 0;
+	bool need_pbuffer = headless && !surfaceless;
+
+	last_error_clear();
+	if (!eglBindAPI(EGL_OPENGL_ES_API)) {
+		egl_fail(err, errlen, "eglBindAPI(EGL_OPENGL_ES_API)");
+		return -1;
+	}
+	if (need_pbuffer)
+		surface_type = EGL_PBUFFER_BIT;
+	/* EGL_OPENGL_ES3_BIT is EGL 1.5 / EGL_KHR_create_context; plain 1.4
+	 * only knows ES2 configs (which then also run ES 3 contexts). */
+	EGLint renderable = egl15 || khr_cc ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_ES2_BIT;
+	if (choose_config(p, renderable, surface_type, headless && !need_pbuffer && no_config, err, errlen) < 0)
+		return -1;
+
+	last_error_clear();
+	p->ctx = create_context(p, egl15, khr_cc, opt->debug);
+	if (p->ctx == EGL_NO_CONTEXT && opt->debug) {
+		log_warn("cannot create a debug GLES context (%s); continuing without",
+		         egl_common_error_name(eglGetError()));
+		last_error_clear();
+		p->ctx = create_context(p, egl15, khr_cc, false);
+	}
+	if (p->ctx == EGL_NO_CONTEXT) {
+		egl_fail(err, errlen, "cannot create an OpenGL ES 3.1 context: eglCreateContext");
+		return -1;
+	}
+
+	if (need_pbuffer) {
+		const EGLint pb[] = { EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE };
+		last_error_clear();
+		p->surface = eglCreatePbufferSurface(p->dpy, p->config, pb);
+		if (p->surface == EGL_NO_SURFACE) {
+			egl_fail(err, errlen, "no EGL_KHR_surfaceless_context and eglCreatePbufferSurface");
+			return -1;
+		}
+		log_debug("no EGL_KHR_surfaceless_context: using a 1x1 pbuffer");
+	}
+	last_error_clear();
+	if (!eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
+		egl_fail(err, errlen, "eglMakeCurrent");
+		return -1;
+	}
+	p->headless = headless;
+	return check_gl_version(p, err, errlen);
+}
+
+void egl_common_release(struct platform *p)
+{
+	if (p->dpy == EGL_NO_DISPLAY)
+		return;
+	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
+		log_warn("eglMakeCurrent(none) failed: %s", egl_common_error_name(eglGetError()));
+	if (p->ctx != EGL_NO_CONTEXT && !eglDestroyContext(p->dpy, p->ctx))
+		log_warn("eglDestroyContext failed: %s", egl_common_error_name(eglGetError()));
+	if (p->surface != EGL_NO_SURFACE && !eglDestroySurface(p->dpy, p->surface))
+		log_warn("eglDestroySurface failed: %s", egl_common_error_name(eglGetError()));
+	if (!eglTerminate(p->dpy))
+		log_warn("eglTerminate failed: %s", egl_common_error_name(eglGetError()));
+	if (!eglReleaseThread())
+		log_warn("eglReleaseThread failed: %s", egl_common_error_name(eglGetError()));
+	p->ctx = EGL_NO_CONTEXT;
+	p->surface = EGL_NO_SURFACE;
+	p->config = NULL;
+	p->dpy = EGL_NO_DISPLAY;
+}

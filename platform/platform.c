@@ -1,0 +1,130 @@
+/* isoterra — backend table and selection ("auto"). */
+#include "platform.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "log.h"
+
+/* Windowed backends (gbm, wayland, x11) go here behind their meson options;
+ * "auto" only ever picks the headless ones below. */
+static const struct platform_backend *const backends[] = {
+	&platform_backend_device,
+	&platform_backend_surfaceless,
+};
+#define NBACKENDS (sizeof(backends) / sizeof(backends[0]))
+
+const char *platform_backend_names(void)
+{
+	static char names[128];
+	if (!names[0]) {
+		size_t len = 0;
+		for (size_t i = 0; i < NBACKENDS; i++) {
+			int n = snprintf(names + len, sizeof(names) - len, "%s%s", i ? " " : "", backends[i]->name);
+			if (n < 0 || (size_t)n >= sizeof(names) - len)
+				break;
+			len += (size_t)n;
+		}
+	}
+	return names;
+}
+
+static void reset(struct platform *p)
+{
+	memset(p, 0, sizeof(*p));
+	p->dpy = EGL_NO_DISPLAY;
+	p->ctx = EGL_NO_CONTEXT;
+	p->surface = EGL_NO_SURFACE;
+	p->config = NULL;
+}
+
+static int try_backend(struct platform *p, const struct platform_backend *b,
+                       const struct platform_options *opt, char *err, size_t errlen)
+{
+	reset(p);
+	p->backend = b;
+	if (b->open(p, opt, err, errlen) < 0) {
+		reset(p);
+		return -1;
+	}
+	log_debug("platform '%s': %s", b->name, p->device_desc);
+	return 0;
+}
+
+/* auto: a device that is a real GPU, else surfaceless, else any EGL device
+ * (Mesa's software device). */
+static int open_auto(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
+{
+	char e_dev[256] = "no EGL device is a GPU", e_sl[256] = "EGL_MESA_platform_surfaceless not supported by this EGL";
+	bool tried_device = false;
+	if (platform_backend_device.probe()) {
+		tried_device = true;
+		if (try_backend(p, &platform_backend_device, opt, e_dev, sizeof(e_dev)) == 0)
+			return 0;
+	}
+	if (platform_backend_surfaceless.probe() &&
+	    try_backend(p, &platform_backend_surfaceless, opt, e_sl, sizeof(e_sl)) == 0)
+		return 0;
+	if (!tried_device && try_backend(p, &platform_backend_device, opt, e_dev, sizeof(e_dev)) == 0)
+		return 0;
+	snprintf(err, errlen, "no usable EGL platform (device: %.200s; surfaceless: %.200s)", e_dev, e_sl);
+	return -1;
+}
+
+/* EGL displays are per process and eglTerminate is not reference counted
+ * (no EGL_KHR_display_reference): closing one of two platforms on the same
+ * display would pull the context from under the other. */
+static bool is_open;
+
+struct platform *platform_open(const struct platform_options *opt, char *err, size_t errlen)
+{
+	static const struct platform_options defaults = { .name = "auto" };
+	if (!opt)
+		opt = &defaults;
+	if (is_open) {
+		snprintf(err, errlen, "a platform is already open (one at a time per process)");
+		return NULL;
+	}
+	const char *name = opt->name && opt->name[0] ? opt->name : "auto";
+	const struct platform_backend *b = NULL;
+	if (strcmp(name, "auto") != 0) {
+		for (size_t i = 0; i < NBACKENDS; i++)
+			if (strcmp(backends[i]->name, name) == 0)
+				b = backends[i];
+		if (!b) {
+			snprintf(err, errlen, "unknown platform '%s' (compiled in: %s)", name, platform_backend_names());
+			return NULL;
+		}
+	}
+	struct platform *p = calloc(1, sizeof(*p));
+	if (!p) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	egl_common_debug_callback(true, opt->debug);
+	int rc = b ? try_backend(p, b, opt, err, errlen) : open_auto(p, opt, err, errlen);
+	if (rc < 0) {
+		egl_common_debug_callback(false, false);
+		free(p);
+		return NULL;
+	}
+	is_open = true;
+	return p;
+}
+
+void platform_close(struct platform *p)
+{
+	if (!p)
+		return;
+	if (p->backend)
+		p->backend->close(p);
+	egl_common_debug_callback(false, false);
+	free(p);
+	is_open = false;
+}
+
+int platform_present(struct platform *p)
+{
+	return p->backend->present(p);
+}

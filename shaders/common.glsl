@@ -1,0 +1,59 @@
+// isoterra — grid uniforms and helpers shared by the extraction passes.
+uniform ivec3 u_cells;   // cells per axis
+uniform vec3 u_origin;   // world position of corner (0,0,0)
+uniform float u_cell;    // world size of a cell
+
+// 1D invocation index over a (possibly 2D-split) dispatch of 64-wide groups.
+uint lin_id()
+{
+	return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x +
+	       gl_LocalInvocationID.x;
+}
+
+#ifndef DENSITY_WRITER
+layout(std430, binding = 0) restrict readonly buffer Dens { float dens[]; };
+// density at corner c (each component -1 .. n+1)
+float D(ivec3 c)
+{
+	ivec3 d = u_cells + 3;
+	return dens[(c.x + 1) + d.x * ((c.y + 1) + d.y * (c.z + 1))];
+}
+vec3 grad_at(ivec3 c)
+{
+	return vec3(D(c + ivec3(1, 0, 0)) - D(c - ivec3(1, 0, 0)),
+		    D(c + ivec3(0, 1, 0)) - D(c - ivec3(0, 1, 0)),
+		    D(c + ivec3(0, 0, 1)) - D(c - ivec3(0, 0, 1)));
+}
+
+// Marching Cubes tables (mc_tables.c), uploaded verbatim.
+layout(std430, binding = 3) restrict readonly buffer McTables {
+	uint mc_tricount[256];
+	int mc_tri[256 * 15];
+	ivec4 mc_edge_owner[12]; // owner offset xyz, slot
+	ivec4 mc_corner[8];
+};
+
+int cell_case(ivec3 c)
+{
+	int cs = 0;
+	for (int n = 0; n < 8; n++)
+		cs |= int(D(c + mc_corner[n].xyz) > u_iso) << n;
+	return cs;
+}
+
+// Vertex on the edge from corner c along axis a (0,1,2): position, normal.
+void edge_vertex(ivec3 c, int a, out vec4 pos, out vec4 nrm)
+{
+	ivec3 c1 = c;
+	c1[a] += 1;
+	float d0 = D(c), d1 = D(c1);
+	float t = (d0 - u_iso) / (d0 - d1);
+	vec3 p = vec3(c);
+	p[a] += t;
+	pos = vec4(u_origin + p * u_cell, 1.0);
+	vec3 g0 = grad_at(c), g1 = grad_at(c1);
+	vec3 g = g0 + (g1 - g0) * t;
+	float len = length(g);
+	nrm = vec4(len > 1e-20 ? -g / len : vec3(0.0, 1.0, 0.0), 0.0);
+}
+#endif // DENSITY_WRITER

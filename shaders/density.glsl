@@ -1,0 +1,124 @@
+// isoterra — the density function (GLSL ES 3.10): positive in rock, negative
+// in air, zero on the surface; roughly a distance in world units near the
+// surface.  After Geiss, "Generating Complex Procedural Terrains Using the
+// GPU", GPU Gems 3 ch.1.  Mirrored term by term in app/density_ref.c.
+//
+// Needs (from the host prelude): the u_* parameter uniforms and the enum
+// #defines (FIELD_*, SHAPE_*, NOISE_*, FRACTAL_*, TERRACE_*, SHELF_*).
+// Resources: NoiseTables UBO (binding 0), u_noise0..2 (texture units 0..2),
+// uploaded and bound by app/noise_gl.c.
+//
+//   float density(vec3 ws);
+
+#include "noise.glsl"
+#include "fractal.glsl"
+
+#define PI_F 3.14159265358979
+
+float dens_sat(float x)
+{
+	return clamp(x, 0.0, 1.0);
+}
+
+float dens_smooth(float t) // smoothstep(0, 1, t) written out (mirrored in C)
+{
+	t = clamp(t, 0.0, 1.0);
+	return t * t * (3.0 - 2.0 * t);
+}
+
+// Analytic test fields, q = ws / field_scale, result * field_scale so the
+// field is in world units.
+float test_field(vec3 ws)
+{
+	float s = u_field_scale;
+	float inv = 1.0 / s;
+	vec3 q = ws * inv;
+	float v;
+	if (u_field == FIELD_TORUS) {
+		float r = 0.6 - sqrt(q.x * q.x + q.z * q.z);
+		v = 0.16 - r * r - q.y * q.y;
+	} else if (u_field == FIELD_BUMPS) {
+		v = sin(5.0 * q.x) * cos(5.0 * q.z) * 0.2 - q.y;
+	} else if (u_field == FIELD_RIPPLE) {
+		v = sin(10.0 * (q.x * q.x + q.z * q.z)) * 0.1 - q.y;
+	} else if (u_field == FIELD_SPHERE) {
+		v = 1.0 - sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
+	} else { // FIELD_CHECKER: +-1 at the lattice points spaced s (worst case for MC)
+		v = cos(PI_F * q.x) * cos(PI_F * q.y) * cos(PI_F * q.z);
+	}
+	return v * s;
+}
+
+vec3 domain_warp(vec3 ws)
+{
+	vec3 p = ws * u_warp_freq;
+	if (u_noise == NOISE_TEXTURE) // low frequency: fp32 filtering
+		return noise_tex_manual(1, p).xyz * NOISE_TEX_GAIN;
+	return vec3(perlin(p + vec3(11.3, 47.9, 23.1)), perlin(p + vec3(71.7, 5.3, 89.9)),
+		    perlin(p + vec3(37.1, 63.7, 13.9)));
+}
+
+// Terraces on height y: a continuous, C1 staircase.  With u = y/step,
+// f = fract(u), the term is  -strength * step * (f - smoothstep(f)), which
+// makes the surface's height steep in density near y = k*step (flat treads)
+// and slack in between (risers): strength 2 gives vertical risers, more
+// gives overhanging lips, 0 none.
+float terrace_term(float y)
+{
+	float u = y * (1.0 / u_terrace_step);
+	float f = u - floor(u);
+	return -u_terrace_strength * u_terrace_step * (f - f * f * (3.0 - 2.0 * f));
+}
+
+// A single ledge at shelf_y: extra rock falling off within shelf_width above
+// (crisp flat top) and 3*shelf_width below.
+float shelf_term(float y)
+{
+	float dy = y - u_shelf_y;
+	float w = dy >= 0.0 ? u_shelf_width : 3.0 * u_shelf_width;
+	return u_shelf_strength * (1.0 - dens_smooth(abs(dy) * (1.0 / w)));
+}
+
+float density(vec3 ws)
+{
+	ws.x += u_time * u_scroll_speed; // animation: the field scrolls along x
+	if (u_field != FIELD_TERRAIN)
+		return test_field(ws);
+
+	vec3 ws_orig = ws;
+	if (u_warp_amp != 0.0)
+		ws += domain_warp(ws) * u_warp_amp;
+
+	float d;
+	if (u_shape == SHAPE_PLANET) {
+		vec3 c = ws - vec3(0.0, -u_planet_radius, 0.0);
+		d = u_planet_radius - sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+	} else if (u_shape == SHAPE_CAVES) {
+		d = u_cave_bias;
+	} else {
+		d = -ws.y * u_ground_slope;
+	}
+
+	d += u_noise_amp * fractal(ws);
+
+	// hard floor on the pre-warp height ("sediment")
+	d += dens_sat((u_floor_y - ws_orig.y) * u_floor_sharpness) * u_floor_strength;
+
+	if (u_terrace == TERRACE_PRE)
+		d += terrace_term(ws_orig.y);
+	else if (u_terrace == TERRACE_POST)
+		d += terrace_term(ws.y);
+
+	if (u_shelf == SHELF_PRE)
+		d += shelf_term(ws_orig.y);
+	else if (u_shelf == SHELF_POST)
+		d += shelf_term(ws.y);
+
+	if (u_flat_spot != 0) { // landing pad (GPU Gems' corrected formula)
+		float dx = ws_orig.x - u_flat_x, dz = ws_orig.z - u_flat_z;
+		float dist = sqrt(dx * dx + dz * dz);
+		float amount = dens_sat((u_flat_outer - dist) * (1.0 / max(u_flat_outer - u_flat_inner, 1e-4))) * 0.9;
+		d = d + amount * ((u_flat_y - ws_orig.y) - d);
+	}
+	return d;
+}

@@ -1,0 +1,62 @@
+// isoterra — HistoPyramid over the owner cells of the grid (Dyken & Ziegler,
+// in a 1D, 4-to-1 form that works for any cell count).
+//
+// Level 0 is implicit: one byte per owner cell, packed four to a uint
+//   bits 0..2 = triangles emitted by the cell (0..5)
+//   bits 3..5 = mask of the vertices it owns on its +x, +y, +z edges
+// Level k >= 1 holds uvec2(triangles, vertices) sums of four level k-1
+// nodes; all levels live in one buffer at offsets u_hp_off[k].  The top
+// level (u_hp_top) has one node: the totals.
+layout(std430, binding = 1) restrict buffer HpBase { uint hp_l0[]; };
+layout(std430, binding = 2) restrict buffer HpLevels { uvec2 hp[]; };
+uniform uint u_hp_off[16];
+uniform int u_hp_top;
+
+uint l0_byte(uint cell) { return (hp_l0[cell >> 2] >> (8u * (cell & 3u))) & 255u; }
+uint byte_count(uint b, int comp) { return comp == 0 ? (b & 7u) : uint(bitCount(b >> 3)); }
+
+// Output number key of component comp (0 triangles, 1 vertices) -> the cell
+// that emits it and its rank among that cell's outputs.
+void hp_traverse(uint key, int comp, out uint cell, out uint rank)
+{
+	uint i = 0u;
+	for (int k = u_hp_top; k >= 2; --k) {
+		uint base = u_hp_off[k - 1] + 4u * i;
+		uint j = 0u;
+		for (; j < 3u; ++j) {
+			uint c = hp[base + j][comp];
+			if (key < c)
+				break;
+			key -= c;
+		}
+		i = 4u * i + j;
+	}
+	uint w = hp_l0[i];
+	uint j = 0u;
+	for (; j < 3u; ++j) {
+		uint c = byte_count((w >> (8u * j)) & 255u, comp);
+		if (key < c)
+			break;
+		key -= c;
+	}
+	cell = 4u * i + j;
+	rank = key;
+}
+
+// Number of outputs of component comp emitted by cells before `cell`
+// (the prefix sum), read bottom-up from the pyramid.
+uint hp_prefix(uint cell, int comp)
+{
+	uint w = hp_l0[cell >> 2];
+	uint sum = 0u;
+	for (uint j = 0u; j < (cell & 3u); ++j)
+		sum += byte_count((w >> (8u * j)) & 255u, comp);
+	uint i = cell >> 2;
+	for (int k = 1; k < u_hp_top; ++k) {
+		uint base = u_hp_off[k];
+		for (uint m = i & ~3u; m < i; ++m)
+			sum += hp[base + m][comp];
+		i >>= 2;
+	}
+	return sum;
+}

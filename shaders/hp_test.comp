@@ -1,0 +1,34 @@
+// isoterra — HistoPyramid test hooks (used by the tests only): build level 1
+// from given level-0 words, traverse keys, compute prefix sums.
+layout(local_size_x = 64) in;
+#include "common.glsl"
+#include "hp.glsl"
+layout(std430, binding = 7) restrict buffer TestOut { uvec2 test_out[]; };
+uniform int u_mode;      // 0: level 1 from level 0; 1: traverse; 2: prefix
+uniform uint u_n;        // items
+uniform uint u_words;
+uniform int u_comp;
+
+void main()
+{
+	uint i = lin_id();
+	if (i >= u_n)
+		return;
+	if (u_mode == 0) {
+		uvec2 s = uvec2(0u);
+		if (i < u_words) {
+			uint w = hp_l0[i];
+			for (uint j = 0u; j < 4u; ++j) {
+				uint b = (w >> (8u * j)) & 255u;
+				s += uvec2(b & 7u, uint(bitCount(b >> 3)));
+			}
+		}
+		hp[u_hp_off[1] + i] = s;
+	} else if (u_mode == 1) {
+		uint cell, rank;
+		hp_traverse(i, u_comp, cell, rank);
+		test_out[i] = uvec2(cell, rank);
+	} else {
+		test_out[i] = uvec2(hp_prefix(i, u_comp), 0u);
+	}
+}

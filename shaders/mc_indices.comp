@@ -1,0 +1,37 @@
+// isoterra — generate the triangles: traverse the triangle pyramid to the
+// emitting cell, look up its case's edges and turn each edge into the index
+// of the vertex its owner cell generated (prefix sum of the vertex pyramid).
+layout(local_size_x = 64) in;
+#include "common.glsl"
+#include "hp.glsl"
+#include "mc_status.glsl"
+layout(std430, binding = 5) restrict writeonly buffer Indices { uint idx[]; };
+
+void main()
+{
+	uint t = lin_id();
+	if (t >= st[22])
+		return;
+	uint cell, rank;
+	hp_traverse(t, 0, cell, rank);
+	ivec3 o = u_cells + 1;
+	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
+	int cs = cell_case(c);
+	uint vcount = st[23];
+	uint ids[3];
+	bool ok = true;
+	for (int k = 0; k < 3; ++k) {
+		int e = mc_tri[cs * 15 + int(rank) * 3 + k];
+		ivec4 eo = mc_edge_owner[e];
+		ivec3 q = c + eo.xyz;
+		uint qc = uint(q.x + o.x * (q.y + o.y * q.z));
+		uint m = l0_byte(qc) >> 3;
+		uint r = uint(bitCount(m & ((1u << uint(eo.w)) - 1u)));
+		ids[k] = hp_prefix(qc, 1) + r;
+		ok = ok && ids[k] < vcount;
+	}
+	// a triangle whose vertices fell past the vertex capacity degenerates
+	idx[3u * t + 0u] = ok ? ids[0] : 0u;
+	idx[3u * t + 1u] = ok ? ids[1] : 0u;
+	idx[3u * t + 2u] = ok ? ids[2] : 0u;
+}

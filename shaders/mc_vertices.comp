@@ -1,0 +1,32 @@
+// isoterra — generate each shared vertex once: traverse the vertex pyramid to
+// find the owner cell and which of its edges (3, 0, 8 = +x, +y, +z) it is.
+layout(local_size_x = 64) in;
+#include "common.glsl"
+#include "hp.glsl"
+#include "mc_status.glsl"
+struct Vertex { vec4 pos; vec4 nrm; };
+layout(std430, binding = 4) restrict writeonly buffer Verts { Vertex verts[]; };
+
+void main()
+{
+	uint v = lin_id();
+	if (v >= st[23])
+		return;
+	uint cell, rank;
+	hp_traverse(v, 1, cell, rank);
+	uint m = l0_byte(cell) >> 3;
+	int axis = 0;
+	for (; axis < 2; ++axis) {
+		if ((m & (1u << axis)) != 0u) {
+			if (rank == 0u)
+				break;
+			rank--;
+		}
+	}
+	ivec3 o = u_cells + 1;
+	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
+	vec4 p, n;
+	edge_vertex(c, axis, p, n);
+	verts[v].pos = p;
+	verts[v].nrm = n;
+}

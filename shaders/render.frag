@@ -1,0 +1,41 @@
+// isoterra — terrain fragment shader: directional sun + hemispheric ambient,
+// slope/altitude colouring, distance fog, gamma-correct output.
+in vec3 v_pos;
+in vec3 v_nrm;
+uniform vec3 u_eye;
+uniform float u_fog_density;
+out vec4 frag;
+
+const vec3 SKY = vec3(0.62, 0.74, 0.88); // sRGB of the clear colour
+
+vec3 srgb_to_linear(vec3 c) { return pow(c, vec3(2.2)); }
+
+void main()
+{
+	vec3 n = normalize(v_nrm);
+	float back = gl_FrontFacing ? 1.0 : 0.45; // inside of the volume's cut
+	if (!gl_FrontFacing)
+		n = -n;
+	float el = radians(u_light_el), az = radians(u_light_az);
+	vec3 l = vec3(cos(el) * cos(az), sin(el), cos(el) * sin(az));
+
+	// albedo: rock with strata on steep faces, grass/soil on flat ground
+	float strata = 0.5 + 0.5 * sin(v_pos.y * 2.7 + sin(v_pos.x * 0.31 + v_pos.z * 0.23) * 1.5);
+	vec3 rock = mix(vec3(0.34, 0.29, 0.25), vec3(0.55, 0.47, 0.38), strata);
+	vec3 grass = mix(vec3(0.20, 0.33, 0.12), vec3(0.36, 0.40, 0.20), strata);
+	float flat_ground = smoothstep(0.62, 0.86, n.y);
+	vec3 albedo = mix(rock, grass, flat_ground);
+	albedo = mix(albedo, vec3(0.85, 0.87, 0.90), smoothstep(6.0, 10.0, v_pos.y) * smoothstep(0.5, 0.8, n.y));
+	albedo = srgb_to_linear(albedo);
+
+	float ndl = max(dot(n, l), 0.0);
+	vec3 sky_amb = srgb_to_linear(SKY) * (0.55 + 0.45 * n.y);
+	vec3 ground_amb = vec3(0.09, 0.07, 0.05) * (0.5 - 0.5 * n.y);
+	vec3 light = u_sun * vec3(1.0, 0.95, 0.86) * ndl + u_ambient * 2.0 * (sky_amb + ground_amb);
+	vec3 col = albedo * light * back;
+
+	float dist = length(v_pos - u_eye);
+	float fog = 1.0 - exp(-dist * u_fog_density);
+	col = mix(col, srgb_to_linear(SKY), clamp(fog, 0.0, 1.0));
+	frag = vec4(pow(col, vec3(1.0 / 2.2)), 1.0);
+}

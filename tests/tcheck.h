@@ -1,0 +1,33 @@
+/* isoterra — minimal test harness.  Each test program prints one line per
+ * failed check and ends with "N passed, N failed"; exit 1 on any failure,
+ * 77 (meson's "skip") only when a test says why it cannot run. */
+#ifndef ISOTERRA_TCHECK_H
+#define ISOTERRA_TCHECK_H
+
+#include <stdio.h>
+#include <stdlib.h>
+
+static int tc_pass, tc_fail;
+
+#define CHECK(cond, ...)                                                        \
+	do {                                                                    \
+		if (cond) {                                                     \
+			tc_pass++;                                              \
+		} else {                                                        \
+			tc_fail++;                                              \
+			fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond); \
+			fprintf(stderr, __VA_ARGS__);                           \
+			fputc('\n', stderr);                                    \
+		}                                                               \
+	} while (0)
+
+#define CHECK_NEAR(a, b, tol, what)                                             \
+	CHECK(fabs((double)(a) - (double)(b)) <= (tol), "%s: %g vs %g (tol %g)", what, (double)(a), (double)(b), (double)(tol))
+
+static inline int tc_done(const char *name)
+{
+	printf("%s: %d passed, %d failed\n", name, tc_pass, tc_fail);
+	return tc_fail ? 1 : 0;
+}
+
+#endif

@@ -1,0 +1,88 @@
+#!/bin/sh
+# isoterra — the program end to end: the default run writes a PNG, the mesh
+# export writes a PLY, and bad input (CLI values, config, a broken shader)
+# gives a non-zero exit and one clear message.
+BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
+SRC=${ISOTERRA_SRC:-$(dirname "$0")/..}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+# expect_fail "regex of the message" args...
+expect_fail() {
+	pat=$1
+	shift
+	"$BIN" "$@" >"$T/out" 2>"$T/err"
+	rc=$?
+	if [ $rc -eq 0 ]; then
+		bad "isoterra $* exited 0"
+		return
+	fi
+	if ! grep -Eq "$pat" "$T/err"; then
+		bad "isoterra $*: message does not match '$pat': $(cat "$T/err")"
+		return
+	fi
+	lines=$(grep -c . "$T/err")
+	if [ "$lines" -gt 3 ]; then
+		bad "isoterra $*: $lines lines of messages, want one clear line: $(cat "$T/err")"
+		return
+	fi
+	ok
+}
+
+cd "$T" || exit 1
+expect_fail "unknown option '--nope'" --nope
+expect_fail "grid.*out of range" --grid 0
+expect_fail "grid.*not an integer" --grid abc
+expect_fail "grid.*needs a value|option '--grid'" --grid
+expect_fail "size" --size 10x
+expect_fail "size" --size 0x100
+expect_fail "\.png" --out picture.jpg
+expect_fail "\.ply" --export-mesh mesh.obj
+expect_fail "unknown preset 'nope'" --preset nope
+expect_fail "cannot open config file" --config /nonexistent/isoterra.conf
+printf 'grid = 16\noctaves = many\n' >bad.conf
+expect_fail "bad.conf:2" --config bad.conf
+printf 'grid 16\n' >bad2.conf
+expect_fail "bad2.conf:1" --config bad2.conf
+expect_fail "noise.*not one of" --noise perlin2
+expect_fail "unknown platform|platform" --platform nonsense --size 64x48 --grid 8
+expect_fail "cannot open shader|shader" --shader-dir /nonexistent --size 64x48 --grid 8
+# a broken shader: the message names file:line
+mkdir shaders
+cp "$SRC"/shaders/* shaders/
+line=$(grep -n "float density(vec3" shaders/density.glsl | head -1 | cut -d: -f1)
+if [ -n "$line" ]; then
+	sed -i "$((line + 2))s/^/\tthis is not glsl;\n/" shaders/density.glsl
+	expect_fail "density.glsl:$((line + 3))" --shader-dir shaders --size 64x48 --grid 8
+else
+	bad "density.glsl has no 'float density(vec3' line"
+fi
+# nothing half-written by the failures above
+if ls | grep -Eq '\.png|\.ply'; then bad "failed runs left files: $(ls)"; else ok; fi
+
+# --help and --list-presets exit 0
+"$BIN" --help >help.txt 2>&1 && grep -q -- "--grid" help.txt && ok || bad "--help"
+"$BIN" --list-presets >presets.txt 2>&1 && grep -q "canyon" presets.txt && ok || bad "--list-presets"
+
+# a small real run: PNG + PLY, no temp files left
+if "$BIN" --size 96x64 --grid 24 --out small.png --export-mesh small.ply >run.txt 2>&1; then
+	ok
+	head -c 8 small.png | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a" && ok || bad "small.png is not a PNG"
+	head -c 64 small.ply | grep -q "binary_little_endian" && ok || bad "small.ply is not a binary PLY"
+	[ "$(ls | grep -c '\.tmp\|XXXXXX\|small\.p.*\..')" -eq 0 ] && ok || bad "temp files left: $(ls)"
+else
+	bad "small run failed: $(cat run.txt)"
+fi
+# frame sequence
+if "$BIN" --size 64x48 --grid 12 --count 3 --out "seq%03d.png" >seq.txt 2>&1 && [ -f seq000.png ] && [ -f seq002.png ]; then
+	ok
+else
+	bad "--count 3 with %03d: $(cat seq.txt; ls)"
+fi
+
+echo "cli: $pass passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,263 @@
+/* isoterra — the GPU pipeline against the CPU reference: density values,
+ * identical indexed meshes (same triangle count, vertices within tolerance),
+ * watertightness, non-power-of-two and non-cubic grids, the worst-case
+ * field (3D checkerboard) clamped without writing out of bounds, and the
+ * atomic / no-compaction methods agreeing with the HistoPyramid. */
+#include "app.h"
+#include "tcheck.h"
+#include "gpu_fixture.h"
+#include "mesh_check.h"
+
+#include <math.h>
+#include <string.h>
+
+static struct noise_set ns;
+
+struct border_ctx {
+	const struct grid *g;
+};
+
+static int on_plane(const struct grid *g, const float *p, int axis, int side)
+{
+	int n = axis == 0 ? g->nx : axis == 1 ? g->ny : g->nz;
+	float plane = g->origin[axis] + (side ? (float)n * g->cell : 0.0f);
+	return fabsf(p[axis] - plane) < 1e-4f * g->cell + 1e-6f;
+}
+
+static int border_edge(const struct mesh *m, uint32_t a, uint32_t b, void *ctx)
+{
+	const struct grid *g = ((struct border_ctx *)ctx)->g;
+	for (int axis = 0; axis < 3; axis++)
+		for (int side = 0; side < 2; side++)
+			if (on_plane(g, m->pos + 3 * a, axis, side) && on_plane(g, m->pos + 3 * b, axis, side))
+				return 1;
+	return 0;
+}
+
+static double max_pos_diff(const struct mesh *a, const struct mesh *b)
+{
+	double d = 0;
+	for (uint32_t i = 0; i < a->nverts * 3; i++)
+		d = fmax(d, fabs((double)a->pos[i] - b->pos[i]));
+	return d;
+}
+
+static double max_nrm_diff(const struct mesh *a, const struct mesh *b)
+{
+	double d = 0;
+	for (uint32_t i = 0; i < a->nverts * 3; i++)
+		d = fmax(d, fabs((double)a->nrm[i] - b->nrm[i]));
+	return d;
+}
+
+/* One field on one grid, every check. closed: surface never touches the border. */
+static void check_field(const char *what, const struct params *p, const struct grid *g, int closed)
+{
+	char err[512] = "";
+	struct pipeline *pl = pipeline_create(g, p, err, sizeof(err));
+	CHECK(pl != NULL, "%s: pipeline_create: %s", what, err);
+	if (!pl)
+		return;
+	CHECK(pipeline_run(pl, p) == 0, "%s: pipeline_run", what);
+	long nd = grid_dens_count(g);
+	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
+	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read density", what);
+	noise_set_init(&ns, p->seed);
+	density_ref_volume(p, &ns, g->origin, g->cell, g->nx, g->ny, g->nz, dc);
+	double dmax = 0, scale = 0;
+	for (long i = 0; i < nd; i++) {
+		dmax = fmax(dmax, fabs((double)dg[i] - dc[i]));
+		scale = fmax(scale, fabs((double)dc[i]));
+	}
+	CHECK(dmax <= 1e-5 * fmax(scale, 1.0) + 1e-6, "%s: GPU vs CPU density max error %g (scale %g)", what, dmax, scale);
+
+	struct extract_stats st;
+	CHECK(pipeline_read_stats(pl, &st) == 0, "%s: stats", what);
+	CHECK(!st.overflow, "%s: unexpected overflow", what);
+	struct mesh gm, cm_g, cm_c;
+	CHECK(pipeline_read_mesh(pl, &gm) == 0, "%s: read mesh", what);
+	CHECK(mc_ref_extract(g, dg, p->iso, &cm_g) == 0, "%s: CPU MC on GPU densities", what);
+	CHECK(mc_ref_extract(g, dc, p->iso, &cm_c) == 0, "%s: CPU reference", what);
+	printf("%-28s grid %3dx%3dx%3d: GPU %7u tris %7u verts, CPU %7u tris %7u verts, density err %.2g\n", what,
+	       g->nx, g->ny, g->nz, gm.ntris, gm.nverts, cm_c.ntris, cm_c.nverts, dmax);
+	CHECK(gm.ntris > 0, "%s: no triangles", what);
+	/* the same Marching Cubes on the same densities: identical mesh */
+	CHECK(gm.ntris == cm_g.ntris && gm.nverts == cm_g.nverts, "%s: GPU %u/%u vs CPU-on-GPU-densities %u/%u", what,
+	      gm.ntris, gm.nverts, cm_g.ntris, cm_g.nverts);
+	if (gm.ntris == cm_g.ntris && gm.nverts == cm_g.nverts) {
+		CHECK(memcmp(gm.idx, cm_g.idx, (size_t)gm.ntris * 12) == 0, "%s: indices differ", what);
+		CHECK(max_pos_diff(&gm, &cm_g) <= 1e-4 * g->cell, "%s: positions differ by %g", what, max_pos_diff(&gm, &cm_g));
+		CHECK(max_nrm_diff(&gm, &cm_g) <= 1e-3, "%s: normals differ by %g", what, max_nrm_diff(&gm, &cm_g));
+	}
+	/* the full CPU reference (its own densities): same count, close vertices */
+	CHECK(gm.ntris == cm_c.ntris && gm.nverts == cm_c.nverts, "%s: GPU %u/%u vs CPU reference %u/%u", what, gm.ntris,
+	      gm.nverts, cm_c.ntris, cm_c.nverts);
+	if (gm.nverts == cm_c.nverts)
+		CHECK(max_pos_diff(&gm, &cm_c) <= 2e-3 * g->cell, "%s: positions vs CPU reference differ by %g", what,
+		      max_pos_diff(&gm, &cm_c));
+	/* watertight: every interior edge shared by exactly two triangles, consistent winding */
+	struct border_ctx bc = { g };
+	struct topo t;
+	mesh_topology(&gm, closed ? NULL : border_edge, &bc, &t);
+	CHECK(t.bad_index == 0 && t.duplicated == 0 && t.unmatched == 0,
+	      "%s: not watertight: %llu bad indices, %llu duplicated, %llu unmatched of %llu edges", what,
+	      (unsigned long long)t.bad_index, (unsigned long long)t.duplicated, (unsigned long long)t.unmatched,
+	      (unsigned long long)t.edges);
+	CHECK(pipeline_check_guards(pl) == 0, "%s: output buffer canaries overwritten", what);
+
+	/* atomic append and no compaction give the same triangles */
+	struct params q = *p;
+	q.compaction = COMPACT_ATOMIC;
+	CHECK(pipeline_run(pl, &q) == 0, "%s: atomic run", what);
+	struct extract_stats sa;
+	pipeline_read_stats(pl, &sa);
+	CHECK(sa.triangles == gm.ntris, "%s: atomic append %u triangles vs HP %u", what, sa.triangles, gm.ntris);
+	if (g->nx <= 64) {
+		q.compaction = COMPACT_NONE;
+		CHECK(pipeline_run(pl, &q) == 0, "%s: no-compaction run", what);
+		struct mesh nm;
+		CHECK(pipeline_read_mesh(pl, &nm) == 0, "%s: read no-compaction mesh", what);
+		uint32_t real = 0;
+		for (uint32_t i = 0; i < nm.ntris; i++) {
+			const float *a = nm.pos + 9 * (size_t)i;
+			if (memcmp(a, a + 3, 12) || memcmp(a, a + 6, 12))
+				real++;
+		}
+		CHECK(nm.ntris == 5u * (uint32_t)(g->nx * g->ny * g->nz), "%s: no compaction draws 5 per cell", what);
+		CHECK(real <= gm.ntris && real + gm.ntris / 200 + 2 >= gm.ntris, "%s: no compaction %u real triangles vs %u",
+		      what, real, gm.ntris);
+		mesh_free(&nm);
+	}
+	mesh_free(&gm);
+	mesh_free(&cm_g);
+	mesh_free(&cm_c);
+	free(dg);
+	free(dc);
+	pipeline_destroy(pl);
+}
+
+static void preset(struct params *p, const char *name)
+{
+	char err[256];
+	params_defaults(p);
+	if (params_apply_preset(p, name, err, sizeof(err)) < 0) {
+		fprintf(stderr, "%s\n", err);
+		exit(1);
+	}
+}
+
+static void check_worst_case(void)
+{
+	struct params p;
+	params_defaults(&p);
+	char err[256];
+	params_set(&p, "field", "checker", err, sizeof(err));
+	p.grid = 40;
+	p.field_scale = 0.25f;
+	p.vol_size = 40 * 0.25f;
+	p.vol_x = p.vol_y = p.vol_z = 0.0f;
+	struct grid g;
+	grid_from_params(&g, &p);
+	uint32_t caps[][2] = { { 0, 0 }, { 1000, 500 }, { 7, 100000 } };
+	for (int c = 0; c < 3; c++) {
+		p.max_triangles = (int)caps[c][0];
+		p.max_vertices = (int)caps[c][1];
+		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		CHECK(pl != NULL, "checker: %s", err);
+		if (!pl)
+			return;
+		CHECK(pipeline_run(pl, &p) == 0, "checker run");
+		struct extract_stats st;
+		pipeline_read_stats(pl, &st);
+		printf("checker cap %u/%u: needs %llu tris %llu verts, wrote %u/%u, overflow %d\n", st.triangle_capacity,
+		       st.vertex_capacity, (unsigned long long)st.triangles_needed, (unsigned long long)st.vertices_needed,
+		       st.triangles, st.vertices, st.overflow);
+		CHECK(st.triangles_needed == 4ull * 40 * 40 * 40, "checker needs 4 triangles per cell (%llu)",
+		      (unsigned long long)st.triangles_needed);
+		CHECK(st.overflow, "checker overflow reported");
+		CHECK(st.triangles == (st.triangles_needed < st.triangle_capacity ? st.triangles_needed : st.triangle_capacity),
+		      "checker clamped triangles %u", st.triangles);
+		CHECK(st.vertices <= st.vertex_capacity, "checker vertices %u <= capacity %u", st.vertices, st.vertex_capacity);
+		CHECK(pipeline_check_guards(pl) == 0, "checker: wrote past a capacity");
+		struct mesh m;
+		CHECK(pipeline_read_mesh(pl, &m) == 0, "checker read");
+		uint32_t bad = 0;
+		for (uint32_t i = 0; i < m.ntris * 3; i++)
+			bad += m.idx[i] >= m.nverts;
+		CHECK(bad == 0, "checker: %u indices past the vertices written", bad);
+		mesh_free(&m);
+		/* the same through atomic append */
+		struct params q = p;
+		q.compaction = COMPACT_ATOMIC;
+		CHECK(pipeline_run(pl, &q) == 0, "checker atomic run");
+		pipeline_read_stats(pl, &st);
+		CHECK(st.overflow && st.triangles <= st.triangle_capacity, "checker atomic clamped");
+		CHECK(pipeline_check_guards(pl) == 0, "checker atomic: wrote past a capacity");
+		pipeline_destroy(pl);
+	}
+}
+
+static void check_determinism(void)
+{
+	struct params p;
+	params_defaults(&p);
+	p.grid = 24;
+	struct grid g;
+	grid_from_params(&g, &p);
+	char err[256];
+	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	CHECK(pl != NULL, "determinism: %s", err);
+	if (!pl)
+		return;
+	struct mesh a, b, c;
+	pipeline_run(pl, &p);
+	pipeline_read_mesh(pl, &a);
+	pipeline_run(pl, &p);
+	pipeline_read_mesh(pl, &b);
+	p.seed = 7;
+	pipeline_run(pl, &p);
+	pipeline_read_mesh(pl, &c);
+	CHECK(a.ntris == b.ntris && a.nverts == b.nverts && !memcmp(a.pos, b.pos, 12 * (size_t)a.nverts) &&
+		      !memcmp(a.idx, b.idx, 12 * (size_t)a.ntris),
+	      "same seed and parameters give the same mesh");
+	CHECK(a.ntris != c.ntris || memcmp(a.pos, c.pos, 12 * (size_t)(a.nverts < c.nverts ? a.nverts : c.nverts)),
+	      "another seed gives another mesh");
+	mesh_free(&a);
+	mesh_free(&b);
+	mesh_free(&c);
+	pipeline_destroy(pl);
+}
+
+int main(void)
+{
+	struct platform *plat = fixture_open();
+	struct params p;
+	struct grid g;
+	const char *fields[] = { "torus", "bumps", "ripple" };
+	int grids[] = { 8, 33, 64, 100 };
+	for (int f = 0; f < 3; f++)
+		for (int i = 0; i < 4; i++) {
+			preset(&p, fields[f]);
+			p.grid = grids[i];
+			grid_from_params(&g, &p);
+			char what[64];
+			snprintf(what, sizeof(what), "%s", fields[f]);
+			check_field(what, &p, &g, f == 0);
+		}
+	/* a non-cubic grid, off-centre */
+	preset(&p, "torus");
+	struct grid odd = { 37, 21, 50, { -1.13f, -0.61f, -1.31f }, 2.5f / 50.0f };
+	check_field("torus non-cubic", &p, &odd, 0);
+	/* noise terrain (ALU Perlin, default GPU Gems density) */
+	int tgrids[] = { 33, 100 };
+	for (int i = 0; i < 2; i++) {
+		params_defaults(&p);
+		p.grid = tgrids[i];
+		grid_from_params(&g, &p);
+		check_field("noise terrain", &p, &g, 0);
+	}
+	check_worst_case();
+	check_determinism();
+	platform_close(plat);
+	return tc_done("pipeline");
+}

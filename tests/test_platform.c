@@ -1,0 +1,137 @@
+/* isoterra — platform layer: headless GLES 3.1 contexts via EGL. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <GLES3/gl32.h>
+
+#include "platform.h"
+#include "tcheck.h"
+
+static void check_context(const struct platform *p, const char *what)
+{
+	CHECK(eglGetCurrentContext() == p->ctx, "%s: context not current", what);
+	CHECK(p->headless, "%s: not headless", what);
+	CHECK(p->device_desc[0] != 0, "%s: empty device_desc", what);
+	const char *ver = (const char *)glGetString(GL_VERSION);
+	int major = 0, minor = 0;
+	CHECK(ver && sscanf(ver, "OpenGL ES %d.%d", &major, &minor) == 2, "%s: GL_VERSION '%s'", what,
+	      ver ? ver : "(null)");
+	CHECK(major > 3 || (major == 3 && minor >= 1), "%s: GL_VERSION '%s' < 3.1", what, ver ? ver : "");
+	GLint wg[3] = { 0, 0, 0 };
+	for (GLuint i = 0; i < 3; i++)
+		glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, i, &wg[i]);
+	/* ES 3.1 guarantees at least 65535 per axis. */
+	CHECK(wg[0] >= 65535 && wg[1] >= 65535 && wg[2] >= 65535, "%s: max work group count %d %d %d",
+	      what, wg[0], wg[1], wg[2]);
+	CHECK(glGetError() == GL_NO_ERROR, "%s: GL error after queries", what);
+	printf("%s: %s, %s\n", what, ver ? ver : "?", p->device_desc);
+}
+
+static void open_ok(const char *name, bool debug)
+{
+	const char *label = name ? name : "(default)";
+	char err[512] = "";
+	struct platform_options opt = { .name = name, .width = 64, .height = 64, .debug = debug };
+	struct platform *p = platform_open(&opt, err, sizeof(err));
+	CHECK(p != NULL, "open '%s': %s", label, err);
+	if (!p)
+		return;
+	check_context(p, label);
+	if (debug) {
+		GLint flags = 0;
+		glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+		if (glGetError() == GL_NO_ERROR) /* GL_CONTEXT_FLAGS is ES 3.2 */
+			CHECK(flags & GL_CONTEXT_FLAG_DEBUG_BIT, "%s: debug context requested, flags 0x%x", label, flags);
+	}
+	CHECK(platform_present(p) == 0, "present on headless '%s'", label);
+	platform_close(p);
+	CHECK(eglGetCurrentContext() == EGL_NO_CONTEXT, "'%s': context still current after close", label);
+}
+
+/* Number of EGL devices as the test sees it, -1 when the EGL cannot list them. */
+static int egl_device_count(void)
+{
+	const char *ce = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+	if (!ce || !egl_common_has_ext(ce, "EGL_EXT_platform_device"))
+		return -1;
+	PFNEGLQUERYDEVICESEXTPROC q = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+	EGLint n = 0;
+	if (!q || !q(0, NULL, &n))
+		return -1;
+	return n;
+}
+
+/* Run with MESA_GLES_VERSION_OVERRIDE=3.0: opening must fail, naming 3.1. */
+static int expect_no_es31(void)
+{
+	char err[512] = "";
+	struct platform_options opt = { .name = "surfaceless" };
+	struct platform *p = platform_open(&opt, err, sizeof(err));
+	CHECK(p == NULL, "opened although GLES is limited to 3.0");
+	CHECK(strstr(err, "OpenGL ES 3.1") != NULL, "err '%s'", err);
+	printf("es3.0 only: %s\n", err);
+	platform_close(p);
+	return tc_done("test_platform (no ES 3.1)");
+}
+
+int main(int argc, char **argv)
+{
+	char err[512];
+	const char *ce = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+	if (!ce || !egl_common_has_ext(ce, "EGL_MESA_platform_surfaceless")) {
+		printf("test_platform: skipped: EGL_MESA_platform_surfaceless not available\n");
+		return 77;
+	}
+	if (argc > 1 && strcmp(argv[1], "--expect-no-es31") == 0)
+		return expect_no_es31();
+
+	/* names */
+	CHECK(strcmp(platform_backend_names(), "device surfaceless") == 0, "names '%s'", platform_backend_names());
+	struct platform_options bad = { .name = "nonsense" };
+	err[0] = 0;
+	CHECK(platform_open(&bad, err, sizeof(err)) == NULL, "nonsense opened");
+	CHECK(strcmp(err, "unknown platform 'nonsense' (compiled in: device surfaceless)") == 0, "err '%s'", err);
+
+	/* extension token matching */
+	CHECK(egl_common_has_ext("EGL_KHR_debug EGL_EXT_device_drm_render_node", "EGL_EXT_device_drm_render_node"), "ext last");
+	CHECK(!egl_common_has_ext("EGL_EXT_device_drm_render_node", "EGL_EXT_device_drm"), "ext prefix");
+	CHECK(egl_common_has_ext("EGL_EXT_device_drm_render_node EGL_EXT_device_drm", "EGL_EXT_device_drm"), "ext second");
+	CHECK(!egl_common_has_ext("", "EGL_KHR_debug") && !egl_common_has_ext(NULL, "EGL_KHR_debug"), "ext empty");
+
+	/* one platform at a time */
+	struct platform_options sl = { .name = "surfaceless" };
+	struct platform *first = platform_open(&sl, err, sizeof(err));
+	CHECK(first != NULL, "surfaceless: %s", err);
+	err[0] = 0;
+	CHECK(platform_open(&sl, err, sizeof(err)) == NULL &&
+	      !strcmp(err, "a platform is already open (one at a time per process)"), "second open: '%s'", err);
+	platform_close(first);
+
+	open_ok("surfaceless", false);
+	open_ok("surfaceless", true);  /* again: terminate + reinitialise works */
+	open_ok("auto", false);
+	open_ok(NULL, false);          /* NULL name = auto */
+
+	/* device: Mesa exposes a software device; whether it opens must match
+	 * what the device list says. */
+	int ndev = egl_device_count();
+	struct platform_options dopt = { .name = "device" };
+	err[0] = 0;
+	struct platform *p = platform_open(&dopt, err, sizeof(err));
+	if (ndev > 0) {
+		CHECK(p != NULL, "%d EGL device(s) but 'device' failed: %s", ndev, err);
+		if (p) {
+			check_context(p, "device");
+			platform_close(p);
+		}
+	} else {
+		CHECK(p == NULL, "'device' opened with no EGL devices listed");
+		CHECK(err[0] != 0, "no message");
+		if (ndev == 0)
+			CHECK(strcmp(err, "no EGL device found") == 0, "err '%s'", err);
+		printf("device: %s\n", err);
+		platform_close(p);
+	}
+	return tc_done("test_platform");
+}

@@ -1,0 +1,78 @@
+/* isoterra — rendered output: the default scene matches the golden image
+ * within a stated tolerance, rendering is deterministic, and the three
+ * compaction methods draw the same picture.
+ *
+ * Tolerance: mean absolute RGB difference <= 2.0 (of 255) and at most 1% of
+ * pixels differing by more than 48 in any channel.  That absorbs driver
+ * rasterisation/precision differences (llvmpipe versions, a real GPU) but
+ * not a changed terrain, camera or shading.
+ * ISOTERRA_UPDATE_GOLDEN=1 rewrites the golden image. */
+#include "app.h"
+#include "tcheck.h"
+#include "gpu_fixture.h"
+
+#include <string.h>
+
+static void golden_params(struct params *p)
+{
+	params_defaults(p);
+	snprintf(p->size, sizeof(p->size), "160x120");
+	p->grid = 48;
+	p->count = 1;
+}
+
+int main(void)
+{
+	struct platform *plat = fixture_open();
+	const char *src = getenv("ISOTERRA_SRC");
+	char golden[1024];
+	snprintf(golden, sizeof(golden), "%s/tests/golden/default_160x120.png", src ? src : ".");
+	struct params p;
+	golden_params(&p);
+	char err[512] = "";
+	struct image a = { 0 }, b = { 0 }, ref = { 0 };
+	CHECK(render_to_image(&p, &a, err, sizeof(err)) == 0, "render: %s", err);
+	CHECK(render_to_image(&p, &b, err, sizeof(err)) == 0, "render again: %s", err);
+	if (a.rgba && b.rgba)
+		CHECK(!memcmp(a.rgba, b.rgba, (size_t)a.width * a.height * 4), "same parameters, same image");
+
+	if (getenv("ISOTERRA_UPDATE_GOLDEN") && a.rgba) {
+		CHECK(image_write_png(&a, golden, err, sizeof(err)) == 0, "write golden: %s", err);
+		printf("golden image updated: %s\n", golden);
+	}
+	CHECK(image_read_png(&ref, golden, err, sizeof(err)) == 0, "golden image: %s", err);
+	if (a.rgba && ref.rgba) {
+		struct image_diff d;
+		CHECK(image_compare(&a, &ref, 48, &d) == 0, "compare sizes %dx%d vs %dx%d", a.width, a.height, ref.width,
+		      ref.height);
+		printf("golden: mean abs %.3f, rmse %.3f, %.3f%% pixels over 48, max %d, PSNR %.1f dB\n", d.mean_abs, d.rmse,
+		       100.0 * d.frac_over, d.max_abs, d.psnr);
+		CHECK(d.mean_abs <= 2.0, "mean abs difference %.3f > 2.0", d.mean_abs);
+		CHECK(d.frac_over <= 0.01, "%.3f%% of pixels differ by more than 48", 100.0 * d.frac_over);
+		/* the image is a terrain, not a blank sky: many distinct colours */
+		int sky = 0;
+		for (int i = 0; i < a.width * a.height; i++)
+			sky += abs(a.rgba[4 * i] - 158) < 3 && abs(a.rgba[4 * i + 1] - 189) < 3;
+		CHECK(sky < a.width * a.height * 6 / 10, "image is mostly sky (%d of %d pixels)", sky, a.width * a.height);
+	}
+	/* the other compaction methods draw the same terrain */
+	for (int m = 1; m <= 2; m++) {
+		struct params q = p;
+		q.compaction = m;
+		struct image c = { 0 };
+		CHECK(render_to_image(&q, &c, err, sizeof(err)) == 0, "render method %d: %s", m, err);
+		if (c.rgba && a.rgba) {
+			struct image_diff d;
+			image_compare(&a, &c, 48, &d);
+			printf("method %d vs histopyramid: mean abs %.3f, %.3f%% over 48\n", m, d.mean_abs, 100.0 * d.frac_over);
+			CHECK(d.mean_abs <= 0.5 && d.frac_over <= 0.002, "method %d draws another picture (mean %.3f)", m,
+			      d.mean_abs);
+		}
+		image_free(&c);
+	}
+	image_free(&a);
+	image_free(&b);
+	image_free(&ref);
+	platform_close(plat);
+	return tc_done("render");
+}

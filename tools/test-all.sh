@@ -1,0 +1,41 @@
+#!/bin/sh
+# isoterra — the whole test suite: a -Werror build and its tests, then the
+# same tests built with AddressSanitizer + UndefinedBehaviorSanitizer.
+# GPU tests run on Mesa's llvmpipe through EGL_MESA_platform_surfaceless
+# unless ISOTERRA_PLATFORM names another backend.
+set -u
+cd "$(dirname "$0")/.."
+total_pass=0
+total_fail=0
+
+run_suite() { # name builddir meson-args...
+	name=$1
+	dir=$2
+	shift 2
+	echo "=== $name: configure ($*)"
+	if [ ! -d "$dir" ]; then
+		meson setup "$dir" "$@" >"$dir.setup.log" 2>&1 || { cat "$dir.setup.log"; return 1; }
+	fi
+	echo "=== $name: build"
+	ninja -C "$dir" || return 1
+	echo "=== $name: test"
+	meson test -C "$dir" --print-errorlogs --num-processes 1
+	rc=$?
+	# count the individual checks the test programs report
+	p=$(grep -hoE '[0-9]+ passed, [0-9]+ failed' "$dir/meson-logs/testlog.txt" | awk '{s+=$1} END {print s+0}')
+	f=$(grep -hoE '[0-9]+ passed, [0-9]+ failed' "$dir/meson-logs/testlog.txt" | awk '{s+=$3} END {print s+0}')
+	total_pass=$((total_pass + p))
+	total_fail=$((total_fail + f))
+	[ $rc -eq 0 ] || total_fail=$((total_fail + 1))
+	return $rc
+}
+
+status=0
+run_suite "release (-Werror)" build-ci -Dwerror=true -Dbuildtype=debugoptimized || status=1
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:suppressions=$(pwd)/tests/lsan.supp"
+export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+run_suite "ASan+UBSan" build-asan -Dwerror=true -Dbuildtype=debug -Db_sanitize=address,undefined \
+	-Db_lundef=false -Dc_args=-fno-sanitize-recover=all || status=1
+echo "all suites: $total_pass passed, $total_fail failed"
+exit $status
