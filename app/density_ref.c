@@ -249,7 +249,14 @@ void density_ref_volume(const struct params *p, const struct noise_set *ns, cons
 				float x = origin[0] + (float)(i - 1) * cell;
 				float y = origin[1] + (float)(j - 1) * cell;
 				float z = origin[2] + (float)(k - 1) * cell;
-				out[((size_t)k * (size_t)sy + (size_t)j) * (size_t)sx + (size_t)i] =
-					density_ref(p, ns, x, y, z);
+				float d = density_ref(p, ns, x, y, z);
+				if (p->closed) {
+					/* as density.comp: air on the border, more in the margin */
+					if (i == 0 || j == 0 || k == 0 || i == sx - 1 || j == sy - 1 || k == sz - 1)
+						d = fminf(d, p->iso - cell);
+					else if (i == 1 || j == 1 || k == 1 || i == sx - 2 || j == sy - 2 || k == sz - 2)
+						d = fminf(d, p->iso - 1e-3f * cell);
+				}
+				out[((size_t)k * (size_t)sy + (size_t)j) * (size_t)sx + (size_t)i] = d;
 			}
 }

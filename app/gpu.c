@@ -10,12 +10,13 @@
 static void GL_APIENTRY debug_cb(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
 				 const GLchar *message, const void *user)
 {
-	(void)source;
 	(void)id;
 	(void)length;
 	(void)user;
 	enum log_level lvl = LOG_DEBUG;
-	if (type == GL_DEBUG_TYPE_ERROR_KHR || severity == GL_DEBUG_SEVERITY_HIGH_KHR)
+	if (source == GL_DEBUG_SOURCE_SHADER_COMPILER_KHR)
+		lvl = LOG_DEBUG; /* reported once, as file:line, by the loader */
+	else if (type == GL_DEBUG_TYPE_ERROR_KHR || severity == GL_DEBUG_SEVERITY_HIGH_KHR)
 		lvl = LOG_WARN;
 	else if (severity == GL_DEBUG_SEVERITY_MEDIUM_KHR)
 		lvl = LOG_INFO;

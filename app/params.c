@@ -285,21 +285,21 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 /* ---- presets ------------------------------------------------------------ */
 const struct preset presets[] = {
 	{ "default", "GPU Gems style terrain: warped octaves, hard floor", "" },
-	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=10;octaves=8;warp_amp=2" },
-	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=2.5;terrace_strength=2;noise_amp=14" },
-	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=2.5;terrace_strength=2;warp_amp=6" },
-	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.03;warp_amp=10;noise_amp=10" },
-	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=2;noise_amp=10;floor_strength=0" },
-	{ "planet", "a small planet", "shape=planet;planet_radius=12;vol_y=-12;noise_amp=4;floor_strength=0;warp_amp=1" },
+	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=18;noise_freq=0.04;octaves=8;warp_amp=2" },
+	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=2.5;terrace_strength=3" },
+	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=2.5;terrace_strength=3;warp_amp=6" },
+	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.05;warp_amp=14;noise_amp=16" },
+	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=1;noise_amp=16;noise_freq=0.06;floor_strength=0" },
+	{ "planet", "a small planet", "shape=planet;planet_radius=12;vol_y=-12;vol_height=1;noise_amp=4;floor_strength=0;warp_amp=1" },
 	{ "plains", "height-damped multifractal: smooth lowlands, rough peaks", "fractal=hetero;noise_amp=8" },
-	{ "cells", "Worley F2-F1 cellular terrain", "fractal=worley;noise_amp=10;octaves=3" },
-	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7" },
+	{ "cells", "Worley F2-F1 cellular terrain", "fractal=worley;noise_amp=14;noise_freq=0.06;octaves=2;gain=0.5;warp_amp=2" },
+	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },
 	{ "fbm", "fractional Brownian motion", "fractal=fbm;hurst=1.0" },
-	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal" },
+	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal;noise_amp=18" },
 	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=0;flat_inner=4;flat_outer=8" },
-	{ "torus", "test field: torus", "field=torus;vol_y=0;vol_size=2.4;field_scale=1" },
-	{ "bumps", "test field: sin(5x)cos(5z)/5", "field=bumps;vol_y=0;vol_size=2.4;field_scale=1" },
-	{ "ripple", "test field: sin(10(x^2+z^2))/10", "field=ripple;vol_y=0;vol_size=2.4;field_scale=1" },
+	{ "torus", "test field: torus", "field=torus;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
+	{ "bumps", "test field: sin(5x)cos(5z)/5", "field=bumps;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
+	{ "ripple", "test field: sin(10(x^2+z^2))/10", "field=ripple;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
 };
 const size_t preset_count = sizeof(presets) / sizeof(presets[0]);
 

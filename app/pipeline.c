@@ -17,6 +17,7 @@
 #include "mc.h"
 #include "noise.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,10 +47,13 @@ struct pipeline {
 
 void grid_from_params(struct grid *g, const struct params *p)
 {
-	g->nx = g->ny = g->nz = p->grid;
+	g->nx = g->nz = p->grid;
+	g->ny = (int)lroundf((float)p->grid * p->vol_height);
+	if (g->ny < 2)
+		g->ny = 2;
 	g->cell = p->vol_size / (float)p->grid;
 	g->origin[0] = p->vol_x - 0.5f * p->vol_size;
-	g->origin[1] = p->vol_y - 0.5f * p->vol_size;
+	g->origin[1] = p->vol_y - 0.5f * g->cell * (float)g->ny;
 	g->origin[2] = p->vol_z - 0.5f * p->vol_size;
 }
 

@@ -13,5 +13,14 @@ void main()
 	if (any(greaterThanEqual(id, dim)))
 		return;
 	vec3 ws = u_origin + vec3(id - 1) * u_cell;
-	dens_out[id.x + dim.x * (id.y + dim.y * id.z)] = density(ws);
+	float d = density(ws);
+	if (u_closed != 0) {
+		// air on the border corners (walls where the box cuts rock) and
+		// clearly air in the margin (so the walls' gradients point out)
+		if (any(equal(id, ivec3(0))) || any(equal(id, dim - 1)))
+			d = min(d, u_iso - u_cell);
+		else if (any(equal(id, ivec3(1))) || any(equal(id, dim - 2)))
+			d = min(d, u_iso - 1e-3 * u_cell);
+	}
+	dens_out[id.x + dim.x * (id.y + dim.y * id.z)] = d;
 }

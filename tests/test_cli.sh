@@ -54,10 +54,10 @@ expect_fail "cannot open shader|shader" --shader-dir /nonexistent --size 64x48 -
 # a broken shader: the message names file:line
 mkdir shaders
 cp "$SRC"/shaders/* shaders/
-line=$(grep -n "float density(vec3" shaders/density.glsl | head -1 | cut -d: -f1)
+line=$(grep -n "^float density(vec3" shaders/density.glsl | head -1 | cut -d: -f1)
 if [ -n "$line" ]; then
 	sed -i "$((line + 2))s/^/\tthis is not glsl;\n/" shaders/density.glsl
-	expect_fail "density.glsl:$((line + 3))" --shader-dir shaders --size 64x48 --grid 8
+	expect_fail "density.glsl:$((line + 2)):" --shader-dir shaders --size 64x48 --grid 8
 else
 	bad "density.glsl has no 'float density(vec3' line"
 fi

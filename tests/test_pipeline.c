@@ -152,6 +152,8 @@ static void check_worst_case(void)
 	params_defaults(&p);
 	char err[256];
 	params_set(&p, "field", "checker", err, sizeof(err));
+	p.closed = false; /* every cell of the grid is a checkerboard cell */
+	p.vol_height = 1.0f;
 	p.grid = 40;
 	p.field_scale = 0.25f;
 	p.vol_size = 40 * 0.25f;

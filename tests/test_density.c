@@ -1,0 +1,520 @@
+/* isoterra — density function tests.
+ *
+ * CPU part (always): half-float conversion, noise tables (determinism per
+ * seed, permutation, rotations), improved Perlin noise against Ken Perlin's
+ * reference, texture noise, Worley, the analytic test fields, the sign
+ * convention, hard floor, scrolling, flat spot, terrace continuity.
+ *
+ * GPU part (needs an EGL surfaceless GLES 3.1 context, e.g. Mesa llvmpipe):
+ * the density pass of the pipeline against density_ref_volume() for every
+ * test field and every fractal family at grids 17 and 33.
+ *   noise=alu:     max |gpu - cpu| <= 1e-4 * scale  (scale = field_scale for
+ *                  the test fields, max |density| for the terrain); llvmpipe
+ *                  measures 0 .. 2e-7 relative.
+ *   noise=texture: the GPU filters the octaves above rotated_octaves with the
+ *                  sampler's trilinear filter, the CPU with exact fp32
+ *                  weights.  GPUs keep only ~8 fractional bits of the filter
+ *                  weights, so up to ~1/256 of a texel step per octave may
+ *                  differ: tolerance 2e-2 * noise_amp.  (llvmpipe filters
+ *                  RGBA16F with fp32 weights: measured ~1e-5 * noise_amp.)
+ */
+#include "density_ref.h"
+#include "gpu.h"
+#include "noise.h"
+#include "params.h"
+#include "pipeline.h"
+#include "platform.h"
+#include "tcheck.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static struct noise_set ns_a, ns_b;
+
+static void set(struct params *p, const char *kv)
+{
+	char buf[512], err[256];
+	snprintf(buf, sizeof(buf), "%s", kv);
+	char *save = NULL;
+	for (char *tok = strtok_r(buf, ";", &save); tok; tok = strtok_r(NULL, ";", &save)) {
+		char *eq = strchr(tok, '=');
+		if (!eq) {
+			CHECK(0, "bad setting '%s'", tok);
+			continue;
+		}
+		*eq = 0;
+		int rc = params_set(p, tok, eq + 1, err, sizeof(err));
+		CHECK(rc == 0, "params_set %s: %s", tok, err);
+	}
+}
+
+/* ---- half floats ----------------------------------------------------------- */
+
+static void test_half(void)
+{
+	int bad = 0;
+	for (uint32_t h = 0; h < 65536; h++) {
+		if ((h & 0x7c00u) == 0x7c00u && (h & 0x3ffu))
+			continue; /* NaN */
+		float f = noise_half_to_float((uint16_t)h);
+		if (noise_float_to_half(f) != h)
+			bad++;
+	}
+	CHECK(bad == 0, "%d half values do not round-trip", bad);
+	CHECK(noise_float_to_half(1.0f) == 0x3c00, "1.0");
+	CHECK(noise_float_to_half(-2.0f) == 0xc000, "-2.0");
+	CHECK(noise_float_to_half(0.5f) == 0x3800, "0.5");
+	CHECK(noise_float_to_half(65504.0f) == 0x7bff, "max half");
+	CHECK(noise_float_to_half(65519.0f) == 0x7bff, "below the overflow tie");
+	CHECK(noise_float_to_half(65520.0f) == 0x7c00, "overflow tie rounds to inf");
+	CHECK(noise_float_to_half(1.0f + 0x1p-11f) == 0x3c00, "tie to even (down)");
+	CHECK(noise_float_to_half(1.0f + 3 * 0x1p-11f) == 0x3c02, "tie to even (up)");
+	CHECK(noise_float_to_half(1.0f + 0x1p-11f + 0x1p-20f) == 0x3c01, "above the tie");
+	CHECK(noise_float_to_half(0x1p-24f) == 0x0001, "smallest subnormal");
+	CHECK(noise_float_to_half(0x1p-25f) == 0x0000, "subnormal tie to even (zero)");
+	CHECK(noise_float_to_half(0x1.8p-25f) == 0x0001, "above the subnormal tie");
+	CHECK(noise_float_to_half(0x1.ff8p-15f) == 0x03ff, "largest subnormal");
+	CHECK(noise_float_to_half(0x1.ffcp-15f) == 0x0400, "subnormal tie rounds up to the smallest normal");
+	CHECK(noise_float_to_half(-0.0f) == 0x8000, "-0");
+	CHECK(noise_float_to_half(INFINITY) == 0x7c00, "inf");
+	uint16_t hn = noise_float_to_half(NAN);
+	CHECK((hn & 0x7c00u) == 0x7c00u && (hn & 0x3ffu), "NaN stays NaN (0x%04x)", hn);
+	CHECK(noise_half_to_float(0x3555) == 0x1.554p-2f, "0x3555");
+	CHECK(noise_half_to_float(0x0001) == 0x1p-24f, "subnormal to float");
+}
+
+/* ---- noise tables and functions ----------------------------------------- */
+
+static void test_tables(void)
+{
+	noise_set_init(&ns_a, 42);
+	noise_set_init(&ns_b, 42);
+	CHECK(memcmp(&ns_a, &ns_b, sizeof(ns_a)) == 0, "same seed gives the same tables");
+	noise_set_init(&ns_b, 43);
+	CHECK(memcmp(ns_a.perm, ns_b.perm, sizeof(ns_a.perm)) != 0, "different seeds: different permutation");
+	CHECK(memcmp(ns_a.tex, ns_b.tex, sizeof(ns_a.tex)) != 0, "different seeds: different volumes");
+	CHECK(memcmp(ns_a.rot, ns_b.rot, sizeof(ns_a.rot)) != 0, "different seeds: different rotations");
+
+	int seen[256] = { 0 }, dup = 0;
+	for (int i = 0; i < 256; i++)
+		dup += seen[ns_a.perm[i]]++ != 0;
+	CHECK(dup == 0, "perm is a permutation (%d duplicates)", dup);
+
+	int out = 0, mism = 0;
+	double mean = 0;
+	for (int k = 0; k < NOISE_TEX_COUNT; k++)
+		for (int i = 0; i < NOISE_TEX_TEXELS * 4; i++) {
+			float v = ns_a.tex[k][i];
+			out += v < -1.0f || v > 1.0f;
+			mism += noise_half_to_float(ns_a.tex_half[k][i]) != v;
+			mean += v;
+		}
+	mean /= NOISE_TEX_COUNT * NOISE_TEX_TEXELS * 4;
+	CHECK(out == 0, "%d texture values outside [-1,1]", out);
+	CHECK(mism == 0, "%d texture floats differ from their half", mism);
+	CHECK(fabs(mean) < 0.02, "texture values centred (mean %g)", mean);
+
+	for (int r = 0; r < 4; r++) {
+		const float *m = ns_a.rot[r];
+		double worst = 0;
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++) {
+				double d = 0;
+				for (int c = 0; c < 3; c++)
+					d += (double)m[i * 3 + c] * m[j * 3 + c];
+				worst = fmax(worst, fabs(d - (i == j)));
+			}
+		double det = m[0] * ((double)m[4] * m[8] - (double)m[5] * m[7]) -
+			     m[1] * ((double)m[3] * m[8] - (double)m[5] * m[6]) +
+			     m[2] * ((double)m[3] * m[7] - (double)m[4] * m[6]);
+		CHECK(worst < 1e-6, "rotation %d orthonormal (err %g)", r, worst);
+		CHECK(fabs(det - 1.0) < 1e-6, "rotation %d det %g", r, det);
+		CHECK(fabs(m[0] + m[4] + m[8] - 3.0f) > 1e-3, "rotation %d is not the identity", r);
+	}
+
+	unsigned char ubo[NOISE_UBO_SIZE];
+	noise_ubo_pack(&ns_a, ubo);
+	int32_t v;
+	memcpy(&v, ubo + 4 * 77, 4);
+	CHECK(v == ns_a.perm[77], "UBO perm[77]");
+	float fr;
+	memcpy(&fr, ubo + 1024 + (2 * 3 + 1) * 16 + 2 * 4, 4);
+	CHECK(fr == ns_a.rot[2][1 * 3 + 2], "UBO rot[2] row 1 col 2 (std140 vec4 rows)");
+	memcpy(&v, ubo + 1216, 4);
+	CHECK(v == 42, "UBO seed");
+}
+
+static float frand(uint32_t *s, float lo, float hi)
+{
+	*s = *s * 1664525u + 1013904223u;
+	return lo + (hi - lo) * (float)(*s >> 8) * (1.0f / 16777216.0f);
+}
+
+static void test_perlin(void)
+{
+	struct noise_set *ref = &ns_b;
+	noise_set_init(ref, 0);
+	/* Ken Perlin's ImprovedNoise.noise(3.14, 42, 7) = 0.13691995878400012
+	 * (double; 3.14 is not exact in float). */
+	CHECK_NEAR(noise_perlin(ref, 3.14f, 42.0f, 7.0f), 0.136919959, 2e-6, "Perlin reference value");
+	CHECK_NEAR(noise_perlin(ref, -1.3f, 0.25f, 17.8f), 0.357161073, 2e-6, "Perlin reference value (negative x)");
+
+	int nonzero = 0;
+	for (int z = -3; z <= 3; z++)
+		for (int y = -300; y <= 300; y += 37)
+			for (int x = -5; x <= 5; x++)
+				nonzero += noise_perlin(&ns_a, (float)x, (float)y, (float)z) != 0.0f;
+	CHECK(nonzero == 0, "Perlin noise is zero at %d lattice points", nonzero);
+
+	uint32_t s = 1;
+	float mx = 0;
+	double sum = 0, sum2 = 0;
+	int n = 200000;
+	for (int i = 0; i < n; i++) {
+		float v = noise_perlin(&ns_a, frand(&s, -300, 300), frand(&s, -300, 300), frand(&s, -300, 300));
+		mx = fmaxf(mx, fabsf(v));
+		sum += v;
+		sum2 += (double)v * v;
+	}
+	CHECK(mx <= 1.05f, "Perlin range (max |n| = %g)", mx);
+	CHECK(mx > 0.6f, "Perlin range not degenerate (max |n| = %g)", mx);
+	CHECK(fabs(sum / n) < 0.01, "Perlin mean %g", sum / n);
+	CHECK(fabs(sqrt(sum2 / n) - 0.271) < 0.02, "Perlin std %g (fractal.glsl assumes 0.271)", sqrt(sum2 / n));
+
+	/* continuity across a lattice plane */
+	float a = noise_perlin(&ns_a, 4.0f - 1e-4f, 0.3f, 0.7f), b = noise_perlin(&ns_a, 4.0f + 1e-4f, 0.3f, 0.7f);
+	CHECK(fabsf(a - b) < 1e-3f, "Perlin continuous across x = 4 (%g vs %g)", a, b);
+	/* seeds differ */
+	float d = 0;
+	for (int i = 0; i < 100; i++) {
+		float x = frand(&s, -50, 50), y = frand(&s, -50, 50), z = frand(&s, -50, 50);
+		d += fabsf(noise_perlin(&ns_a, x, y, z) - noise_perlin(ref, x, y, z));
+	}
+	CHECK(d > 1.0f, "different seeds give different noise (sum |diff| %g)", d);
+}
+
+static void test_tex_noise(void)
+{
+	/* lattice point = texel value, repeat every 16 texels, channel select */
+	const float *t = &ns_a.tex[1][((5 * 16 + 3) * 16 + 7) * 4];
+	CHECK(noise_tex_sample(&ns_a, 1, 7.0f, 3.0f, 5.0f, 2) == t[2], "texel value at a lattice point");
+	CHECK(noise_tex_sample(&ns_a, 1, 7.0f - 32.0f, 3.0f + 16.0f, 5.0f - 160.0f, 2) == t[2], "repeat");
+	uint32_t s = 7;
+	int bad = 0;
+	float mx = 0;
+	for (int i = 0; i < 20000; i++) {
+		float x = frand(&s, -100, 100), y = frand(&s, -100, 100), z = frand(&s, -100, 100);
+		float v = noise_tex_sample(&ns_a, i % 3, x, y, z, i & 3);
+		float w = noise_tex_sample(&ns_a, i % 3, x + 16.0f, y - 48.0f, z + 32.0f, i & 3);
+		bad += fabsf(v - w) > 1e-4f;
+		mx = fmaxf(mx, fabsf(v));
+	}
+	CHECK(bad == 0, "texture noise periodic with 16 (%d mismatches)", bad);
+	CHECK(mx <= 1.0f, "texture noise within [-1,1] (%g)", mx);
+	/* halfway between two texels along x: the average */
+	float h = noise_tex_sample(&ns_a, 0, 2.5f, 9.0f, 4.0f, 0);
+	float t0 = ns_a.tex[0][((4 * 16 + 9) * 16 + 2) * 4], t1 = ns_a.tex[0][((4 * 16 + 9) * 16 + 3) * 4];
+	CHECK_NEAR(h, 0.5f * (t0 + t1), 1e-6, "trilinear midpoint");
+}
+
+static void test_worley(void)
+{
+	uint32_t s = 3;
+	int unsorted = 0, far = 0;
+	for (int i = 0; i < 5000; i++) {
+		float x = frand(&s, -40, 40), y = frand(&s, -40, 40), z = frand(&s, -40, 40);
+		float f[4], g[4];
+		noise_worley(&ns_a, x, y, z, 2, f);
+		noise_worley(&ns_a, x, y, z, 2, g);
+		unsorted += !(f[0] <= f[1] && f[1] <= f[2] && f[2] <= f[3]) || memcmp(f, g, sizeof(f)) != 0;
+		far += f[0] > 1.7320509f;
+	}
+	CHECK(unsorted == 0, "Worley F1<=F2<=F3<=F4 and deterministic (%d bad)", unsorted);
+	CHECK(far == 0, "F1 <= sqrt(3) (one point per cube)");
+	/* each feature point is a zero of F1 */
+	float f[4], g[4];
+	noise_worley(&ns_a, 10.5f, 3.5f, -7.5f, 0, f);
+	noise_worley(&ns_b, 10.5f, 3.5f, -7.5f, 0, g);
+	float f2[4];
+	noise_worley(&ns_a, 10.5f, 3.5f, -7.5f, 1, f2);
+	CHECK(f[0] != g[0] || f[1] != g[1], "Worley differs between seeds");
+	CHECK(f[0] != f2[0] || f[1] != f2[1], "Worley differs between octaves (salt)");
+	CHECK(noise_hash(0) == 0 && noise_hash(1) != 1, "hash");
+}
+
+/* ---- density: fields and terms ------------------------------------------- */
+
+static void test_fields(void)
+{
+	struct params p;
+	params_defaults(&p);
+	const float s = 2.5f;
+	p.field_scale = s;
+	const double tol = 1e-5 * s;
+
+	set(&p, "field=torus");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0.6f * s, 0, 0), 0.16 * s, tol, "torus tube centre");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0.0f, -0.6f * s), 0.16 * s, tol, "torus tube centre (z)");
+	CHECK_NEAR(density_ref(&p, &ns_a, 1.0f * s, 0, 0), 0.0, tol, "torus outer surface");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0.6f * s, 0.4f * s, 0), 0.0, tol, "torus top surface");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), -0.2 * s, tol, "torus hole");
+
+	set(&p, "field=bumps");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0.3f * s, 0), -0.3 * s, tol, "bumps at x=z=0");
+	CHECK_NEAR(density_ref(&p, &ns_a, (float)M_PI / 10 * s, 0, 0), 0.2 * s, tol, "bumps crest");
+	CHECK_NEAR(density_ref(&p, &ns_a, (float)M_PI / 10 * s, 0, (float)M_PI / 5 * s), -0.2 * s, tol,
+		   "bumps trough");
+
+	set(&p, "field=ripple");
+	CHECK_NEAR(density_ref(&p, &ns_a, sqrtf((float)M_PI / 20) * s, 0, 0), 0.1 * s, tol, "ripple crest");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, sqrtf((float)M_PI / 10) * s), 0.0, tol, "ripple node");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, -0.5f * s, 0), 0.5 * s, tol, "ripple below");
+
+	set(&p, "field=sphere");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), s, tol, "sphere centre");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, -s, 0), 0.0, tol, "sphere surface");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0.6f * s, 0, 0.8f * s), 0.0, tol, "sphere surface (diagonal)");
+	CHECK_NEAR(density_ref(&p, &ns_a, 3 * s, 0, 0), -2 * s, tol, "sphere outside");
+
+	set(&p, "field=checker");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), s, tol, "checker +");
+	CHECK_NEAR(density_ref(&p, &ns_a, s, 0, 0), -s, tol, "checker -");
+	CHECK_NEAR(density_ref(&p, &ns_a, s, s, 0), s, tol, "checker + (xy)");
+	CHECK_NEAR(density_ref(&p, &ns_a, s, -s, s), -s, tol, "checker - (xyz)");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0.5f * s, 0, 0), 0.0, tol, "checker zero between");
+
+	/* scrolling: time*scroll_speed shifts x, for test fields and terrain */
+	set(&p, "field=bumps;time=2;scroll_speed=0.75");
+	float a = density_ref(&p, &ns_a, 0.1f, 0.2f, 0.3f);
+	set(&p, "time=0");
+	CHECK_NEAR(a, density_ref(&p, &ns_a, 1.6f, 0.2f, 0.3f), 1e-6, "scroll (bumps)");
+	params_defaults(&p);
+	set(&p, "time=3;scroll_speed=-2");
+	a = density_ref(&p, &ns_a, 4.0f, -1.0f, 2.0f);
+	set(&p, "time=0");
+	CHECK_NEAR(a, density_ref(&p, &ns_a, -2.0f, -1.0f, 2.0f), 1e-5, "scroll (terrain)");
+}
+
+static void test_terrain(void)
+{
+	static const char *families[] = { "geiss", "fbm", "turbulence", "ridged", "multifractal", "hetero", "worley" };
+	struct params p;
+	for (int f = 0; f < 7; f++)
+		for (int n = 0; n < 2; n++) {
+			params_defaults(&p);
+			char kv[128];
+			snprintf(kv, sizeof(kv), "fractal=%s;noise=%s", families[f], n ? "texture" : "alu");
+			set(&p, kv);
+			struct noise_set *ns = &ns_a;
+			int rock_deep = 0, air_high = 0, floor_rock = 0, pos = 0, neg = 0, bad = 0;
+			for (int i = 0; i < 64; i++) {
+				float x = -16.0f + (float)(i % 8) * 4.1f, z = -16.0f + (float)(i / 8) * 4.3f;
+				rock_deep += density_ref(&p, ns, x, -200.0f, z) > 0;
+				air_high += density_ref(&p, ns, x, 200.0f, z) < 0;
+				floor_rock += density_ref(&p, ns, x, p.floor_y - 1.0f, z) > 0;
+				for (int j = 0; j < 16; j++) {
+					float d = density_ref(&p, ns, x, -18.0f + 2.0f * (float)j, z);
+					pos += d > 0;
+					neg += d < 0;
+					bad += !isfinite(d);
+				}
+			}
+			CHECK(rock_deep == 64 && air_high == 64, "%s: rock far below (%d/64), air far above (%d/64)", kv,
+			      rock_deep, air_high);
+			CHECK(floor_rock == 64, "%s: rock below the hard floor (%d/64)", kv, floor_rock);
+			CHECK(bad == 0, "%s: %d non-finite densities", kv, bad);
+			CHECK(pos > 64 && neg > 64, "%s: the default volume holds a surface (%d rock, %d air)", kv, pos, neg);
+		}
+
+	/* hard floor alone: no ground, no noise */
+	params_defaults(&p);
+	set(&p, "shape=caves;cave_bias=-5;noise_amp=0;warp_amp=0");
+	CHECK_NEAR(density_ref(&p, &ns_a, 1, 0, 1), -5.0, 1e-6, "caves bias");
+	CHECK_NEAR(density_ref(&p, &ns_a, 1, p.floor_y - 1.0f, 1), -5.0 + p.floor_strength, 1e-4, "hard floor");
+	CHECK_NEAR(density_ref(&p, &ns_a, 1, p.floor_y + 0.1f, 1), -5.0, 1e-6, "above the hard floor");
+	/* planet */
+	set(&p, "shape=planet;planet_radius=10;floor_strength=0");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), 0.0, 1e-5, "planet surface at the origin");
+	CHECK_NEAR(density_ref(&p, &ns_a, 0, -10, 0), 10.0, 1e-5, "planet centre");
+	/* flat spot: lerp(d, flat_y - y, 0.9) inside inner, untouched beyond outer */
+	params_defaults(&p);
+	float d0 = density_ref(&p, &ns_a, 1.0f, 2.5f, -1.0f);
+	float d_far = density_ref(&p, &ns_a, 30.0f, 2.5f, 0.0f);
+	set(&p, "flat_spot=true;flat_x=0;flat_z=0;flat_y=2;flat_inner=4;flat_outer=8");
+	CHECK_NEAR(density_ref(&p, &ns_a, 1.0f, 2.5f, -1.0f), d0 + 0.9f * ((2.0f - 2.5f) - d0), 1e-4, "flat spot inside");
+	CHECK_NEAR(density_ref(&p, &ns_a, 30.0f, 2.5f, 0.0f), d_far, 1e-6, "flat spot beyond outer radius");
+	/* terraces and shelf are continuous in y */
+	static const char *terr[] = { "terrace=pre", "terrace=post", "shelf=pre", "shelf=post" };
+	for (int t = 0; t < 4; t++) {
+		params_defaults(&p);
+		set(&p, terr[t]);
+		/* above the hard floor (its ramp is floor_strength*floor_sharpness steep) */
+		float prev = density_ref(&p, &ns_a, 3.3f, -12.0f, 1.7f), jump = 0;
+		for (int j = 1; j <= 2600; j++) {
+			float d = density_ref(&p, &ns_a, 3.3f, -12.0f + (float)j * 0.01f, 1.7f);
+			jump = fmaxf(jump, fabsf(d - prev));
+			prev = d;
+		}
+		CHECK(jump < 0.5f, "%s: density continuous along y (max step %g over dy = 0.01)", terr[t], jump);
+	}
+	params_defaults(&p);
+	float plain = density_ref(&p, &ns_a, 3.3f, 0.3f, 1.7f);
+	set(&p, "terrace=pre");
+	CHECK(density_ref(&p, &ns_a, 3.3f, 0.3f, 1.7f) != plain, "terraces change the density");
+
+	/* volume layout: (nx+3)(ny+3)(nz+3), one-sample margin, x fastest */
+	params_defaults(&p);
+	p.closed = false; /* raw samples (the closed volume is checked below) */
+	const float org[3] = { -1.0f, 2.0f, 3.0f };
+	float vol[6 * 5 * 4];
+	density_ref_volume(&p, &ns_a, org, 0.5f, 3, 2, 1, vol);
+	CHECK(vol[0] == density_ref(&p, &ns_a, -1.5f, 1.5f, 2.5f), "volume corner (-1,-1,-1)");
+	CHECK(vol[(2 * 5 + 3) * 6 + 4] == density_ref(&p, &ns_a, -1.0f + 3 * 0.5f, 2.0f + 2 * 0.5f, 3.0f + 1 * 0.5f),
+	      "volume sample (4,3,2)");
+	/* closed volume: air on the border corners, more air in the margin,
+	 * the inside untouched */
+	{
+		float raw[8 * 8 * 8], cl[8 * 8 * 8];
+		params_defaults(&p);
+		p.closed = false;
+		density_ref_volume(&p, &ns_a, org, 0.5f, 5, 5, 5, raw);
+		p.closed = true;
+		density_ref_volume(&p, &ns_a, org, 0.5f, 5, 5, 5, cl);
+		int bad = 0;
+		for (int k = 0; k < 8; k++)
+			for (int j = 0; j < 8; j++)
+				for (int i = 0; i < 8; i++) {
+					int n = (k * 8 + j) * 8 + i;
+					int margin = i == 0 || j == 0 || k == 0 || i == 7 || j == 7 || k == 7;
+					int border = !margin && (i == 1 || j == 1 || k == 1 || i == 6 || j == 6 || k == 6);
+					if (margin)
+						bad += !(cl[n] <= p.iso - 0.5f);
+					else if (border)
+						bad += !(cl[n] < p.iso);
+					else
+						bad += cl[n] != raw[n];
+				}
+		CHECK(bad == 0, "closed volume: %d samples wrong", bad);
+	}
+}
+
+/* ---- GPU vs CPU -------------------------------------------------------- */
+
+struct gcase {
+	const char *settings;
+	bool texture;
+};
+
+static void gpu_compare(const char *what, int n, const char *settings, bool texture)
+{
+	struct params p;
+	params_defaults(&p);
+	set(&p, settings);
+	struct grid g;
+	g.nx = g.ny = g.nz = n;
+	g.cell = p.vol_size / (float)n;
+	g.origin[0] = p.vol_x - 0.5f * p.vol_size;
+	g.origin[1] = p.vol_y - 0.5f * p.vol_size;
+	g.origin[2] = p.vol_z - 0.5f * p.vol_size;
+	size_t cnt = (size_t)(n + 3) * (size_t)(n + 3) * (size_t)(n + 3);
+	float *gv = calloc(cnt, sizeof(float)), *cv = calloc(cnt, sizeof(float));
+	char err[512] = "";
+	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	CHECK(pl != NULL, "%s: pipeline_create: %s", what, err);
+	if (pl) {
+		int rc = pipeline_density(pl, &p);
+		CHECK(rc == 0, "%s: pipeline_density", what);
+		rc = pipeline_read_density(pl, gv);
+		CHECK(rc == 0, "%s: pipeline_read_density", what);
+		pipeline_destroy(pl);
+		static struct noise_set ns;
+		noise_set_init(&ns, p.seed);
+		density_ref_volume(&p, &ns, g.origin, g.cell, n, n, n, cv);
+		double err_max = 0, dmax = 0;
+		size_t at = 0;
+		for (size_t i = 0; i < cnt; i++) {
+			double e = fabs((double)gv[i] - (double)cv[i]);
+			if (!(e <= err_max)) { /* also catches NaN */
+				err_max = e;
+				at = i;
+			}
+			dmax = fmax(dmax, fabs((double)cv[i]));
+		}
+		double scale = p.field != 0 ? p.field_scale : fmax(1.0, dmax);
+		double tol = texture ? 2e-2 * p.noise_amp : 1e-4 * scale;
+		printf("  %-44s grid %2d  max|gpu-cpu| %.3g  (%.2g of %s %.3g)\n", what, n, err_max,
+		       err_max / (texture ? p.noise_amp : scale), texture ? "noise_amp" : "scale",
+		       texture ? p.noise_amp : scale);
+		CHECK(err_max <= tol, "%s grid %d: max |gpu - cpu| = %g at %zu (gpu %g, cpu %g), tol %g", what, n, err_max,
+		      at, (double)gv[at], (double)cv[at], tol);
+	}
+	free(gv);
+	free(cv);
+}
+
+static void test_gpu(void)
+{
+	struct platform_options opt = { .name = "surfaceless", .width = 64, .height = 64, .debug = false };
+	char err[512] = "";
+	struct platform *pf = platform_open(&opt, err, sizeof(err));
+	if (!pf) {
+		printf("GPU part skipped: platform_open(surfaceless): %s\n", err);
+		return;
+	}
+	struct gpu_caps caps;
+	if (gpu_init(&caps, false, err, sizeof(err)) < 0) {
+		printf("GPU part skipped: gpu_init: %s\n", err);
+		platform_close(pf);
+		return;
+	}
+	printf("GPU: %s / %s\n", caps.renderer, caps.version);
+
+	static const char *fields[] = { "torus", "bumps", "ripple", "sphere", "checker" };
+	static const char *families[] = { "geiss", "fbm", "turbulence", "ridged", "multifractal", "hetero", "worley" };
+	char kv[256], what[128];
+	for (int gi = 0; gi < 2; gi++) {
+		int n = gi ? 33 : 17;
+		for (int f = 0; f < 5; f++) {
+			snprintf(kv, sizeof(kv), "field=%s;field_scale=8", fields[f]);
+			snprintf(what, sizeof(what), "field=%s", fields[f]);
+			gpu_compare(what, n, kv, false);
+		}
+		/* checker at one cell per sign change: the worst case */
+		snprintf(kv, sizeof(kv), "field=checker;field_scale=%g", 32.0 / n);
+		gpu_compare("field=checker (one cell per check)", n, kv, false);
+		for (int f = 0; f < 7; f++) {
+			snprintf(kv, sizeof(kv), "fractal=%s;noise=alu", families[f]);
+			snprintf(what, sizeof(what), "fractal=%s noise=alu", families[f]);
+			gpu_compare(what, n, kv, false);
+		}
+	}
+	for (int f = 0; f < 7; f++) {
+		snprintf(kv, sizeof(kv), "fractal=%s;noise=texture", families[f]);
+		snprintf(what, sizeof(what), "fractal=%s noise=texture", families[f]);
+		gpu_compare(what, 17, kv, true);
+	}
+	gpu_compare("noise=texture rotated_octaves=0 far away", 17, "noise=texture;rotated_octaves=0;vol_x=1000;vol_z=-3000",
+		    true);
+	gpu_compare("all terms (terrace, shelf, flat spot, scroll)", 33,
+		    "terrace=pre;shelf=post;flat_spot=true;flat_y=-2;time=1.5;scroll_speed=2", false);
+	gpu_compare("terrace=post shelf=pre", 17, "terrace=post;shelf=pre", false);
+	gpu_compare("shape=planet seed=3", 17, "shape=planet;planet_radius=12;seed=3", false);
+	gpu_compare("shape=caves seed=0 (Perlin's permutation)", 17, "shape=caves;cave_bias=2;seed=0", false);
+	platform_close(pf);
+}
+
+int main(void)
+{
+	test_half();
+	test_tables();
+	test_perlin();
+	test_tex_noise();
+	test_worley();
+	test_fields();
+	test_terrain();
+	test_gpu();
+	return tc_done("test_density");
+}
