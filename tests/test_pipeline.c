@@ -246,6 +246,17 @@ int main(void)
 			snprintf(what, sizeof(what), "%s", fields[f]);
 			check_field(what, &p, &g, f == 0);
 		}
+	/* open volumes: the surface runs into the border, interior edges still closed */
+	const char *open_fields[] = { "bumps", "ripple" };
+	for (int f = 0; f < 2; f++) {
+		preset(&p, open_fields[f]);
+		p.closed = false;
+		p.grid = 33;
+		grid_from_params(&g, &p);
+		char what[64];
+		snprintf(what, sizeof(what), "%s open", open_fields[f]);
+		check_field(what, &p, &g, 0);
+	}
 	/* a non-cubic grid, off-centre */
 	preset(&p, "torus");
 	struct grid odd = { 37, 21, 50, { -1.13f, -0.61f, -1.31f }, 2.5f / 50.0f };
