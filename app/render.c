@@ -138,6 +138,13 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	return gpu_check("draw");
 }
 
+void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h)
+{
+	*fbo = r->samples ? r->fbo_ms : r->fbo;
+	*w = r->w;
+	*h = r->h;
+}
+
 int renderer_read(struct renderer *r, struct image *img)
 {
 	if (r->samples) {

@@ -24,6 +24,9 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 void renderer_destroy(struct renderer *r);
 /* Draws the pipeline's mesh with its indirect command.  0 or -1. */
 int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p);
+/* The framebuffer the frame is drawn into (multisampled or not) and its
+ * size: overlays (OSD) draw into it, the V4L2 output resolves from it. */
+void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h);
 /* Resolves and reads the last frame (top row first).  0 or -1. */
 int renderer_read(struct renderer *r, struct image *img);
 

@@ -1,5 +1,6 @@
 /* isoterra — the main job: headless frames of the terrain to PNG. */
 #include "render.h"
+#include "hal.h"
 #include "cli.h"
 #include "gpu.h"
 #include "log.h"
@@ -57,6 +58,7 @@ int run_headless(const struct params *p_in)
 	int rc = 1;
 	struct pipeline *pl = NULL;
 	struct renderer *r = NULL;
+	struct hal *hal = NULL; /* issue 5: knobs, keys, OSD, V4L2 output */
 	struct gpu_caps caps;
 	if (gpu_init(&caps, p.verbose, err, sizeof(err)) < 0) {
 		log_error("%s", err);
@@ -75,11 +77,20 @@ int run_headless(const struct params *p_in)
 		log_error("%s", err);
 		goto out;
 	}
+	hal = hal_open(&p, w, h, err, sizeof(err));
+	if (!hal) {
+		log_error("%s", err);
+		rc = 2;
+		goto out;
+	}
 	struct pipeline_draw d;
 	struct camera cam;
 	float t0 = p.time;
+	int last = p.count - 1;
 	for (int f = 0; f < p.count; f++) {
-		float t = (float)f / p.fps;
+		if (hal_poll(hal, &p)) /* issue 5: inputs -> parameters; quit */
+			last = f;
+		float t = hal_time(hal, (float)f / p.fps);
 		p.time = t0 + t;
 		if (pipeline_run(pl, &p) < 0)
 			goto out;
@@ -87,7 +98,9 @@ int run_headless(const struct params *p_in)
 		camera_orbit(&cam, &p, &g, t, (float)w / (float)h);
 		if (renderer_draw(r, &d, &cam, &p) < 0)
 			goto out;
-		if (per_frame || f == p.count - 1) {
+		if (hal_frame(hal, r, &p) < 0) /* issue 5: OSD, screenshot, V4L2 */
+			goto out;
+		if (per_frame || f == last) {
 			struct image img = { 0 };
 			frame_name(p.out, f, name, sizeof(name));
 			if (renderer_read(r, &img) < 0) {
@@ -104,6 +117,10 @@ int run_headless(const struct params *p_in)
 		if (platform_present(plat) < 0) {
 			log_error("presenting the frame failed");
 			goto out;
+		}
+		if (f == last) { /* quit asked: this was the last frame */
+			p.count = f + 1;
+			break;
 		}
 	}
 	struct extract_stats st;
@@ -131,6 +148,7 @@ int run_headless(const struct params *p_in)
 	}
 	rc = 0;
 out:
+	hal_close(hal);
 	renderer_destroy(r);
 	pipeline_destroy(pl);
 	platform_close(plat);

@@ -1,0 +1,387 @@
+/* isoterra — GPIO knobs and buttons through libgpiod 1.6 (line API).
+ *
+ * Every configured line is requested for both-edge events; each frame the
+ * event fds are polled with a zero timeout and the events (with their
+ * kernel timestamps) feed the decoders in rotary.c.  A chip that cannot be
+ * opened, or whose lines cannot be requested, or that disappears (read
+ * error, POLLERR, ENODEV from the periodic line-info check) is reported once
+ * and retried every gpio_retry seconds. */
+#include "hal.h"
+#include "rotary.h"
+#include "log.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#ifdef HAVE_LIBGPIOD
+#include <gpiod.h>
+#endif
+
+#define NLINES 10 /* 2 encoders x (A, B, switch) + 4 buttons */
+
+enum role { R_ENC_A, R_ENC_B, R_ENC_SW, R_BUTTON };
+static const char *const role_name[] = { "A", "B", "switch", "" };
+
+struct gline {
+	int chip;         /* index into chips */
+	int offset;
+	enum role role;
+	int ctl;          /* encoder 0/1 or button 0..3 */
+	bool active_low;
+	int bias;         /* 0 as-is, 1 disable, 2 pull-up, 3 pull-down */
+#ifdef HAVE_LIBGPIOD
+	struct gpiod_line *line;
+#endif
+	int fd;
+	int level;
+};
+
+struct gchip {
+	char name[PARAM_STR_MAX];
+#ifdef HAVE_LIBGPIOD
+	struct gpiod_chip *chip;
+#endif
+	bool up, reported;
+	uint64_t next_try;
+};
+
+struct hal_gpio {
+	struct gchip chips[NLINES];
+	int nchips;
+	struct gline lines[NLINES];
+	int nlines;
+	struct rotary enc[2];
+	struct rotary_config enc_cfg[2];
+	struct button sw[2], btn[4];
+	int sw_action[2], btn_action[4];
+	uint64_t enc_debounce, btn_debounce, retry_ns, next_check;
+};
+
+static int chip_index(struct hal_gpio *g, const char *name)
+{
+	for (int i = 0; i < g->nchips; i++)
+		if (!strcmp(g->chips[i].name, name))
+			return i;
+	snprintf(g->chips[g->nchips].name, PARAM_STR_MAX, "%s", name);
+	return g->nchips++;
+}
+
+static int add_line(struct hal_gpio *g, const char *what, const char *chip, int offset, enum role role, int ctl,
+		    bool active_low, int bias, char *err, size_t errlen)
+{
+	if (offset < 0)
+		return 0;
+	if (!chip[0]) {
+		snprintf(err, errlen, "%s is line %d but no gpiochip is set (gpio_chip or the control's *_chip)", what,
+			 offset);
+		return -1;
+	}
+	int c = chip_index(g, chip);
+	for (int i = 0; i < g->nlines; i++)
+		if (g->lines[i].chip == c && g->lines[i].offset == offset) {
+			snprintf(err, errlen, "%s: line %d of %s is used twice", what, offset, chip);
+			return -1;
+		}
+	struct gline *l = &g->lines[g->nlines++];
+	memset(l, 0, sizeof(*l));
+	l->chip = c;
+	l->offset = offset;
+	l->role = role;
+	l->ctl = ctl;
+	l->active_low = active_low;
+	l->bias = bias;
+	l->fd = -1;
+	return 0;
+}
+
+void hal_gpio_close(struct hal_gpio *g);
+
+#ifdef HAVE_LIBGPIOD
+static void chip_down(struct hal_gpio *g, int c)
+{
+	struct gchip *ch = &g->chips[c];
+	for (int i = 0; i < g->nlines; i++) {
+		struct gline *l = &g->lines[i];
+		if (l->chip != c || !l->line)
+			continue;
+		gpiod_line_release(l->line);
+		l->line = NULL;
+		l->fd = -1;
+	}
+	if (ch->chip)
+		gpiod_chip_close(ch->chip);
+	ch->chip = NULL;
+	ch->up = false;
+}
+
+static const char *line_desc(const struct gline *l, char *buf, size_t len)
+{
+	if (l->role == R_BUTTON)
+		snprintf(buf, len, "button%d", l->ctl + 1);
+	else
+		snprintf(buf, len, "enc%d %s", l->ctl + 1, role_name[l->role]);
+	return buf;
+}
+
+/* Opens chip c and requests its lines; false (with a one-time report) when
+ * anything is missing. */
+static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
+{
+	struct gchip *ch = &g->chips[c];
+	ch->next_try = now + g->retry_ns;
+	ch->chip = gpiod_chip_open_lookup(ch->name);
+	if (!ch->chip) {
+		if (!ch->reported)
+			log_warn("gpio: cannot open gpiochip '%s': %s; controls on it are off, retrying every %g s", ch->name,
+				 strerror(errno), (double)g->retry_ns / 1e9);
+		ch->reported = true;
+		return false;
+	}
+	for (int i = 0; i < g->nlines; i++) {
+		struct gline *l = &g->lines[i];
+		if (l->chip != c)
+			continue;
+		char d[32];
+		int flags = (l->active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0) |
+			    (l->bias == 1 ? GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE : 0) |
+			    (l->bias == 2 ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP : 0) |
+			    (l->bias == 3 ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN : 0);
+		l->line = gpiod_chip_get_line(ch->chip, (unsigned)l->offset);
+		const char *fail = NULL;
+		if (!l->line)
+			fail = "no such line";
+		else if (gpiod_line_request_both_edges_events_flags(l->line, "isoterra", flags) < 0) {
+			fail = errno == EBUSY ? "busy (requested by another program)" : strerror(errno);
+			l->line = NULL;
+		} else if ((l->fd = gpiod_line_event_get_fd(l->line)) < 0 || (l->level = gpiod_line_get_value(l->line)) < 0)
+			fail = strerror(errno);
+		if (fail) {
+			if (!ch->reported)
+				log_warn("gpio: %s: line %d of '%s' (%s): %s; retrying every %g s", line_desc(l, d, sizeof(d)),
+					 l->offset, ch->name, gpiod_chip_label(ch->chip), fail, (double)g->retry_ns / 1e9);
+			ch->reported = true;
+			chip_down(g, c);
+			return false;
+		}
+	}
+	/* initial levels -> decoders */
+	for (int i = 0; i < g->nlines; i++) {
+		struct gline *l = &g->lines[i];
+		if (l->chip != c)
+			continue;
+		if (l->role == R_ENC_A || l->role == R_ENC_B) {
+			int a = -1, b = -1;
+			for (int k = 0; k < g->nlines; k++) {
+				const struct gline *o = &g->lines[k];
+				if (o->role <= R_ENC_B && o->ctl == l->ctl)
+					*(o->role == R_ENC_A ? &a : &b) = o->level;
+			}
+			if (a >= 0 && b >= 0)
+				rotary_init(&g->enc[l->ctl], &g->enc_cfg[l->ctl], a, b);
+		} else if (l->role == R_ENC_SW) {
+			button_init(&g->sw[l->ctl], g->btn_debounce, l->level);
+		} else {
+			button_init(&g->btn[l->ctl], g->btn_debounce, l->level);
+		}
+	}
+	log_info("gpio: %s (%s) %s", gpiod_chip_name(ch->chip), gpiod_chip_label(ch->chip),
+		 ch->reported ? "is back" : "ready");
+	ch->up = true;
+	ch->reported = false;
+	return true;
+}
+
+static void chip_gone(struct hal_gpio *g, int c, const char *why, uint64_t now)
+{
+	struct gchip *ch = &g->chips[c];
+	log_warn("gpio: gpiochip '%s' is gone (%s); controls on it are off, retrying every %g s", ch->name, why,
+		 (double)g->retry_ns / 1e9);
+	chip_down(g, c);
+	ch->reported = true;
+	ch->next_try = now + g->retry_ns;
+}
+
+/* Event clock -> CLOCK_MONOTONIC (kernels before 5.7 stamped v1 events with
+ * CLOCK_REALTIME). */
+static uint64_t event_ns(const struct timespec *ts, uint64_t now)
+{
+	uint64_t t = (uint64_t)ts->tv_sec * 1000000000ull + (uint64_t)ts->tv_nsec;
+	uint64_t d = t > now ? t - now : now - t;
+	if (d > 3600ull * 1000000000ull) {
+		struct timespec rt;
+		clock_gettime(CLOCK_REALTIME, &rt);
+		uint64_t r = (uint64_t)rt.tv_sec * 1000000000ull + (uint64_t)rt.tv_nsec;
+		t = t + now - r;
+	}
+	return t;
+}
+#endif
+
+struct hal_gpio *hal_gpio_open(const struct params *p, char *err, size_t errlen)
+{
+	err[0] = 0;
+	struct hal_gpio *g = calloc(1, sizeof(*g));
+	if (!g) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	g->enc_debounce = (uint64_t)(p->enc_debounce_ms * 1e6);
+	g->btn_debounce = (uint64_t)(p->button_debounce_ms * 1e6);
+	g->retry_ns = (uint64_t)(p->gpio_retry * 1e9);
+	const struct {
+		const char *chip;
+		int a, b, sw, spd, action, bias;
+		bool al;
+	} enc[2] = {
+		{ p->enc1_chip, p->enc1_a, p->enc1_b, p->enc1_sw, p->enc1_steps_per_detent, p->enc1_sw_action,
+		  p->enc1_bias, p->enc1_active_low },
+		{ p->enc2_chip, p->enc2_a, p->enc2_b, p->enc2_sw, p->enc2_steps_per_detent, p->enc2_sw_action,
+		  p->enc2_bias, p->enc2_active_low },
+	};
+	int rc = 0;
+	for (int e = 0; e < 2 && rc == 0; e++) {
+		const char *chip = enc[e].chip[0] ? enc[e].chip : p->gpio_chip;
+		char w[32];
+		if ((enc[e].a < 0) != (enc[e].b < 0)) {
+			snprintf(err, errlen, "enc%d: set both enc%d_a and enc%d_b (or neither)", e + 1, e + 1, e + 1);
+			rc = -1;
+			break;
+		}
+		g->enc_cfg[e] = (struct rotary_config){ .steps_per_detent = enc[e].spd,
+							.debounce_ns = g->enc_debounce,
+							.accel_ns = (uint64_t)(p->enc_accel_ms * 1e6),
+							.accel_max = p->enc_accel_max };
+		if (!rotary_init(&g->enc[e], &g->enc_cfg[e], 0, 0)) {
+			snprintf(err, errlen, "enc%d_steps_per_detent must be 1, 2 or 4 (got %d)", e + 1, enc[e].spd);
+			rc = -1;
+			break;
+		}
+		g->sw_action[e] = enc[e].action;
+		button_init(&g->sw[e], g->btn_debounce, 0);
+		snprintf(w, sizeof(w), "enc%d_a", e + 1);
+		rc = add_line(g, w, chip, enc[e].a, R_ENC_A, e, enc[e].al, enc[e].bias, err, errlen);
+		snprintf(w, sizeof(w), "enc%d_b", e + 1);
+		if (rc == 0)
+			rc = add_line(g, w, chip, enc[e].b, R_ENC_B, e, enc[e].al, enc[e].bias, err, errlen);
+		snprintf(w, sizeof(w), "enc%d_sw", e + 1);
+		if (rc == 0)
+			rc = add_line(g, w, chip, enc[e].sw, R_ENC_SW, e, enc[e].al, enc[e].bias, err, errlen);
+	}
+	const int bl[4] = { p->button1_line, p->button2_line, p->button3_line, p->button4_line };
+	const int ba[4] = { p->button1_action, p->button2_action, p->button3_action, p->button4_action };
+	const char *bchip = p->button_chip[0] ? p->button_chip : p->gpio_chip;
+	for (int b = 0; b < 4 && rc == 0; b++) {
+		char w[32];
+		snprintf(w, sizeof(w), "button%d_line", b + 1);
+		g->btn_action[b] = ba[b];
+		button_init(&g->btn[b], g->btn_debounce, 0);
+		rc = add_line(g, w, bchip, bl[b], R_BUTTON, b, p->button_active_low, p->button_bias, err, errlen);
+	}
+	if (rc < 0 || g->nlines == 0) {
+		free(g);
+		return NULL;
+	}
+#ifdef HAVE_LIBGPIOD
+	uint64_t now = hal_now_ns();
+	for (int c = 0; c < g->nchips; c++)
+		chip_up(g, c, now);
+	g->next_check = now + g->retry_ns;
+#else
+	log_warn("gpio: this build has no libgpiod (install libgpiod-dev and rebuild); GPIO controls are off");
+#endif
+	return g;
+}
+
+void hal_gpio_close(struct hal_gpio *g)
+{
+	if (!g)
+		return;
+#ifdef HAVE_LIBGPIOD
+	for (int c = 0; c < g->nchips; c++)
+		chip_down(g, c);
+#endif
+	free(g);
+}
+
+void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
+{
+	if (!g)
+		return;
+#ifdef HAVE_LIBGPIOD
+	/* (re)open missing chips; check that open ones are still there */
+	bool check = now >= g->next_check;
+	if (check)
+		g->next_check = now + g->retry_ns;
+	for (int c = 0; c < g->nchips; c++) {
+		struct gchip *ch = &g->chips[c];
+		if (!ch->up && now >= ch->next_try)
+			chip_up(g, c, now);
+		else if (ch->up && check) {
+			for (int i = 0; i < g->nlines; i++)
+				if (g->lines[i].chip == c && g->lines[i].line) {
+					if (gpiod_line_update(g->lines[i].line) < 0)
+						chip_gone(g, c, strerror(errno), now);
+					break;
+				}
+		}
+	}
+	struct pollfd pfd[NLINES];
+	int idx[NLINES], n = 0;
+	for (int i = 0; i < g->nlines; i++)
+		if (g->lines[i].line && g->lines[i].fd >= 0) {
+			pfd[n].fd = g->lines[i].fd;
+			pfd[n].events = POLLIN;
+			pfd[n].revents = 0;
+			idx[n++] = i;
+		}
+	int pr = n ? poll(pfd, (nfds_t)n, 0) : 0;
+	if (pr < 0 && errno != EINTR)
+		log_warn("gpio: poll: %s", strerror(errno));
+	for (int k = 0; k < n && pr > 0; k++) {
+		struct gline *l = &g->lines[idx[k]];
+		if (!l->line) /* its chip went away while handling an earlier fd */
+			continue;
+		if (pfd[k].revents & (POLLERR | POLLHUP | POLLNVAL)) {
+			chip_gone(g, l->chip, "poll error", now);
+			continue;
+		}
+		if (!(pfd[k].revents & POLLIN))
+			continue;
+		struct gpiod_line_event ev[16];
+		int ne = gpiod_line_event_read_fd_multiple(l->fd, ev, 16);
+		if (ne < 0) {
+			chip_gone(g, l->chip, strerror(errno), now);
+			continue;
+		}
+		for (int e = 0; e < ne; e++) {
+			int level = ev[e].event_type == GPIOD_LINE_EVENT_RISING_EDGE;
+			uint64_t ts = event_ns(&ev[e].ts, now);
+			l->level = level;
+			switch (l->role) {
+			case R_ENC_A: rotary_edge(&g->enc[l->ctl], 0, level, ts); break;
+			case R_ENC_B: rotary_edge(&g->enc[l->ctl], 1, level, ts); break;
+			case R_ENC_SW: button_edge(&g->sw[l->ctl], level, ts); break;
+			case R_BUTTON: button_edge(&g->btn[l->ctl], level, ts); break;
+			}
+		}
+	}
+#endif
+	/* settle what has been stable long enough; collect */
+	for (int e = 0; e < 2; e++) {
+		rotary_flush(&g->enc[e], now);
+		int d = rotary_take(&g->enc[e]);
+		if (e == 0)
+			in->select += d;
+		else
+			in->change += d;
+		button_flush(&g->sw[e], now);
+		in->actions[g->sw_action[e]] += button_take(&g->sw[e]);
+	}
+	for (int b = 0; b < 4; b++) {
+		button_flush(&g->btn[b], now);
+		in->actions[g->btn_action[b]] += button_take(&g->btn[b]);
+	}
+}
