@@ -1,0 +1,169 @@
+/* isoterra — the knob mapping (parameter steps, clamping, snapping, enums,
+ * booleans), the development keys' byte decoding, the pause clock, the OSD
+ * (drawn where it should be, text visible, nothing outside its box) and
+ * hal_open's configuration errors. */
+#include "app.h"
+#include "hal.h"
+#include "osd.h"
+#include "font.h"
+#include "tcheck.h"
+#include "gpu_fixture.h"
+
+#include <math.h>
+#include <string.h>
+
+static void test_knobs(void)
+{
+	struct knobs k;
+	char err[256];
+	CHECK(knobs_init(&k, "", err, sizeof(err)) == 0 && k.count > 10, "every live parameter (%d)", k.count);
+	for (int i = 0; i < k.count; i++)
+		CHECK(k.list[i]->flags & P_LIVE, "%s is live", k.list[i]->name);
+	CHECK(knobs_init(&k, "nope", err, sizeof(err)) < 0 && strstr(err, "nope"), "unknown name refused: %s", err);
+	CHECK(knobs_init(&k, "out", err, sizeof(err)) < 0 && strstr(err, "text"), "text parameter refused: %s", err);
+	CHECK(knobs_init(&k, "ambient,octaves,fractal,flat_spot,iso", err, sizeof(err)) == 0 && k.count == 5, "list");
+	CHECK_NEAR(knob_step(params_find("ambient")), 0.01, 1e-12, "ambient step");
+	CHECK_NEAR(knob_step(params_find("cam_yaw")), 1.0, 1e-12, "cam_yaw step");
+	CHECK_NEAR(knob_step(params_find("iso")), 1.0, 1e-12, "iso step (zero default)");
+	CHECK_NEAR(knob_step(params_find("noise_freq")), 0.001, 1e-12, "noise_freq step");
+	CHECK(knob_step(params_find("octaves")) == 1, "int step");
+	struct params p;
+	params_defaults(&p);
+	k.sel = 0; /* ambient 0.28 */
+	CHECK(knob_change(&k, &p, 3), "ambient +3");
+	CHECK_NEAR(p.ambient, 0.31, 1e-6, "ambient after +3");
+	knob_change(&k, &p, -100);
+	CHECK(p.ambient == 0.0f, "clamped at 0 (%g)", p.ambient);
+	CHECK(!knob_change(&k, &p, -1), "no change at the limit");
+	k.sel = 1; /* octaves 9 */
+	knob_change(&k, &p, 20);
+	CHECK(p.octaves == 16, "octaves clamped to 16 (%d)", p.octaves);
+	k.sel = 2; /* fractal enum wraps */
+	int nf = 7;
+	knob_change(&k, &p, -1);
+	CHECK(p.fractal == nf - 1, "enum wraps backwards (%d)", p.fractal);
+	k.sel = 3;
+	knob_change(&k, &p, 1);
+	CHECK(p.flat_spot, "bool toggles");
+	knob_change(&k, &p, 2);
+	CHECK(p.flat_spot, "two detents: back where it was");
+}
+
+static void test_keys(void)
+{
+	struct hal_input in;
+	memset(&in, 0, sizeof(in));
+	int esc = 0;
+	const unsigned char keys[] = "\x1b[A\x1b[A\x1b[B\x1b[C]][-+psnrq";
+	hal_keys_feed_tty(keys, sizeof(keys) - 1, &esc, &in);
+	CHECK(in.change == 1 + -1 + 1, "change %d", in.change);
+	CHECK(in.select == 1 + 2 - 1, "select %d", in.select);
+	CHECK(in.actions[HAL_PAUSE] == 1 && in.actions[HAL_SCREENSHOT] == 1 && in.actions[HAL_PRESET] == 1 &&
+		      in.actions[HAL_RESET] == 1 && in.actions[HAL_QUIT] == 1,
+	      "actions");
+	/* an escape sequence split across reads */
+	memset(&in, 0, sizeof(in));
+	hal_keys_feed_tty((const unsigned char *)"\x1b", 1, &esc, &in);
+	hal_keys_feed_tty((const unsigned char *)"[", 1, &esc, &in);
+	hal_keys_feed_tty((const unsigned char *)"D", 1, &esc, &in);
+	CHECK(in.select == -1 && in.actions[HAL_QUIT] == 0, "split arrow (%d)", in.select);
+}
+
+static void test_osd(void)
+{
+	char err[512];
+	struct osd *o = osd_create(err, sizeof(err));
+	CHECK(o != NULL, "osd: %s", err);
+	if (!o)
+		return;
+	enum { W = 200, H = 100 };
+	GLuint tex, fbo;
+	glGenTextures(1, &tex);
+	glBindTexture(GL_TEXTURE_2D, tex);
+	glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, W, H);
+	glGenFramebuffers(1, &fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+	glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
+	glClear(GL_COLOR_BUFFER_BIT);
+	CHECK(osd_draw(o, fbo, W, H, "I", "0.5", 0.5f, 1, 1.0f) == 0, "draw");
+	static uint8_t pix[H][W][4];
+	glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, pix);
+	/* box: x 2.., y 2.. from the top; cols = 3 -> (3*6+8) = 26 px wide */
+	int inside_dark = 0, outside_green = 0, outside = 0, bright = 0;
+	for (int y = 0; y < H; y++)
+		for (int x = 0; x < W; x++) {
+			const uint8_t *c = pix[H - 1 - y][x]; /* y from the top */
+			bool in = x >= 2 && x < 2 + 26 && y >= 2 && y < 2 + 30;
+			if (!in) {
+				outside++;
+				outside_green += c[0] == 0 && c[1] == 255 && c[2] == 0;
+			} else {
+				inside_dark += c[1] < 128;
+				bright += c[0] > 200 && c[1] > 200 && c[2] > 200;
+			}
+		}
+	CHECK(outside_green == outside, "nothing drawn outside the box (%d of %d untouched)", outside_green, outside);
+	CHECK(inside_dark > 500, "the box is dark (%d)", inside_dark);
+	CHECK(bright >= 15, "white value text drawn (%d pixels)", bright);
+	/* the "I" glyph: its stem (column 2 of the glyph) is lit in the title row */
+	const uint8_t *g = font_glyph('I');
+	int lit = 0;
+	for (int gy = 0; gy < 7; gy++) {
+		const uint8_t *c = pix[H - 1 - (2 + 3 + gy)][2 + 4 + 2];
+		lit += (g[gy] >> 2 & 1) && c[0] > 200 && c[1] > 150;
+	}
+	CHECK(lit == 7, "glyph 'I' stem lit in 7 rows (%d)", lit);
+	CHECK(font_glyph(200) == font_glyph('?') && font_glyph(' ')[3] == 0, "font lookups");
+	glDeleteFramebuffers(1, &fbo);
+	glDeleteTextures(1, &tex);
+	osd_destroy(o);
+}
+
+static void test_open(void)
+{
+	struct params p;
+	char err[512];
+	params_defaults(&p);
+	/* nothing configured: a no-op object, time passes through */
+	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
+	CHECK(h != NULL, "open: %s", err);
+	CHECK(hal_time(h, 1.5f) == 1.5f, "clock");
+	CHECK(hal_poll(h, &p) == 0, "no quit");
+	hal_close(h);
+	struct {
+		const char *key, *value, *msg;
+	} bad[] = {
+		{ "enc1_a", "3", "enc1_a and enc1_b" },
+		{ "button1_line", "2", "no gpiochip" },
+		{ "screenshot", "a%s.png", "screenshot" },
+		{ "knob_params", "size", "text" },
+	};
+	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+		params_defaults(&p);
+		CHECK(params_set(&p, bad[i].key, bad[i].value, err, sizeof(err)) == 0, "set %s", bad[i].key);
+		err[0] = 0;
+		h = hal_open(&p, 64, 64, err, sizeof(err));
+		CHECK(h == NULL && strstr(err, bad[i].msg), "%s=%s refused with '%s': got '%s'", bad[i].key, bad[i].value,
+		      bad[i].msg, err);
+		hal_close(h);
+	}
+	params_defaults(&p);
+	params_set(&p, "gpio_chip", "gpiochip0", err, sizeof(err));
+	params_set(&p, "enc1_a", "1", err, sizeof(err));
+	params_set(&p, "enc1_b", "1", err, sizeof(err));
+	h = hal_open(&p, 64, 64, err, sizeof(err));
+	CHECK(h == NULL && strstr(err, "twice"), "a line used twice: %s", err);
+	hal_close(h);
+}
+
+int main(void)
+{
+	test_knobs();
+	test_keys();
+	struct platform *plat = fixture_open();
+	test_osd();
+	test_open();
+	platform_close(plat);
+	return tc_done("hal");
+}

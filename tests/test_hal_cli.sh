@@ -1,0 +1,38 @@
+#!/bin/sh
+# isoterra — the hardware options end to end on a machine without the
+# hardware: a missing gpiochip or video device is reported and rendering
+# goes on (exit 0, the PNG written); a device of the wrong kind or a bad
+# hardware setting is one clear error and exit 2.
+BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+cd "$T" || exit 1
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+run() { "$BIN" --size 64x48 --grid 8 --count 3 --out o.png "$@" >out 2>err; }
+
+rm -f o.png
+run --gpio-chip /nonexistent/gpiochip --enc1-a 0 --enc1-b 1 --button1-line 2
+[ $? -eq 0 ] && [ -s o.png ] && ok || bad "missing gpiochip: not survived: $(cat err)"
+grep -q "gpio: cannot open gpiochip '/nonexistent/gpiochip'" err && ok || bad "missing gpiochip not reported: $(cat err)"
+[ "$(grep -c gpiochip err)" -eq 1 ] && ok || bad "missing gpiochip reported more than once: $(cat err)"
+
+rm -f o.png
+run --v4l2 /dev/video-nonexistent
+[ $? -eq 0 ] && [ -s o.png ] && ok || bad "missing video device: not survived: $(cat err)"
+grep -q "v4l2: /dev/video-nonexistent: cannot open" err && ok || bad "missing video device not reported: $(cat err)"
+
+run --v4l2 /dev/null
+[ $? -eq 2 ] && grep -q "not a V4L2 device" err && ok || bad "/dev/null as video device: rc/msg: $(cat err)"
+run --enc1-a 3
+[ $? -eq 2 ] && grep -q "enc1_a and enc1_b" err && ok || bad "half an encoder: $(cat err)"
+run --v4l2-format MJPG
+[ $? -eq 2 ] && grep -q "v4l2_format" err && ok || bad "bad format name: $(cat err)"
+run --screenshot shot.jpg
+[ $? -eq 2 ] && grep -q "screenshot" err && ok || bad "bad screenshot name: $(cat err)"
+run --enc1-steps-per-detent 3 --gpio-chip x --enc1-a 0 --enc1-b 1
+[ $? -eq 2 ] && grep -q "1, 2 or 4" err && ok || bad "3 steps per detent: $(cat err)"
+echo "hal_cli: $pass passed, $fail failed"
+[ $fail -eq 0 ]
