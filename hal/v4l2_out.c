@@ -53,6 +53,7 @@ struct v4l2_out {
 	/* conversion and pacing */
 	struct frame_format f;
 	struct gpu_conv *conv;
+	bool conv_stale;       /* the format changed: new converter needed */
 	uint64_t next_due;
 	struct v4l2_stats st;
 };
@@ -263,16 +264,8 @@ static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
 			v->bufs[i] = (struct mbuf){ .ptr = ptr, .len = b.length };
 		}
 	}
-	/* the converter for the negotiated format */
-	gpu_conv_destroy(v->conv);
-	char e[256];
-	v->conv = gpu_conv_create(&v->f, NSLOTS, e, sizeof(e));
-	if (!v->conv) {
-		snprintf(err, errlen, "%s", e);
-		v->gave_up = true;
-		dev_close(v);
-		return false;
-	}
+	/* the converter for the negotiated format is made at the next frame */
+	v->conv_stale = true;
 	log_info("v4l2: %s (%.32s): %dx%d %s, %u bytes per frame, %s, %s%s", v->path, (const char *)cap.card, v->f.width,
 		 v->f.height, conv_fmt_name(v->f.fmt), v->f.sizeimage, v->use_mmap ? "mmap streaming" : "write()",
 		 conv_fmt_is_yuv(v->f.fmt) ? (v->matrix == CM_BT709 ? "BT.709 limited" : "BT.601 limited") : "sRGB",
@@ -460,6 +453,16 @@ int v4l2_out_frame(struct v4l2_out *v, GLuint fbo, int w, int h)
 	}
 	if (harvest(v, false) < 0)
 		return -1;
+	if (v->conv_stale || !v->conv) {
+		char e[256];
+		gpu_conv_destroy(v->conv);
+		v->conv_stale = false;
+		v->conv = gpu_conv_create(&v->f, NSLOTS, e, sizeof(e));
+		if (!v->conv) {
+			log_error("v4l2: %s", e);
+			return -1;
+		}
+	}
 	if (v->fps > 0) { /* pacing: one frame every 1/fps s */
 		uint64_t period = (uint64_t)(1e9 / v->fps);
 		if (!v->next_due || now > v->next_due + period)
@@ -489,6 +492,20 @@ void v4l2_out_close(struct v4l2_out *v)
 	gpu_conv_destroy(v->conv);
 	dev_close(v);
 	free(v);
+}
+
+int v4l2_out_put(struct v4l2_out *v, const uint8_t *bytes)
+{
+	if (!v->sink_mode && v->fd < 0) {
+		char e[256] = "";
+		if (v->gave_up || hal_now_ns() < v->next_try || !dev_open(v, false, e, sizeof(e))) {
+			v->st.dropped_off++;
+			return -1;
+		}
+	}
+	unsigned long before = v->st.written;
+	put_frame(v, bytes);
+	return v->st.written > before ? 0 : -1;
 }
 
 void v4l2_out_stats(const struct v4l2_out *v, struct v4l2_stats *st)

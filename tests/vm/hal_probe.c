@@ -1,0 +1,275 @@
+/* isoterra — hardware-layer probe for the VM tests (tests/vm/gpio_*.sh,
+ * tests/vm/v4l2_*.sh).  Software rendering in the TCG guest is ~350-850x
+ * slower than on the host (the first frame alone, all shaders JIT-compiled,
+ * takes ~3 minutes there), so the guest runs the hardware layer without a
+ * renderer:
+ *
+ *   hal_probe knobs [isoterra options]
+ *       hal_open + hal_poll every 5 ms (the frame loop's calls, no GL): GPIO
+ *       knobs and buttons -> parameters, knob_log; ends on SIGTERM / quit.
+ *   hal_probe v4l2out FRAME.raw [isoterra options with --v4l2 ...]
+ *       v4l2_out_open (QUERYCAP, format negotiation, mmap or write()), then
+ *       the frame (already in the device's format) every 100 ms until SIGTERM.
+ *   hal_probe convert IN.png OUT.raw [--v4l2-format F --v4l2-matrix M]
+ *       (host, GL) the app's GPU conversion and PBO read-back of an image.
+ *   hal_probe compare CAPTURE.raw REF.png FORMAT MATRIX MIN_PSNR
+ *       the last whole frame of a capture (YUYV, UYVY or NV12) back to RGB
+ *       (CPU, limited range) against the reference: PSNR, exit 1 below MIN.
+ */
+#include "app.h"
+#include "hal.h"
+#include "convert.h"
+#include "v4l2_out.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static volatile sig_atomic_t stop;
+static void on_term(int s) { (void)s; stop = 1; }
+
+static void nap_ms(int ms)
+{
+	struct timespec ts = { ms / 1000, (long)(ms % 1000) * 1000000L };
+	nanosleep(&ts, NULL);
+}
+
+static int parse(int argc, char **argv, struct params *p)
+{
+	char err[512];
+	enum cli_result r = cli_parse(argc, argv, p, err, sizeof(err));
+	if (r == CLI_ERROR) {
+		log_error("%s", err);
+		return -1;
+	}
+	return r == CLI_RUN ? 0 : -1;
+}
+
+static int knobs(int argc, char **argv)
+{
+	struct params p;
+	if (parse(argc, argv, &p) < 0)
+		return 2;
+	p.osd = false;  /* no GL here */
+	p.keyboard = 1; /* off */
+	p.v4l2[0] = 0;
+	char err[512];
+	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
+	if (!h) {
+		log_error("%s", err);
+		return 2;
+	}
+	while (!hal_poll(h, &p))
+		nap_ms(5);
+	hal_close(h);
+	return 0;
+}
+
+static uint8_t *read_file(const char *path, size_t *len)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return NULL;
+	uint8_t *buf = NULL;
+	if (fseek(f, 0, SEEK_END) == 0) {
+		long n = ftell(f);
+		if (n > 0 && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n)) != NULL) {
+			if (fread(buf, 1, (size_t)n, f) != (size_t)n) {
+				free(buf);
+				buf = NULL;
+			} else {
+				*len = (size_t)n;
+			}
+		}
+	}
+	fclose(f);
+	return buf;
+}
+
+static int v4l2out(int argc, char **argv)
+{
+	const char *frame = argv[1];
+	argv[1] = argv[0];
+	struct params p;
+	if (parse(argc - 1, argv + 1, &p) < 0)
+		return 2;
+	int w, h;
+	char err[512];
+	if (cli_parse_size(p.size, &w, &h) < 0)
+		return 2;
+	struct sigaction sa;
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = on_term;
+	sigaction(SIGTERM, &sa, NULL);
+	sigaction(SIGINT, &sa, NULL);
+	struct v4l2_out *v = v4l2_out_open(&p, w, h, err, sizeof(err));
+	if (!v) {
+		log_error("%s", err[0] ? err : "no --v4l2 device");
+		return 2;
+	}
+	size_t len = 0;
+	uint8_t *bytes = read_file(frame, &len);
+	if (!bytes) {
+		log_error("cannot read %s: %s", frame, strerror(errno));
+		v4l2_out_close(v);
+		return 2;
+	}
+	int sent = 0;
+	while (!stop) {
+		const struct frame_format *f = v4l2_out_format(v);
+		if (f->sizeimage && len >= f->sizeimage && v4l2_out_put(v, bytes) == 0 && ++sent == 1)
+			log_info("probe: streaming %s %dx%d", conv_fmt_name(f->fmt), f->width, f->height);
+		else if (f->sizeimage && len < f->sizeimage && sent == 0) {
+			log_error("%s has %zu bytes, the device wants %u", frame, len, f->sizeimage);
+			break;
+		}
+		nap_ms(100);
+	}
+	struct v4l2_stats st;
+	v4l2_out_stats(v, &st);
+	log_info("probe: %lu frames written, %lu dropped busy, %lu not sent", st.written, st.dropped_busy, st.dropped_off);
+	v4l2_out_close(v);
+	free(bytes);
+	return 0;
+}
+
+static int convert(int argc, char **argv)
+{
+	struct params p;
+	const char *in = argv[1], *out = argv[2];
+	argv[2] = argv[0];
+	if (parse(argc - 2, argv + 2, &p) < 0)
+		return 2;
+	char err[512];
+	struct image img = { 0 };
+	if (image_read_png(&img, in, err, sizeof(err)) < 0) {
+		log_error("%s", err);
+		return 2;
+	}
+	struct platform_options po = { .name = "surfaceless", .width = 64, .height = 64 };
+	struct platform *plat = platform_open(&po, err, sizeof(err));
+	struct gpu_caps caps;
+	if (!plat || gpu_init(&caps, false, err, sizeof(err)) < 0) {
+		log_error("%s", err);
+		return 1;
+	}
+	int w = img.width, h = img.height;
+	uint8_t *flip = malloc((size_t)w * h * 4);
+	for (int y = 0; y < h; y++)
+		memcpy(flip + (size_t)(h - 1 - y) * w * 4, img.rgba + (size_t)y * w * 4, (size_t)w * 4);
+	GLuint tex, fbo;
+	glGenTextures(1, &tex);
+	glBindTexture(GL_TEXTURE_2D, tex);
+	glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+	glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, flip);
+	glGenFramebuffers(1, &fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+	struct frame_format f = { .fmt = p.v4l2_format ? p.v4l2_format - 1 : CF_YUYV, .width = w, .height = h,
+				  .matrix = p.v4l2_matrix };
+	conv_fmt_tight(f.fmt, w, h, &f.bytesperline, &f.sizeimage);
+	struct gpu_conv *c = gpu_conv_create(&f, 2, err, sizeof(err));
+	int rc = 1;
+	const uint8_t *bytes = NULL;
+	if (c && gpu_conv_submit(c, fbo, w, h) == 1 && (bytes = gpu_conv_ready(c, true)) != NULL) {
+		char tmp[1100];
+		snprintf(tmp, sizeof(tmp), "%s.tmp", out);
+		FILE *o = fopen(tmp, "wb");
+		if (o && fwrite(bytes, 1, f.sizeimage, o) == f.sizeimage && fclose(o) == 0 && rename(tmp, out) == 0) {
+			rc = 0;
+			printf("%s: %dx%d %s, %u bytes\n", out, w, h, conv_fmt_name(f.fmt), f.sizeimage);
+		} else {
+			log_error("cannot write %s", out);
+		}
+		gpu_conv_release(c);
+	} else {
+		log_error("conversion failed: %s", err);
+	}
+	gpu_conv_destroy(c);
+	free(flip);
+	image_free(&img);
+	platform_close(plat);
+	return rc;
+}
+
+static int compare(char **argv)
+{
+	char err[512];
+	struct image ref = { 0 };
+	if (image_read_png(&ref, argv[2], err, sizeof(err)) < 0) {
+		log_error("%s", err);
+		return 2;
+	}
+	const char *fmt = argv[3];
+	double kr = 0.299, kb = 0.114, min_psnr = atof(argv[5]);
+	if (!strcmp(argv[4], "bt709")) {
+		kr = 0.2126;
+		kb = 0.0722;
+	}
+	int w = ref.width, h = ref.height;
+	bool nv12 = !strcmp(fmt, "NV12"), uyvy = !strcmp(fmt, "UYVY");
+	if (!nv12 && !uyvy && strcmp(fmt, "YUYV")) {
+		log_error("compare: format %s not supported (YUYV, UYVY, NV12)", fmt);
+		return 2;
+	}
+	size_t fsize = nv12 ? (size_t)w * h * 3 / 2 : (size_t)w * h * 2, len = 0;
+	uint8_t *cap = read_file(argv[1], &len);
+	if (!cap || len < fsize) {
+		log_error("compare: %s: %zu bytes, less than one %dx%d %s frame", argv[1], len, w, h, fmt);
+		return 1;
+	}
+	const uint8_t *fr = cap + (len / fsize - 1) * fsize; /* the last whole frame */
+	struct image got = { w, h, malloc((size_t)w * h * 4) };
+	for (int y = 0; y < h; y++)
+		for (int x = 0; x < w; x++) {
+			double Y, U, V;
+			if (nv12) {
+				Y = fr[(size_t)y * w + x];
+				const uint8_t *c = fr + (size_t)w * h + (size_t)(y / 2) * w + (x / 2) * 2;
+				U = c[0];
+				V = c[1];
+			} else {
+				const uint8_t *q = fr + (size_t)y * w * 2 + (x / 2) * 4;
+				Y = uyvy ? q[1 + 2 * (x % 2)] : q[2 * (x % 2)];
+				U = uyvy ? q[0] : q[1];
+				V = uyvy ? q[2] : q[3];
+			}
+			double yl = (Y - 16) / 219, cb = (U - 128) / 224, cr = (V - 128) / 224;
+			double r = yl + 2 * (1 - kr) * cr, b = yl + 2 * (1 - kb) * cb;
+			double g = (yl - kr * r - kb * b) / (1 - kr - kb);
+			double rgb[3] = { r, g, b };
+			for (int k = 0; k < 3; k++) {
+				double v = floor(rgb[k] * 255 + 0.5);
+				got.rgba[4 * ((size_t)y * w + x) + k] = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+			}
+			got.rgba[4 * ((size_t)y * w + x) + 3] = 255;
+		}
+	struct image_diff d;
+	image_compare(&got, &ref, 48, &d);
+	printf("capture vs rendered frame (%s, %dx%d, %zu frames captured): PSNR %.2f dB, mean abs %.2f, max %d\n", fmt, w,
+	       h, len / fsize, d.psnr, d.mean_abs, d.max_abs);
+	if (getenv("HAL_PROBE_SAVE"))
+		image_write_png(&got, getenv("HAL_PROBE_SAVE"), err, sizeof(err));
+	free(cap);
+	image_free(&got);
+	image_free(&ref);
+	return d.psnr >= min_psnr ? 0 : 1;
+}
+
+int main(int argc, char **argv)
+{
+	if (argc >= 2 && !strcmp(argv[1], "knobs"))
+		return knobs(argc - 1, argv + 1);
+	if (argc >= 3 && !strcmp(argv[1], "v4l2out"))
+		return v4l2out(argc - 1, argv + 1);
+	if (argc >= 4 && !strcmp(argv[1], "convert"))
+		return convert(argc - 1, argv + 1);
+	if (argc == 7 && !strcmp(argv[1], "compare"))
+		return compare(argv + 1);
+	fprintf(stderr, "usage: hal_probe knobs|v4l2out|convert|compare ... (see tests/vm/hal_probe.c)\n");
+	return 2;
+}

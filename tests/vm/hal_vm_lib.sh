@@ -1,0 +1,99 @@
+# isoterra — shared helpers of the hardware-layer VM tests (tests/vm/gpio_*.sh,
+# tests/vm/v4l2_*.sh): the Debian kernel under QEMU (TCG), a busybox
+# initramfs with the virtio + 9p modules, the host's / as a read-only 9p
+# root to chroot into (Mesa, libgpiod, v4l-utils, the build tree), a writable
+# 9p results folder, and gpio-sim built out of tree from linux-source-6.1.
+# See ../shared/vm/RECIPE.md.  Sourced; uses HALVM_CACHE (a cache folder in
+# the build tree).  Functions print one line why when they cannot run.
+
+halvm_skip() { echo "SKIP: $*"; exit 77; }
+
+# The newest installed kernel release (never hard-coded).
+halvm_release() {
+	ls /boot/vmlinuz-* 2>/dev/null | sed 's|.*/vmlinuz-||' | sort -V | tail -1
+}
+
+halvm_require() {
+	command -v qemu-system-x86_64 >/dev/null || halvm_skip "qemu-system-x86_64 missing (sh tools/deps.sh)"
+	[ -x /bin/busybox ] && /bin/busybox --list | grep -qx insmod || halvm_skip "busybox-static missing"
+	HALVM_REL=$(halvm_release)
+	[ -n "$HALVM_REL" ] || halvm_skip "no /boot/vmlinuz-* (apt-get install linux-image-amd64)"
+	[ -r "/boot/vmlinuz-$HALVM_REL" ] || halvm_skip "/boot/vmlinuz-$HALVM_REL not readable"
+	[ -d "/lib/modules/$HALVM_REL/kernel" ] || halvm_skip "no modules for $HALVM_REL"
+	command -v cpio >/dev/null || halvm_skip "cpio missing"
+	mkdir -p "$HALVM_CACHE" || halvm_skip "cannot create $HALVM_CACHE"
+}
+
+# gpio-sim as an out-of-tree module (Debian's 6.1 config has no GPIO_SIM).
+# Sets HALVM_GPIOSIM to the .ko.
+halvm_gpio_sim() {
+	d="$HALVM_CACHE/gpio-sim-$HALVM_REL"
+	HALVM_GPIOSIM="$d/gpio-sim-oot.ko"
+	[ -s "$HALVM_GPIOSIM" ] && return 0
+	[ -r /usr/src/linux-source-6.1.tar.xz ] || halvm_skip "linux-source-6.1 missing"
+	[ -d "/lib/modules/$HALVM_REL/build" ] || halvm_skip "linux-headers-$HALVM_REL missing"
+	rm -rf "$d.tmp" && mkdir -p "$d.tmp" || return 1
+	tar -xaf /usr/src/linux-source-6.1.tar.xz -C "$d.tmp" --strip-components=1 --wildcards \
+		'*/drivers/gpio/gpio-sim.c' '*/drivers/gpio/gpiolib.h' '*/kernel/irq/irq_sim.c' || return 1
+	(
+		cd "$d.tmp" || exit 1
+		cp drivers/gpio/gpio-sim.c drivers/gpio/gpiolib.h kernel/irq/irq_sim.c . || exit 1
+		# irq_to_desc() is not exported to modules; equivalent here:
+		sed -i 's/handle_simple_irq(irq_to_desc(irqnum));/generic_handle_irq(irqnum);/' irq_sim.c
+		printf 'obj-m := gpio-sim-oot.o\ngpio-sim-oot-objs := gpio-sim.o irq_sim.o\n' >Makefile
+		make -s -C "/lib/modules/$HALVM_REL/build" M="$PWD" modules >build.log 2>&1 || { cat build.log; exit 1; }
+	) || return 1
+	mkdir -p "$d" && cp "$d.tmp/gpio-sim-oot.ko" "$HALVM_GPIOSIM" && rm -rf "$d.tmp"
+}
+
+# initramfs: busybox, virtio_pci + 9p modules, an /init that mounts the host
+# and runs "chroot /host /bin/sh $halvm_script" (from the kernel command line).
+halvm_initramfs() {
+	HALVM_INITRD="$HALVM_CACHE/initramfs-$HALVM_REL.cpio.gz"
+	[ -s "$HALVM_INITRD" ] && return 0
+	r="$HALVM_CACHE/initramfs.tmp"
+	rm -rf "$r" && mkdir -p "$r/bin" "$r/mods" "$r/proc" "$r/sys" "$r/dev" "$r/host" || return 1
+	cp /bin/busybox "$r/bin/busybox" || return 1
+	: >"$r/mods/order"
+	for m in virtio_pci 9pnet_virtio 9p; do
+		modprobe -S "$HALVM_REL" --show-depends "$m" | awk '$1 == "insmod" {print $2}'
+	done | awk '!seen[$0]++' | while read -r ko; do
+		cp "$ko" "$r/mods/" && basename "$ko" >>"$r/mods/order"
+	done
+	cat >"$r/init" <<'INIT'
+#!/bin/busybox sh
+/bin/busybox --install -s /bin
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+for m in $(cat /mods/order); do insmod /mods/$m || echo "HALVM: insmod $m failed"; done
+script=$(sed -n 's/.*halvm_script=\([^ ]*\).*/\1/p' /proc/cmdline)
+if mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host; then
+	mount -o bind /proc /host/proc && mount -o bind /sys /host/sys && mount -o bind /dev /host/dev &&
+	mount -t tmpfs tmp /host/tmp && mkdir -p /host/tmp/res &&
+	mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 res /host/tmp/res &&
+	chroot /host /bin/sh "$script"
+	echo "HALVM-EXIT $?"
+else
+	echo "HALVM: cannot mount the host file system"
+fi
+poweroff -f
+INIT
+	chmod +x "$r/init"
+	(cd "$r" && find . | cpio -o -H newc 2>/dev/null | gzip -1 >"$HALVM_INITRD.tmp") && mv "$HALVM_INITRD.tmp" "$HALVM_INITRD"
+	rm -rf "$r"
+}
+
+# halvm_boot RESULTS_DIR GUEST_SCRIPT TIMEOUT_S: boots, runs the script in
+# the chroot (it sees RESULTS_DIR as /tmp/res), console to RESULTS_DIR/console.log.
+halvm_boot() {
+	timeout "$3" qemu-system-x86_64 -cpu max -m 2048 -smp 2 -nographic -no-reboot \
+		-kernel "/boot/vmlinuz-$HALVM_REL" -initrd "$HALVM_INITRD" \
+		-append "console=ttyS0 panic=-1 loglevel=3 halvm_script=$2" \
+		-virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
+		-virtfs "local,path=$1,mount_tag=res,security_model=none,multidevs=remap" \
+		</dev/null >"$1/console.log" 2>&1
+	rc=$?
+	[ $rc -eq 124 ] && echo "VM timed out after $3 s"
+	return $rc
+}
