@@ -27,8 +27,20 @@
 #define GUARD_BYTES 1024u   /* canary after every output buffer */
 #define GUARD_WORD 0xa5c3e1f7u
 
+#define DENSITY_VARIANTS 8
+#include <time.h>
+
+/* Density programs specialized on the code-path parameters (fractal family,
+ * noise source, shape, ...), compiled on first use and kept. */
+struct density_variant {
+	char key[512];
+	GLuint prog;
+};
+
 struct pipeline {
 	struct grid g;
+	struct density_variant variants[DENSITY_VARIANTS];
+	int next_variant;
 	GLuint p_density, p_classify, p_reduce, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
@@ -43,6 +55,8 @@ struct pipeline {
 	int max_groups;
 	int max_ssbo;
 	int last_mode;
+	bool profile;                  /* glFinish + time every pass (benchmarks) */
+	double pass_ms[PASS_COUNT];
 };
 
 void grid_from_params(struct grid *g, const struct params *p)
@@ -55,6 +69,33 @@ void grid_from_params(struct grid *g, const struct params *p)
 	g->origin[0] = p->vol_x - 0.5f * p->vol_size;
 	g->origin[1] = p->vol_y - 0.5f * g->cell * (float)g->ny;
 	g->origin[2] = p->vol_z - 0.5f * p->vol_size;
+}
+
+static double now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+/* With profiling on, waits for the GPU and charges the time since the last
+ * mark to pass `which`. */
+static void mark(struct pipeline *pl, int which, double *t)
+{
+	if (!pl->profile)
+		return;
+	glFinish();
+	double n = now_ms();
+	pl->pass_ms[which] += n - *t;
+	*t = n;
+}
+
+void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT])
+{
+	if (ms)
+		memcpy(ms, pl->pass_ms, sizeof(pl->pass_ms));
+	memset(pl->pass_ms, 0, sizeof(pl->pass_ms));
+	pl->profile = on;
 }
 
 static uint32_t div_up(uint64_t a, uint64_t b) { return (uint32_t)((a + b - 1) / b); }
@@ -161,6 +202,28 @@ static void write_guard(GLintptr at)
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, at, GUARD_BYTES, g);
 }
 
+static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	char key[512];
+	if (params_glsl_specialization(p, key, sizeof(key)) < 0) {
+		snprintf(err, errlen, "shader specialization key too long");
+		return 0;
+	}
+	for (int i = 0; i < DENSITY_VARIANTS; i++)
+		if (pl->variants[i].prog && !strcmp(pl->variants[i].key, key))
+			return pl->variants[i].prog;
+	GLuint prog = gpu_compute_program("density.comp", key, err, errlen);
+	if (!prog)
+		return 0;
+	struct density_variant *v = &pl->variants[pl->next_variant];
+	pl->next_variant = (pl->next_variant + 1) % DENSITY_VARIANTS;
+	if (v->prog)
+		glDeleteProgram(v->prog);
+	snprintf(v->key, sizeof(v->key), "%s", key);
+	v->prog = prog;
+	return prog;
+}
+
 static int ensure_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen)
 {
 	if (verts <= pl->verts_alloc)
@@ -239,7 +302,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 		free(pl);
 		return NULL;
 	}
-	if (!(pl->p_density = program("density.comp", err, errlen)) ||
+	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
 	    !(pl->p_classify = program("mc_classify.comp", err, errlen)) ||
 	    !(pl->p_reduce = program("hp_reduce.comp", err, errlen)) ||
 	    !(pl->p_setup = program("mc_setup.comp", err, errlen)) ||
@@ -274,7 +337,10 @@ void pipeline_destroy(struct pipeline *pl)
 {
 	if (!pl)
 		return;
-	GLuint progs[] = { pl->p_density, pl->p_classify, pl->p_reduce, pl->p_setup, pl->p_vertices,
+	for (int i = 0; i < DENSITY_VARIANTS; i++)
+		if (pl->variants[i].prog)
+			glDeleteProgram(pl->variants[i].prog);
+	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_setup, pl->p_vertices,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
 	for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
 		if (progs[i])
@@ -314,6 +380,13 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 		}
 		pl->noise_ready = true;
 	}
+	char err[512];
+	pl->p_density = density_program(pl, p, err, sizeof(err));
+	if (!pl->p_density) {
+		log_error("%s", err);
+		return -1;
+	}
+	double t = now_ms();
 	bind_all(pl);
 	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
@@ -321,17 +394,20 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 	glDispatchCompute(div_up((uint64_t)pl->g.nx + 3, 4), div_up((uint64_t)pl->g.ny + 3, 4),
 			  div_up((uint64_t)pl->g.nz + 3, 4));
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");
 }
 
 static int run_hp(struct pipeline *pl, const struct params *p)
 {
+	double t = now_ms();
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->pad[1]);
 	glUseProgram(pl->p_classify);
 	dispatch_1d(pl, pl->pad[1]);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	mark(pl, PASS_CLASSIFY, &t);
 
 	set_common(pl, pl->p_reduce, NULL);
 	GLint l_level = glGetUniformLocation(pl->p_reduce, "u_level");
@@ -351,15 +427,18 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	glUseProgram(pl->p_setup);
 	glDispatchCompute(1, 1, 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+	mark(pl, PASS_REDUCE, &t);
 
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pl->b_status);
 	set_common(pl, pl->p_vertices, p);
 	glUseProgram(pl->p_vertices);
 	glDispatchComputeIndirect(8 * 4);
+	mark(pl, PASS_VERTICES, &t);
 	set_common(pl, pl->p_indices, p);
 	glUseProgram(pl->p_indices);
 	glDispatchComputeIndirect(12 * 4);
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+	mark(pl, PASS_INDICES, &t);
 	return 0;
 }
 

@@ -32,6 +32,12 @@ enum compaction { COMPACT_HP = 0, COMPACT_ATOMIC = 1, COMPACT_NONE = 2 };
 struct pipeline *pipeline_create(const struct grid *g, const struct params *p, char *err, size_t errlen);
 void pipeline_destroy(struct pipeline *pl);
 
+/* Per-pass timing for benchmarks: with profiling on, every pass ends with
+ * glFinish and its wall time is added up; pipeline_profile returns the sums
+ * since the last call (ms may be NULL) and resets them. */
+enum { PASS_DENSITY, PASS_CLASSIFY, PASS_REDUCE, PASS_VERTICES, PASS_INDICES, PASS_COUNT };
+void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT]);
+
 /* Runs the density pass only (benchmarks). */
 int pipeline_density(struct pipeline *pl, const struct params *p);
 /* Runs density + extraction with the compaction method in p->compaction. */
