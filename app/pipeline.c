@@ -41,7 +41,7 @@ struct pipeline {
 	struct grid g;
 	struct density_variant variants[DENSITY_VARIANTS];
 	int next_variant;
-	GLuint p_density, p_classify, p_reduce, p_setup, p_vertices, p_indices;
+	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
 	struct noise_set *ns;
@@ -50,6 +50,7 @@ struct pipeline {
 	uint32_t owners, words;
 	int top;
 	uint32_t n[MAX_LEVELS], pad[MAX_LEVELS], off[MAX_LEVELS];
+	uint32_t hp_nodes;             /* prefix sums start here */
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
 	uint64_t verts_alloc;          /* vertices the vertex buffer holds */
 	int max_groups;
@@ -120,6 +121,9 @@ static void set_common(const struct pipeline *pl, GLuint prog, const struct para
 	loc = glGetUniformLocation(prog, "u_hp_top");
 	if (loc >= 0)
 		glProgramUniform1i(prog, loc, pl->top);
+	loc = glGetUniformLocation(prog, "u_pre_base");
+	if (loc >= 0)
+		glProgramUniform1ui(prog, loc, pl->hp_nodes);
 	loc = glGetUniformLocation(prog, "u_max_groups");
 	if (loc >= 0)
 		glProgramUniform1ui(prog, loc, (GLuint)pl->max_groups);
@@ -274,6 +278,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	pl->words = div_up(owners, 4);
 	uint32_t hp_nodes;
 	plan_levels(pl->words, &pl->top, pl->n, pl->pad, pl->off, &hp_nodes);
+	pl->hp_nodes = hp_nodes;
 
 	/* capacities: automatic = 16 triangles per cell of the largest face,
 	 * never more than the field could ask for (5 per cell) */
@@ -305,6 +310,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
 	    !(pl->p_classify = program("mc_classify.comp", err, errlen)) ||
 	    !(pl->p_reduce = program("hp_reduce.comp", err, errlen)) ||
+	    !(pl->p_downsweep = program("hp_downsweep.comp", err, errlen)) ||
 	    !(pl->p_setup = program("mc_setup.comp", err, errlen)) ||
 	    !(pl->p_vertices = program("mc_vertices.comp", err, errlen)) ||
 	    !(pl->p_indices = program("mc_indices.comp", err, errlen))) {
@@ -313,7 +319,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	}
 	pl->b_dens = make_buffer((GLsizeiptr)(dens * 4), NULL, GL_DYNAMIC_COPY);
 	pl->b_l0 = make_buffer((GLsizeiptr)pl->words * 4, NULL, GL_DYNAMIC_COPY);
-	pl->b_hp = make_buffer((GLsizeiptr)hp_nodes * 8, NULL, GL_DYNAMIC_COPY);
+	pl->b_hp = make_buffer((GLsizeiptr)hp_nodes * 16, NULL, GL_DYNAMIC_COPY); /* pyramid + prefix sums */
 	pl->b_idx = make_buffer((GLsizeiptr)pl->tri_cap * 12 + GUARD_BYTES, NULL, GL_DYNAMIC_DRAW);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_idx);
 	write_guard((GLintptr)pl->tri_cap * 12);
@@ -340,7 +346,7 @@ void pipeline_destroy(struct pipeline *pl)
 	for (int i = 0; i < DENSITY_VARIANTS; i++)
 		if (pl->variants[i].prog)
 			glDeleteProgram(pl->variants[i].prog);
-	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_setup, pl->p_vertices,
+	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup, pl->p_vertices,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
 	for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
 		if (progs[i])
@@ -419,6 +425,25 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 		glProgramUniform1ui(pl->p_reduce, l_count, pl->n[k]);
 		glProgramUniform1ui(pl->p_reduce, l_pad, pl->pad[k]);
 		dispatch_1d(pl, pl->pad[k]);
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	}
+
+	/* prefix sums, top down: the top node's prefix is 0 */
+	set_common(pl, pl->p_downsweep, NULL);
+	glUseProgram(pl->p_downsweep);
+	{
+		uint32_t zero[2] = { 0, 0 };
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_hp);
+		glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(pl->hp_nodes + pl->off[pl->top]) * 8, 8, zero);
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+		GLint l_lev = glGetUniformLocation(pl->p_downsweep, "u_level");
+		GLint l_cnt = glGetUniformLocation(pl->p_downsweep, "u_count");
+		for (int k = pl->top - 1; k >= 1; k--) {
+			glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+			glProgramUniform1i(pl->p_downsweep, l_lev, k);
+			glProgramUniform1ui(pl->p_downsweep, l_cnt, pl->n[k]);
+			dispatch_1d(pl, pl->n[k]);
+		}
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
 
@@ -598,7 +623,7 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 /* ---- HistoPyramid self-test hook ------------------------------------------ */
 
 int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
-		uint32_t *key_rank, uint32_t *prefix, char *err, size_t errlen)
+		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen)
 {
 	struct pipeline pl;
 	memset(&pl, 0, sizeof(pl));
@@ -608,9 +633,11 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	pl.words = div_up(n, 4);
 	uint32_t nodes;
 	plan_levels(pl.words, &pl.top, pl.n, pl.pad, pl.off, &nodes);
+	pl.hp_nodes = nodes;
 	GLuint prog = gpu_compute_program("hp_test.comp", NULL, err, errlen);
 	GLuint reduce = gpu_compute_program("hp_reduce.comp", NULL, err, errlen);
-	if (!prog || !reduce)
+	GLuint down = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen);
+	if (!prog || !reduce || !down)
 		return -1;
 	uint32_t *words = calloc(pl.words ? pl.words : 1, 4);
 	if (!words)
@@ -619,7 +646,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		words[i / 4] |= (uint32_t)bytes[i] << (8 * (i % 4));
 	GLuint b_l0 = make_buffer((GLsizeiptr)pl.words * 4, words, GL_STATIC_DRAW);
 	free(words);
-	GLuint b_hp = make_buffer((GLsizeiptr)nodes * 8, NULL, GL_DYNAMIC_COPY);
+	GLuint b_hp = make_buffer((GLsizeiptr)nodes * 16, NULL, GL_DYNAMIC_COPY);
 	uint32_t outn = n * (comp == 0 ? 5 : 3);
 	GLuint b_out = make_buffer((GLsizeiptr)(outn ? outn : 1) * 8, NULL, GL_DYNAMIC_COPY);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b_l0);
@@ -643,6 +670,19 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		dispatch_1d(&pl, pl.pad[k]);
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
+	set_common(&pl, down, NULL);
+	glUseProgram(down);
+	uint32_t zero2[2] = { 0, 0 };
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b_hp);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(nodes + pl.off[pl.top]) * 8, 8, zero2);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	for (int k = pl.top - 1; k >= 1; k--) {
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+		glProgramUniform1i(down, glGetUniformLocation(down, "u_level"), k);
+		glProgramUniform1ui(down, glGetUniformLocation(down, "u_count"), pl.n[k]);
+		dispatch_1d(&pl, pl.n[k]);
+	}
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	uint32_t top[2];
 	int rc = read_buffer(b_hp, (GLintptr)pl.off[pl.top] * 8, 8, top);
 	if (rc == 0) {
@@ -666,8 +706,11 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		dispatch_1d(&pl, n);
 		if (rc == 0)
 			rc = read_buffer(b_out, 0, (GLsizeiptr)n * 8, tmp);
-		for (uint32_t i = 0; rc == 0 && i < n; i++)
+		for (uint32_t i = 0; rc == 0 && i < n; i++) {
 			prefix[i] = tmp[2 * i];
+			if (prefix_fast)
+				prefix_fast[i] = tmp[2 * i + 1];
+		}
 	} else if (rc == 0) {
 		snprintf(err, errlen, "hp_selftest: total %u exceeds %zu (bad level-0 bytes?)", top[comp], room);
 		rc = -1;
@@ -679,6 +722,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	glDeleteBuffers(1, &b_out);
 	glDeleteProgram(prog);
 	glDeleteProgram(reduce);
+	glDeleteProgram(down);
 	if (rc == 0 && gpu_check("hp_selftest") < 0)
 		rc = -1;
 	return rc;

@@ -66,9 +66,10 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
  * (bits 0..2 triangle count, bits 3..5 vertex mask) with the same shaders,
  * returns the totals (triangles, vertices), the (cell, rank) of every output
  * key of component comp (0 triangles, 1 vertices) and every cell's prefix
- * sum.  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
+ * sum, read bottom-up (prefix) and from the down-swept prefix sums
+ * (prefix_fast, may be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
  * context.  0 or -1 with err. */
 int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
-		uint32_t *key_rank, uint32_t *prefix, char *err, size_t errlen);
+		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen);
 
 #endif
