@@ -61,7 +61,7 @@ void camera_orbit(struct camera *c, const struct params *p, const struct grid *g
 	c->eye[1] = center[1] + dist * sinf(pitch);
 	c->eye[2] = center[2] + dist * cosf(pitch) * sinf(yaw);
 	/* aim a little below the centre: terrain sits in the lower half */
-	float at[3] = { center[0], center[1] - 0.02f * size, center[2] };
+	float at[3] = { center[0], center[1] - 0.16f * size, center[2] };
 	look_at(c->view, c->eye, at);
 	perspective(c->proj, p->fov, aspect, 0.01f * size, 8.0f * size + dist);
 	mat4_mul(c->viewproj, c->proj, c->view);

@@ -20,9 +20,10 @@ void main()
 	vec3 l = vec3(cos(el) * cos(az), sin(el), cos(el) * sin(az));
 
 	// albedo: rock with strata on steep faces, grass/soil on flat ground
-	float strata = 0.5 + 0.5 * sin(v_pos.y * 2.7 + sin(v_pos.x * 0.31 + v_pos.z * 0.23) * 1.5);
-	vec3 rock = mix(vec3(0.34, 0.29, 0.25), vec3(0.55, 0.47, 0.38), strata);
-	vec3 grass = mix(vec3(0.20, 0.33, 0.12), vec3(0.36, 0.40, 0.20), strata);
+	float strata = 0.5 + 0.5 * sin(v_pos.y * 1.9 + sin(v_pos.x * 0.13 + v_pos.z * 0.11) * 2.0);
+	strata = strata * strata;
+	vec3 rock = mix(vec3(0.47, 0.38, 0.30), vec3(0.62, 0.52, 0.40), strata);
+	vec3 grass = mix(vec3(0.24, 0.36, 0.13), vec3(0.38, 0.42, 0.20), strata);
 	float flat_ground = smoothstep(0.62, 0.86, n.y);
 	vec3 albedo = mix(rock, grass, flat_ground);
 	albedo = mix(albedo, vec3(0.85, 0.87, 0.90), smoothstep(6.0, 10.0, v_pos.y) * smoothstep(0.5, 0.8, n.y));
