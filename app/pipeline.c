@@ -57,11 +57,13 @@ struct pipeline {
 	int max_ssbo;
 	int last_mode;
 	bool profile;                  /* glFinish + time every pass (benchmarks) */
+	float density_bias;            /* subtracted from the density (LOD) */
 	double pass_ms[PASS_COUNT];
 };
 
 void grid_from_params(struct grid *g, const struct params *p)
 {
+	memset(g, 0, sizeof(*g));
 	g->nx = g->nz = p->grid;
 	g->ny = (int)lroundf((float)p->grid * p->vol_height);
 	if (g->ny < 2)
@@ -115,6 +117,8 @@ static void set_common(const struct pipeline *pl, GLuint prog, const struct para
 	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_cells"), pl->g.nx, pl->g.ny, pl->g.nz);
 	glProgramUniform3f(prog, glGetUniformLocation(prog, "u_origin"), pl->g.origin[0], pl->g.origin[1], pl->g.origin[2]);
 	glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cell"), pl->g.cell);
+	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_base"), pl->g.base[0], pl->g.base[1], pl->g.base[2]);
+	glProgramUniform1i(prog, glGetUniformLocation(prog, "u_margin"), grid_margin(&pl->g));
 	GLint loc = glGetUniformLocation(prog, "u_hp_off");
 	if (loc >= 0)
 		glProgramUniform1uiv(prog, loc, MAX_LEVELS, pl->off);
@@ -397,8 +401,10 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
 	glUseProgram(pl->p_density);
-	glDispatchCompute(div_up((uint64_t)pl->g.nx + 3, 4), div_up((uint64_t)pl->g.ny + 3, 4),
-			  div_up((uint64_t)pl->g.nz + 3, 4));
+	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
+	int m2 = 1 + 2 * grid_margin(&pl->g);
+	glDispatchCompute(div_up((uint64_t)pl->g.nx + m2, 4), div_up((uint64_t)pl->g.ny + m2, 4),
+			  div_up((uint64_t)pl->g.nz + m2, 4));
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");

@@ -259,7 +259,7 @@ int main(void)
 	}
 	/* a non-cubic grid, off-centre */
 	preset(&p, "torus");
-	struct grid odd = { 37, 21, 50, { -1.13f, -0.61f, -1.31f }, 2.5f / 50.0f };
+	struct grid odd = { 37, 21, 50, { -1.13f, -0.61f, -1.31f }, 2.5f / 50.0f, 0, { 0, 0, 0 } };
 	check_field("torus non-cubic", &p, &odd, 0);
 	/* noise terrain (ALU Perlin, default GPU Gems density) */
 	int tgrids[] = { 33, 100 };
