@@ -27,7 +27,7 @@
 #define GUARD_BYTES 1024u   /* canary after every output buffer */
 #define GUARD_WORD 0xa5c3e1f7u
 
-#define DENSITY_VARIANTS 8
+#define DENSITY_VARIANTS 12
 #include <time.h>
 
 /* Density programs specialized on the code-path parameters (fractal family,
@@ -210,17 +210,21 @@ static void write_guard(GLintptr at)
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, at, GUARD_BYTES, g);
 }
 
-static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+/* A program specialized on the code-path parameters (and, for the vertex
+ * pass, on whether it computes ambient occlusion); compiled on first use. */
+static GLuint variant_program(struct pipeline *pl, const char *file, const struct params *p, bool ao, char *err,
+			      size_t errlen)
 {
 	char key[512];
-	if (params_glsl_specialization(p, key, sizeof(key)) < 0) {
+	int n = snprintf(key, sizeof(key), "// %s\n%s", file, ao ? "#define WITH_AO 1\n" : "");
+	if (n < 0 || params_glsl_specialization(p, key + n, sizeof(key) - (size_t)n) < 0) {
 		snprintf(err, errlen, "shader specialization key too long");
 		return 0;
 	}
 	for (int i = 0; i < DENSITY_VARIANTS; i++)
 		if (pl->variants[i].prog && !strcmp(pl->variants[i].key, key))
 			return pl->variants[i].prog;
-	GLuint prog = gpu_compute_program("density.comp", key, err, errlen);
+	GLuint prog = gpu_compute_program(file, key, err, errlen);
 	if (!prog)
 		return 0;
 	struct density_variant *v = &pl->variants[pl->next_variant];
@@ -230,6 +234,11 @@ static GLuint density_program(struct pipeline *pl, const struct params *p, char 
 	snprintf(v->key, sizeof(v->key), "%s", key);
 	v->prog = prog;
 	return prog;
+}
+
+static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	return variant_program(pl, "density.comp", p, false, err, errlen);
 }
 
 static int ensure_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen)
@@ -316,7 +325,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	    !(pl->p_reduce = program("hp_reduce.comp", err, errlen)) ||
 	    !(pl->p_downsweep = program("hp_downsweep.comp", err, errlen)) ||
 	    !(pl->p_setup = program("mc_setup.comp", err, errlen)) ||
-	    !(pl->p_vertices = program("mc_vertices.comp", err, errlen)) ||
+	    !(pl->p_vertices = variant_program(pl, "mc_vertices.comp", p, p->ao_rays > 0, err, errlen)) ||
 	    !(pl->p_indices = program("mc_indices.comp", err, errlen))) {
 		pipeline_destroy(pl);
 		return NULL;
@@ -350,7 +359,7 @@ void pipeline_destroy(struct pipeline *pl)
 	for (int i = 0; i < DENSITY_VARIANTS; i++)
 		if (pl->variants[i].prog)
 			glDeleteProgram(pl->variants[i].prog);
-	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup, pl->p_vertices,
+	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
 	for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
 		if (progs[i])
@@ -460,6 +469,12 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 	mark(pl, PASS_REDUCE, &t);
 
+	char err[512];
+	pl->p_vertices = variant_program(pl, "mc_vertices.comp", p, p->ao_rays > 0, err, sizeof(err));
+	if (!pl->p_vertices) {
+		log_error("%s", err);
+		return -1;
+	}
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pl->b_status);
 	set_common(pl, pl->p_vertices, p);
 	glUseProgram(pl->p_vertices);

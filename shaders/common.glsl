@@ -59,6 +59,6 @@ void edge_vertex(ivec3 c, int a, out vec4 pos, out vec4 nrm)
 	vec3 g0 = grad_at(c), g1 = grad_at(c1);
 	vec3 g = g0 + (g1 - g0) * t;
 	float len = length(g);
-	nrm = vec4(len > 1e-20 ? -g / len : vec3(0.0, 1.0, 0.0), 0.0);
+	nrm = vec4(len > 1e-20 ? -g / len : vec3(0.0, 1.0, 0.0), 1.0); // w: ambient visibility
 }
 #endif // DENSITY_WRITER

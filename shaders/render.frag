@@ -2,6 +2,7 @@
 // slope/altitude colouring, distance fog, gamma-correct output.
 in vec3 v_pos;
 in vec3 v_nrm;
+in float v_ao;
 uniform vec3 u_eye;
 uniform float u_fog_density;
 out vec4 frag;
@@ -32,7 +33,8 @@ void main()
 	float ndl = max(dot(n, l), 0.0);
 	vec3 sky_amb = srgb_to_linear(SKY) * (0.55 + 0.45 * n.y);
 	vec3 ground_amb = vec3(0.09, 0.07, 0.05) * (0.5 - 0.5 * n.y);
-	vec3 light = u_sun * vec3(1.0, 0.95, 0.86) * ndl + u_ambient * 2.0 * (sky_amb + ground_amb);
+	float occ = mix(1.0, clamp(v_ao, 0.0, 1.0), u_ao_strength);
+	vec3 light = u_sun * vec3(1.0, 0.95, 0.86) * ndl * mix(1.0, occ, 0.5) + u_ambient * 2.0 * (sky_amb + ground_amb) * occ;
 	vec3 col = albedo * light * back;
 
 	float dist = length(v_pos - u_eye);
