@@ -66,3 +66,11 @@ void camera_orbit(struct camera *c, const struct params *p, const struct grid *g
 	perspective(c->proj, p->fov, aspect, 0.01f * size, 8.0f * size + dist);
 	mat4_mul(c->viewproj, c->proj, c->view);
 }
+
+void camera_look(struct camera *c, const float eye[3], const float at[3], float fov, float aspect, float zn, float zf)
+{
+	memcpy(c->eye, eye, sizeof(c->eye));
+	look_at(c->view, eye, at);
+	perspective(c->proj, fov, aspect, zn, zf);
+	mat4_mul(c->viewproj, c->proj, c->view);
+}

@@ -58,6 +58,8 @@ struct pipeline {
 	int last_mode;
 	bool profile;                  /* glFinish + time every pass (benchmarks) */
 	float density_bias;            /* subtracted from the density (LOD) */
+	bool has_target;
+	struct pipeline_target target;
 	double pass_ms[PASS_COUNT];
 };
 
@@ -133,6 +135,21 @@ static void set_common(const struct pipeline *pl, GLuint prog, const struct para
 		glProgramUniform1ui(prog, loc, (GLuint)pl->max_groups);
 	if (p)
 		gpu_set_param_uniforms(prog, p);
+}
+
+void pipeline_set_target(struct pipeline *pl, const struct pipeline_target *t)
+{
+	pl->has_target = t != NULL;
+	if (t)
+		pl->target = *t;
+}
+
+void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_bias)
+{
+	/* same dimensions and margin: the buffers fit */
+	if (g->nx == pl->g.nx && g->ny == pl->g.ny && g->nz == pl->g.nz && g->margin_extra == pl->g.margin_extra)
+		pl->g = *g;
+	pl->density_bias = density_bias;
 }
 
 static void set_caps(GLuint prog, uint32_t tri_cap, uint32_t vert_cap)
@@ -462,8 +479,24 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
 
+	GLuint status = pl->b_status;
+	GLintptr status_off = 0;
 	set_common(pl, pl->p_setup, p);
-	set_caps(pl->p_setup, pl->tri_cap, pl->vert_cap);
+	if (pl->has_target) {
+		const struct pipeline_target *tg = &pl->target;
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, tg->vbo, tg->vbo_offset, (GLsizeiptr)tg->vert_cap * VERTEX_BYTES);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 5, tg->ibo, tg->ibo_offset, (GLsizeiptr)tg->tri_cap * 12);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 6, tg->status, tg->status_offset, PIPELINE_STATUS_BYTES);
+		set_caps(pl->p_setup, tg->tri_cap, tg->vert_cap);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), tg->first_index);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), tg->base_vertex);
+		status = tg->status;
+		status_off = tg->status_offset;
+	} else {
+		set_caps(pl->p_setup, pl->tri_cap, pl->vert_cap);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), 0);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), 0);
+	}
 	glUseProgram(pl->p_setup);
 	glDispatchCompute(1, 1, 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -475,14 +508,14 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 		log_error("%s", err);
 		return -1;
 	}
-	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pl->b_status);
+	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
 	glUseProgram(pl->p_vertices);
-	glDispatchComputeIndirect(8 * 4);
+	glDispatchComputeIndirect(status_off + 8 * 4);
 	mark(pl, PASS_VERTICES, &t);
 	set_common(pl, pl->p_indices, p);
 	glUseProgram(pl->p_indices);
-	glDispatchComputeIndirect(12 * 4);
+	glDispatchComputeIndirect(status_off + 12 * 4);
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 	mark(pl, PASS_INDICES, &t);
 	return 0;
@@ -530,7 +563,7 @@ int pipeline_run(struct pipeline *pl, const struct params *p)
 	if (pipeline_density(pl, p) < 0)
 		return -1;
 	int rc;
-	switch (p->compaction) {
+	switch (pl->has_target ? COMPACT_HP : p->compaction) {
 	case COMPACT_ATOMIC: rc = run_append(pl, p, false); break;
 	case COMPACT_NONE: rc = run_append(pl, p, true); break;
 	default: rc = run_hp(pl, p); break;

@@ -4,6 +4,7 @@
  * below are for tests, export and end-of-run reports. */
 #ifndef ISOTERRA_PIPELINE_H
 #define ISOTERRA_PIPELINE_H
+#define PIPELINE_STATUS_BYTES 128
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -37,6 +38,23 @@ void pipeline_destroy(struct pipeline *pl);
  * since the last call (ms may be NULL) and resets them. */
 enum { PASS_DENSITY, PASS_CLASSIFY, PASS_REDUCE, PASS_VERTICES, PASS_INDICES, PASS_COUNT };
 void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT]);
+
+/* Output into a slot of someone else's buffers (the world's block pool)
+ * instead of the pipeline's own: vertices at vbo_offset (vert_cap of them),
+ * indices at ibo_offset (tri_cap triangles), the 128-byte status block with
+ * the draw command at status_offset; offsets must honour
+ * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT.  The draw command gets
+ * first_index / base_vertex so one element buffer serves every slot.  NULL
+ * restores the pipeline's own buffers.  HistoPyramid compaction only. */
+struct pipeline_target {
+	GLuint vbo, ibo, status;
+	GLintptr vbo_offset, ibo_offset, status_offset;
+	uint32_t vert_cap, tri_cap;
+	uint32_t first_index, base_vertex;
+};
+void pipeline_set_target(struct pipeline *pl, const struct pipeline_target *t);
+/* Points the pipeline at another grid of the same size (a world block). */
+void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_bias);
 
 /* Runs the density pass only (benchmarks). */
 int pipeline_density(struct pipeline *pl, const struct params *p);

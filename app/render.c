@@ -12,7 +12,7 @@ struct renderer {
 	GLuint fbo_ms, rb_color_ms, rb_depth;
 	GLuint fbo, rb_color;
 	GLuint prog, vao;
-	GLint l_viewproj, l_eye, l_fog;
+	GLint l_viewproj, l_eye, l_fog, l_fade;
 };
 
 static const char *fbo_status(GLenum s)
@@ -82,6 +82,7 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
 	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
 	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
+	r->l_fade = glGetUniformLocation(r->prog, "u_fade");
 	glGenVertexArrays(1, &r->vao);
 	return r;
 }
@@ -101,7 +102,7 @@ void renderer_destroy(struct renderer *r)
 	free(r);
 }
 
-int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
+int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p)
 {
 	glBindFramebuffer(GL_FRAMEBUFFER, r->samples ? r->fbo_ms : r->fbo);
 	glViewport(0, 0, r->w, r->h);
@@ -117,25 +118,44 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	gpu_set_param_uniforms(r->prog, p);
 	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(r->l_eye, 1, c->eye);
-	glUniform1f(r->l_fog, 0.35f / (p->vol_size * p->cam_dist * 2.0f));
-
+	float fog_range = p->scene == 1 ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
+	glUniform1f(r->l_fog, 0.35f / fog_range);
+	glUniform1f(r->l_fade, 1.0f);
 	glBindVertexArray(r->vao);
-	glBindBuffer(GL_ARRAY_BUFFER, d->vbo);
+	return 0;
+}
+
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade)
+{
+	glUniform1f(r->l_fade, fade);
+	glBindBuffer(GL_ARRAY_BUFFER, vbo);
 	glEnableVertexAttribArray(0);
 	glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, (const void *)0);
 	glEnableVertexAttribArray(1);
 	glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 32, (const void *)16);
-	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, d->indirect);
-	if (d->indexed) {
-		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, d->ibo);
-		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)d->indirect_offset);
+	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect);
+	if (ibo) {
+		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)offset);
 	} else {
-		glDrawArraysIndirect(GL_TRIANGLES, (const void *)d->indirect_offset);
+		glDrawArraysIndirect(GL_TRIANGLES, (const void *)offset);
 	}
+}
+
+int renderer_end(struct renderer *r)
+{
+	(void)r;
 	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 	glBindVertexArray(0);
 	glUseProgram(0);
 	return gpu_check("draw");
+}
+
+int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
+{
+	renderer_begin(r, c, p);
+	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 1.0f);
+	return renderer_end(r);
 }
 
 int renderer_read(struct renderer *r, struct image *img)

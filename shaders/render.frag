@@ -5,14 +5,23 @@ in vec3 v_nrm;
 in float v_ao;
 uniform vec3 u_eye;
 uniform float u_fog_density;
+uniform float u_fade; // < 1: dissolve (ordered dither) while a block fades in/out
 out vec4 frag;
 
 const vec3 SKY = vec3(0.62, 0.74, 0.88); // sRGB of the clear colour
 
 vec3 srgb_to_linear(vec3 c) { return pow(c, vec3(2.2)); }
 
+float bayer4(ivec2 p)
+{
+	int m[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+	return (float(m[(p.y & 3) * 4 + (p.x & 3)]) + 0.5) / 16.0;
+}
+
 void main()
 {
+	if (u_fade < 1.0 && u_fade <= bayer4(ivec2(gl_FragCoord.xy)))
+		discard;
 	vec3 n = normalize(v_nrm);
 	float back = gl_FrontFacing ? 1.0 : 0.45; // inside of the volume's cut
 	if (!gl_FrontFacing)
