@@ -13,6 +13,7 @@ struct renderer {
 	GLuint fbo, rb_color;
 	GLuint prog, vao;
 	GLint l_viewproj, l_eye, l_fog, l_fade;
+	float clear[3];
 };
 
 static const char *fbo_status(GLenum s)
@@ -36,6 +37,9 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 	}
 	r->w = width;
 	r->h = height;
+	r->clear[0] = 0.62f;
+	r->clear[1] = 0.74f;
+	r->clear[2] = 0.88f;
 	GLint max_samples = 0, max_rb = 0;
 	glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
 	glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
@@ -107,7 +111,7 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	glBindFramebuffer(GL_FRAMEBUFFER, r->samples ? r->fbo_ms : r->fbo);
 	glViewport(0, 0, r->w, r->h);
 	/* sky colour (linear -> the shader's fog colour matches it) */
-	glClearColor(0.62f, 0.74f, 0.88f, 1.0f);
+	glClearColor(r->clear[0], r->clear[1], r->clear[2], 1.0f);
 	glClearDepthf(1.0f);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 	glEnable(GL_DEPTH_TEST);
@@ -140,6 +144,13 @@ void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indir
 	} else {
 		glDrawArraysIndirect(GL_TRIANGLES, (const void *)offset);
 	}
+}
+
+void renderer_set_clear(struct renderer *r, float red, float green, float blue)
+{
+	r->clear[0] = red;
+	r->clear[1] = green;
+	r->clear[2] = blue;
 }
 
 int renderer_end(struct renderer *r)

@@ -30,6 +30,8 @@ void renderer_destroy(struct renderer *r);
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p);
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade);
 int renderer_end(struct renderer *r);
+/* Background colour (tests paint it a colour the terrain never has). */
+void renderer_set_clear(struct renderer *r, float red, float green, float blue);
 /* Draws the pipeline's mesh with its indirect command.  0 or -1. */
 int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p);
 /* Resolves and reads the last frame (top row first).  0 or -1. */
