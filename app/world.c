@@ -145,7 +145,7 @@ struct world *world_create(const struct params *p, char *err, size_t errlen)
 	w->n = p->block_cells;
 	w->slots = p->block_pool;
 	w->tcap = (uint32_t)p->block_tris;
-	w->vcap = w->tcap; /* a surface has about half as many vertices; margin for bits */
+	w->vcap = w->tcap / 4 * 3; /* a surface has about half as many vertices as triangles */
 	GLint align = 16;
 	glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
 	if (align < 16)
@@ -597,6 +597,9 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 		drawn++;
 	}
 	w->st.drawn = drawn;
+	float rect[4] = { c->eye[0] - p->view_distance, c->eye[2] - p->view_distance, c->eye[0] + p->view_distance,
+			  c->eye[2] + p->view_distance };
+	renderer_water(r, c, p, rect);
 	return renderer_end(r);
 }
 
