@@ -8,7 +8,6 @@
 
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -29,15 +28,7 @@ struct hal {
 	char osd_title[OSD_COLS + 1], osd_value[OSD_COLS + 1];
 	float osd_bar;
 	uint64_t osd_until, osd_fade;
-	bool signals;
 };
-
-static volatile sig_atomic_t quit_signal;
-static void on_signal(int sig)
-{
-	(void)sig;
-	quit_signal = 1;
-}
 
 uint64_t hal_now_ns(void)
 {
@@ -102,16 +93,6 @@ struct hal *hal_open(const struct params *p, int width, int height, char *err, s
 		if (!h->osd)
 			goto fail;
 	}
-	if (h->gpio || h->keys || h->v4l2) {
-		/* a long-running job: SIGINT / SIGTERM end the loop cleanly */
-		struct sigaction sa;
-		memset(&sa, 0, sizeof(sa));
-		sa.sa_handler = on_signal;
-		sigemptyset(&sa.sa_mask);
-		sigaction(SIGINT, &sa, NULL);
-		sigaction(SIGTERM, &sa, NULL);
-		h->signals = true;
-	}
 	if (h->gpio || h->keys)
 		log_info("knobs: %d parameters (%s first)", h->knobs.count, h->knobs.count ? h->knobs.list[0]->name : "-");
 	return h;
@@ -130,10 +111,6 @@ void hal_close(struct hal *h)
 	osd_destroy(h->osd);
 	if (h->knob_log)
 		fclose(h->knob_log);
-	if (h->signals) {
-		signal(SIGINT, SIG_DFL);
-		signal(SIGTERM, SIG_DFL);
-	}
 	free(h);
 }
 
@@ -238,7 +215,7 @@ int hal_poll(struct hal *h, struct params *p)
 	}
 	if (in.actions[HAL_SCREENSHOT])
 		h->shot = true;
-	return in.actions[HAL_QUIT] || quit_signal;
+	return in.actions[HAL_QUIT] != 0;
 }
 
 float hal_time(struct hal *h, float t)

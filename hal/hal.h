@@ -40,7 +40,7 @@ struct hal;
 struct hal *hal_open(const struct params *p, int width, int height, char *err, size_t errlen);
 void hal_close(struct hal *h);
 /* Reads the inputs without blocking and applies them to *p.  1 when the
- * user asked to quit (key q, a quit button, SIGINT/SIGTERM), else 0. */
+ * user asked to quit (key q, a quit button), else 0 (SIGINT/SIGTERM: run.c). */
 int hal_poll(struct hal *h, struct params *p);
 /* The animation clock: t while running, frozen while paused. */
 float hal_time(struct hal *h, float t);

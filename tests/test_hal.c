@@ -29,7 +29,8 @@ static void test_knobs(void)
 	CHECK(knob_step(params_find("octaves")) == 1, "int step");
 	struct params p;
 	params_defaults(&p);
-	k.sel = 0; /* ambient 0.28 */
+	k.sel = 0;
+	p.ambient = 0.28f;
 	CHECK(knob_change(&k, &p, 3), "ambient +3");
 	CHECK_NEAR(p.ambient, 0.31, 1e-6, "ambient after +3");
 	knob_change(&k, &p, -100);
