@@ -494,20 +494,6 @@ void v4l2_out_close(struct v4l2_out *v)
 	free(v);
 }
 
-int v4l2_out_put(struct v4l2_out *v, const uint8_t *bytes)
-{
-	if (!v->sink_mode && v->fd < 0) {
-		char e[256] = "";
-		if (v->gave_up || hal_now_ns() < v->next_try || !dev_open(v, false, e, sizeof(e))) {
-			v->st.dropped_off++;
-			return -1;
-		}
-	}
-	unsigned long before = v->st.written;
-	put_frame(v, bytes);
-	return v->st.written > before ? 0 : -1;
-}
-
 void v4l2_out_stats(const struct v4l2_out *v, struct v4l2_stats *st)
 {
 	*st = v->st;

@@ -31,9 +31,6 @@ struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4
  * the device, waits for the next frame time when pacing, submits this
  * frame.  0, or -1 on a GL error. */
 int v4l2_out_frame(struct v4l2_out *v, GLuint fbo, int w, int h);
-/* Hands one frame already in the negotiated format (v4l2_out_format's
- * sizeimage bytes) to the device: no GL (tools, tests).  0 when it went out. */
-int v4l2_out_put(struct v4l2_out *v, const uint8_t *bytes);
 /* Drains the read-backs in flight, stops streaming, closes. */
 void v4l2_out_close(struct v4l2_out *v);
 void v4l2_out_stats(const struct v4l2_out *v, struct v4l2_stats *st);

@@ -10,3 +10,9 @@ $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
 	libegl-dev libgles-dev libpng-dev \
 	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
+# issue 5 (hal/): GPIO controls (libgpiod 1.6); the VM tests (tests/vm/,
+# suite 'vm'): QEMU, Debian's kernel with headers and source (gpio-sim is
+# built out of tree), busybox + cpio for the initramfs, v4l-utils (vivid)
+$SUDO apt-get install -y -q --no-install-recommends \
+	libgpiod-dev v4l-utils make \
+	qemu-system-x86 busybox-static cpio kmod linux-image-amd64 linux-headers-amd64 linux-source-6.1

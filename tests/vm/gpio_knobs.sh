@@ -1,15 +1,15 @@
 #!/bin/sh
 # isoterra — GPIO knobs against the real kernel: Debian's kernel under QEMU,
-# gpio-sim (built out of tree) as the gpiochip, the hardware layer in
-# hal_probe (the frame loop's hal_open/hal_poll without the renderer: see
-# hal_probe.c for why).  The guest part
+# gpio-sim (built out of tree) as the gpiochip, and isoterra itself
+# rendering tiny frames headless (surfaceless, software rendering in the
+# guest; Mesa's shader cache is kept between runs).  The guest part
 # (gpio_knobs_guest.sh) turns encoder 2 and encoder 1 through the Gray
 # sequence and presses a button by writing the lines' sysfs "pull"; the
 # app's knob log must show exactly the expected parameter steps.  Then the
 # chip is taken away (live = 0) and brought back, and finally removed
 # (rmdir): the app must keep running, report it, and work again when the
 # chip is back.
-# usage: gpio_knobs.sh HAL_PROBE BUILD_DIR [sanitize]
+# usage: gpio_knobs.sh ISOTERRA BUILD_DIR [sanitize]
 BIN=$1
 BUILD=$2
 [ "${3:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $3)"; exit 77; }
@@ -19,15 +19,20 @@ HALVM_CACHE="$BUILD/hal-vm-cache"
 halvm_require
 halvm_gpio_sim || { echo "FAIL: building gpio-sim failed"; exit 1; }
 halvm_initramfs || { echo "FAIL: building the initramfs failed"; exit 1; }
+halvm_mesa_cache
 RES=$(mktemp -d "$BUILD/hal-vm-gpio.XXXXXX")
-trap 'rm -rf "$RES"' EXIT
+[ -n "$ISOTERRA_KEEP" ] && echo "results kept in $RES" || trap 'rm -rf "$RES"' EXIT
 cat >"$RES/env.sh" <<ENV
 BIN=$BIN
 GPIOSIM=$HALVM_GPIOSIM
 ENV
+cat >>"$RES/env.sh" <<'ENV'
+export EGL_LOG_LEVEL=fatal
+if mountpoint -q /tmp/mesa-cache 2>/dev/null; then export MESA_SHADER_CACHE_DIR=/tmp/mesa-cache; fi
+ENV
 t0=$(date +%s)
-halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" 300
-echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG)"
+halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" "${ISOTERRA_VM_TIMEOUT:-560}"
+echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none})"
 if ! grep -q "HALVM-EXIT 0" "$RES/console.log"; then
 	echo "FAIL: the guest test failed; console:"
 	tail -60 "$RES/console.log"

@@ -1,20 +1,14 @@
-/* isoterra — hardware-layer probe for the VM tests (tests/vm/gpio_*.sh,
- * tests/vm/v4l2_*.sh).  Software rendering in the TCG guest is ~350-850x
- * slower than on the host (the first frame alone, all shaders JIT-compiled,
- * takes ~3 minutes there), so the guest runs the hardware layer without a
- * renderer:
+/* isoterra — helper of the V4L2 VM test (tests/vm/v4l2_loop.sh): checks
+ * captured frames against the app's rendered frame.
  *
- *   hal_probe knobs [isoterra options]
- *       hal_open + hal_poll every 5 ms (the frame loop's calls, no GL): GPIO
- *       knobs and buttons -> parameters, knob_log; ends on SIGTERM / quit.
- *   hal_probe v4l2out FRAME.raw [isoterra options with --v4l2 ...]
- *       v4l2_out_open (QUERYCAP, format negotiation, mmap or write()), then
- *       the frame (already in the device's format) every 100 ms until SIGTERM.
- *   hal_probe convert IN.png OUT.raw [--v4l2-format F --v4l2-matrix M]
- *       (host, GL) the app's GPU conversion and PBO read-back of an image.
  *   hal_probe compare CAPTURE.raw REF.png FORMAT MATRIX MIN_PSNR
  *       the last whole frame of a capture (YUYV, UYVY or NV12) back to RGB
- *       (CPU, limited range) against the reference: PSNR, exit 1 below MIN.
+ *       (CPU, limited range, BT.601 or BT.709: an implementation independent
+ *       of the app's GPU shader) against the reference PNG: prints the PSNR,
+ *       exit 1 below MIN_PSNR.
+ *   hal_probe convert IN.png OUT.raw [--v4l2-format F --v4l2-matrix M]
+ *       (GL) the app's GPU conversion and PBO read-back of an image, to
+ *       produce captures by hand when investigating.
  */
 #include "app.h"
 #include "hal.h"
@@ -23,19 +17,8 @@
 
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static volatile sig_atomic_t stop;
-static void on_term(int s) { (void)s; stop = 1; }
-
-static void nap_ms(int ms)
-{
-	struct timespec ts = { ms / 1000, (long)(ms % 1000) * 1000000L };
-	nanosleep(&ts, NULL);
-}
 
 static int parse(int argc, char **argv, struct params *p)
 {
@@ -46,26 +29,6 @@ static int parse(int argc, char **argv, struct params *p)
 		return -1;
 	}
 	return r == CLI_RUN ? 0 : -1;
-}
-
-static int knobs(int argc, char **argv)
-{
-	struct params p;
-	if (parse(argc, argv, &p) < 0)
-		return 2;
-	p.osd = false;  /* no GL here */
-	p.keyboard = 1; /* off */
-	p.v4l2[0] = 0;
-	char err[512];
-	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
-	if (!h) {
-		log_error("%s", err);
-		return 2;
-	}
-	while (!hal_poll(h, &p))
-		nap_ms(5);
-	hal_close(h);
-	return 0;
 }
 
 static uint8_t *read_file(const char *path, size_t *len)
@@ -87,53 +50,6 @@ static uint8_t *read_file(const char *path, size_t *len)
 	}
 	fclose(f);
 	return buf;
-}
-
-static int v4l2out(int argc, char **argv)
-{
-	const char *frame = argv[1];
-	argv[1] = argv[0];
-	struct params p;
-	if (parse(argc - 1, argv + 1, &p) < 0)
-		return 2;
-	int w, h;
-	char err[512];
-	if (cli_parse_size(p.size, &w, &h) < 0)
-		return 2;
-	struct sigaction sa;
-	memset(&sa, 0, sizeof(sa));
-	sa.sa_handler = on_term;
-	sigaction(SIGTERM, &sa, NULL);
-	sigaction(SIGINT, &sa, NULL);
-	struct v4l2_out *v = v4l2_out_open(&p, w, h, err, sizeof(err));
-	if (!v) {
-		log_error("%s", err[0] ? err : "no --v4l2 device");
-		return 2;
-	}
-	size_t len = 0;
-	uint8_t *bytes = read_file(frame, &len);
-	if (!bytes) {
-		log_error("cannot read %s: %s", frame, strerror(errno));
-		v4l2_out_close(v);
-		return 2;
-	}
-	int sent = 0;
-	while (!stop) {
-		const struct frame_format *f = v4l2_out_format(v);
-		if (f->sizeimage && len >= f->sizeimage && v4l2_out_put(v, bytes) == 0 && ++sent == 1)
-			log_info("probe: streaming %s %dx%d", conv_fmt_name(f->fmt), f->width, f->height);
-		else if (f->sizeimage && len < f->sizeimage && sent == 0) {
-			log_error("%s has %zu bytes, the device wants %u", frame, len, f->sizeimage);
-			break;
-		}
-		nap_ms(100);
-	}
-	struct v4l2_stats st;
-	v4l2_out_stats(v, &st);
-	log_info("probe: %lu frames written, %lu dropped busy, %lu not sent", st.written, st.dropped_busy, st.dropped_off);
-	v4l2_out_close(v);
-	free(bytes);
-	return 0;
 }
 
 static int convert(int argc, char **argv)
@@ -262,14 +178,10 @@ static int compare(char **argv)
 
 int main(int argc, char **argv)
 {
-	if (argc >= 2 && !strcmp(argv[1], "knobs"))
-		return knobs(argc - 1, argv + 1);
-	if (argc >= 3 && !strcmp(argv[1], "v4l2out"))
-		return v4l2out(argc - 1, argv + 1);
 	if (argc >= 4 && !strcmp(argv[1], "convert"))
 		return convert(argc - 1, argv + 1);
 	if (argc == 7 && !strcmp(argv[1], "compare"))
 		return compare(argv + 1);
-	fprintf(stderr, "usage: hal_probe knobs|v4l2out|convert|compare ... (see tests/vm/hal_probe.c)\n");
+	fprintf(stderr, "usage: hal_probe convert|compare ... (see tests/vm/hal_probe.c)\n");
 	return 2;
 }

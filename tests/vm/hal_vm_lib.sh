@@ -49,7 +49,7 @@ halvm_gpio_sim() {
 # initramfs: busybox, virtio_pci + 9p modules, an /init that mounts the host
 # and runs "chroot /host /bin/sh $halvm_script" (from the kernel command line).
 halvm_initramfs() {
-	HALVM_INITRD="$HALVM_CACHE/initramfs-$HALVM_REL.cpio.gz"
+	HALVM_INITRD="$HALVM_CACHE/initramfs-v2-$HALVM_REL.cpio.gz"
 	[ -s "$HALVM_INITRD" ] && return 0
 	r="$HALVM_CACHE/initramfs.tmp"
 	rm -rf "$r" && mkdir -p "$r/bin" "$r/mods" "$r/proc" "$r/sys" "$r/dev" "$r/host" || return 1
@@ -72,6 +72,9 @@ if mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host; then
 	mount -o bind /proc /host/proc && mount -o bind /sys /host/sys && mount -o bind /dev /host/dev &&
 	mount -t tmpfs tmp /host/tmp && mkdir -p /host/tmp/res &&
 	mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 res /host/tmp/res &&
+	{ ! grep -q halvm_cache=1 /proc/cmdline || { mkdir -p /host/tmp/mesa-cache &&
+		mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 cache /host/tmp/mesa-cache; } ||
+		echo "HALVM: cannot mount the shader cache"; } &&
 	chroot /host /bin/sh "$script"
 	echo "HALVM-EXIT $?"
 else
@@ -84,16 +87,33 @@ INIT
 	rm -rf "$r"
 }
 
+# Mesa's shader cache for the guest, kept between runs: software rendering
+# in the guest compiles every shader anew otherwise (minutes under TCG).
+# The guest's CPU (-cpu max) differs from the host's, so it has its own
+# folder; tests/vm of the display backend uses the same one.  Sets
+# HALVM_MESA_CACHE ("" when it cannot be created: no cache).
+halvm_mesa_cache() {
+	HALVM_MESA_CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/vm-mesa-$HALVM_REL}
+	mkdir -p "$HALVM_MESA_CACHE" 2>/dev/null || HALVM_MESA_CACHE=
+}
+
 # halvm_boot RESULTS_DIR GUEST_SCRIPT TIMEOUT_S: boots, runs the script in
 # the chroot (it sees RESULTS_DIR as /tmp/res), console to RESULTS_DIR/console.log.
 halvm_boot() {
-	timeout "$3" qemu-system-x86_64 -cpu max -m 2048 -smp 2 -nographic -no-reboot \
+	res=$1 script=$2 tmo=$3 extra=
+	shift 3
+	set --
+	if [ -n "$HALVM_MESA_CACHE" ]; then
+		extra=halvm_cache=1
+		set -- -virtfs "local,path=$HALVM_MESA_CACHE,mount_tag=cache,security_model=none,multidevs=remap"
+	fi
+	timeout "$tmo" qemu-system-x86_64 -cpu max -m 2048 -smp 2 -nographic -no-reboot \
 		-kernel "/boot/vmlinuz-$HALVM_REL" -initrd "$HALVM_INITRD" \
-		-append "console=ttyS0 panic=-1 loglevel=3 halvm_script=$2" \
+		-append "console=ttyS0 panic=-1 loglevel=3 halvm_script=$script $extra" \
 		-virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
-		-virtfs "local,path=$1,mount_tag=res,security_model=none,multidevs=remap" \
-		</dev/null >"$1/console.log" 2>&1
+		-virtfs "local,path=$res,mount_tag=res,security_model=none,multidevs=remap" "$@" \
+		</dev/null >"$res/console.log" 2>&1
 	rc=$?
-	[ $rc -eq 124 ] && echo "VM timed out after $3 s"
+	[ $rc -eq 124 ] && echo "VM timed out after $tmo s"
 	return $rc
 }

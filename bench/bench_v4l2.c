@@ -1,0 +1,231 @@
+/* isoterra — V4L2 output benchmark: render fps of the volume scene at
+ * 640x480 without video output (the baseline) and with every frame streamed
+ * (GPU conversion to YUYV BT.601, PBO read-back, write()), in one run,
+ * interleaved: rounds of A (no output), B (output paced to --v4l2-fps,
+ * default 30) and C (output of every frame, no pacing).  Goal: B and C at
+ * most 10% below A.
+ *
+ * The device: --device /dev/videoN, else the first /dev/video* that is a
+ * video output; with none (CI machines) the same conversion and read-back
+ * run and each frame is write()n into a file (--sink FILE, default a
+ * temporary file): the pipeline up to the kernel, without a driver.
+ * usage: bench_v4l2 [--quick] [--platform NAME] [--device DEV] [--v4l2-fps N] */
+#include "app.h"
+#include "hal.h"
+#include "v4l2_out.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <linux/videodev2.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <time.h>
+#include <unistd.h>
+
+static double now_s(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+/* the first video output device, or "" */
+static void find_output(char *path, size_t len)
+{
+	path[0] = 0;
+	for (int i = 0; i < 64; i++) {
+		char p[32];
+		snprintf(p, sizeof(p), "/dev/video%d", i);
+		int fd = open(p, O_RDWR | O_NONBLOCK);
+		if (fd < 0)
+			continue;
+		struct v4l2_capability cap;
+		memset(&cap, 0, sizeof(cap));
+		int ok = ioctl(fd, VIDIOC_QUERYCAP, &cap) == 0;
+		close(fd);
+		uint32_t caps = cap.capabilities & V4L2_CAP_DEVICE_CAPS ? cap.device_caps : cap.capabilities;
+		if (ok && (caps & V4L2_CAP_VIDEO_OUTPUT)) {
+			snprintf(path, len, "%s", p);
+			return;
+		}
+	}
+}
+
+static int sink_fd = -1;
+static unsigned long sink_errors;
+static void to_file(void *user, const uint8_t *bytes, size_t size)
+{
+	(void)user;
+	if (pwrite(sink_fd, bytes, size, 0) != (ssize_t)size)
+		sink_errors++;
+}
+
+struct scene {
+	struct params p;
+	struct grid g;
+	struct pipeline *pl;
+	struct renderer *r;
+	int w, h, frame;
+};
+
+/* n frames; v: NULL = no video output.  Returns frames per second. */
+static double run(struct scene *s, struct v4l2_out *v, int n)
+{
+	struct pipeline_draw d;
+	struct camera cam;
+	glFinish();
+	double t0 = now_s();
+	for (int i = 0; i < n; i++, s->frame++) {
+		float t = (float)s->frame / 30.0f;
+		s->p.time = t;
+		if (pipeline_run(s->pl, &s->p) < 0)
+			return -1;
+		pipeline_draw_info(s->pl, &d);
+		camera_orbit(&cam, &s->p, &s->g, t, (float)s->w / (float)s->h);
+		if (renderer_draw(s->r, &d, &cam, &s->p) < 0)
+			return -1;
+		if (v) {
+			unsigned fbo;
+			int fw, fh;
+			renderer_target(s->r, &fbo, &fw, &fh);
+			if (v4l2_out_frame(v, fbo, fw, fh) < 0)
+				return -1;
+		}
+		glFinish(); /* the frame is done: as the headless app's loop ends a frame */
+	}
+	return n / (now_s() - t0);
+}
+
+int main(int argc, char **argv)
+{
+	const char *plat_name = "auto", *dev = NULL, *sink_path = NULL;
+	int quick = 0;
+	double fps = 30;
+	for (int i = 1; i < argc; i++) {
+		if (!strcmp(argv[i], "--quick"))
+			quick = 1;
+		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
+			plat_name = argv[++i];
+		else if (!strcmp(argv[i], "--device") && i + 1 < argc)
+			dev = argv[++i];
+		else if (!strcmp(argv[i], "--sink") && i + 1 < argc)
+			sink_path = argv[++i];
+		else if (!strcmp(argv[i], "--v4l2-fps") && i + 1 < argc)
+			fps = atof(argv[++i]);
+		else {
+			fprintf(stderr, "usage: %s [--quick] [--platform NAME] [--device DEV] [--sink FILE] [--v4l2-fps N]\n",
+				argv[0]);
+			return 2;
+		}
+	}
+	log_set_level(LOG_WARN);
+	char err[512], found[64];
+	struct scene s;
+	memset(&s, 0, sizeof(s));
+	s.w = 640;
+	s.h = 480;
+	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
+	struct platform *plat = platform_open(&po, err, sizeof(err));
+	struct gpu_caps caps;
+	if (!plat || gpu_init(&caps, false, err, sizeof(err)) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		return 1;
+	}
+	long cores = sysconf(_SC_NPROCESSORS_ONLN);
+	printf("machine: %ld cores; GL: %s | %s\n", cores, caps.renderer, caps.version);
+	params_defaults(&s.p);
+	grid_from_params(&s.g, &s.p);
+	s.pl = pipeline_create(&s.g, &s.p, err, sizeof(err));
+	s.r = s.pl ? renderer_create(s.w, s.h, err, sizeof(err)) : NULL;
+	if (!s.r) {
+		fprintf(stderr, "bench: %s\n", err);
+		return 1;
+	}
+	if (!dev) {
+		find_output(found, sizeof(found));
+		dev = found[0] ? found : NULL;
+	}
+	struct v4l2_out *paced = NULL, *every = NULL;
+	char tmpl[] = "/tmp/isoterra-bench-v4l2-XXXXXX";
+	if (dev) {
+		struct params q = s.p;
+		snprintf(q.v4l2, sizeof(q.v4l2), "%s", dev);
+		q.v4l2_format = 1 + CF_YUYV;
+		q.v4l2_fps = fps;
+		paced = v4l2_out_open(&q, s.w, s.h, err, sizeof(err));
+		if (!paced) {
+			fprintf(stderr, "bench: %s: %s\n", dev, err);
+			return 1;
+		}
+		printf("output: %s (a V4L2 video output device), YUYV 640x480 BT.601\n", dev);
+	} else {
+		sink_fd = sink_path ? open(sink_path, O_WRONLY | O_CREAT | O_TRUNC, 0644) : mkstemp(tmpl);
+		if (sink_fd < 0) {
+			fprintf(stderr, "bench: %s: %s\n", sink_path ? sink_path : tmpl, strerror(errno));
+			return 1;
+		}
+		if (!sink_path)
+			unlink(tmpl);
+		struct frame_format f = { .fmt = CF_YUYV, .width = s.w, .height = s.h, .matrix = CM_BT601 };
+		conv_fmt_tight(f.fmt, s.w, s.h, &f.bytesperline, &f.sizeimage);
+		paced = v4l2_out_open_sink(&f, fps, to_file, NULL, err, sizeof(err));
+		every = paced ? v4l2_out_open_sink(&f, 0, to_file, NULL, err, sizeof(err)) : NULL;
+		if (!every) {
+			fprintf(stderr, "bench: %s\n", err);
+			return 1;
+		}
+		printf("output: no V4L2 output device here: GPU conversion to YUYV 640x480 BT.601, PBO read-back and "
+		       "write() of each frame into %s (no driver)\n", sink_path ? sink_path : "a temporary file");
+	}
+	printf("scene: volume, grid %d, 640x480; %s\n", s.p.grid, quick ? "quick" : "full");
+	run(&s, paced, 10); /* warm-up: shaders, converter */
+	if (every)
+		run(&s, every, 10);
+	run(&s, NULL, 10);
+	int rounds = quick ? 3 : 7, n = quick ? 20 : 60;
+	double a[16], b[16], c[16];
+	for (int i = 0; i < rounds; i++) {
+		a[i] = run(&s, NULL, n);
+		b[i] = run(&s, paced, n);
+		c[i] = every ? run(&s, every, n) : 0;
+		if (a[i] < 0 || b[i] < 0 || c[i] < 0) {
+			fprintf(stderr, "bench: rendering failed\n");
+			return 1;
+		}
+	}
+	qsort(a, rounds, sizeof(double), cmp_d);
+	qsort(b, rounds, sizeof(double), cmp_d);
+	qsort(c, rounds, sizeof(double), cmp_d);
+	double ma = a[rounds / 2], mb = b[rounds / 2], mc = c[rounds / 2];
+	printf("%d rounds x %d frames, median fps:\n", rounds, n);
+	printf("  no video output          %7.1f fps\n", ma);
+	printf("  V4L2 out paced to %2.0f fps %7.1f fps  (%+.1f%% vs no output)%s\n", fps, mb, 100 * (mb / ma - 1),
+	       ma > fps ? "  [the render loop is paced to the output rate]" : "");
+	if (every)
+		printf("  V4L2 out, every frame    %7.1f fps  (%+.1f%% vs no output)\n", mc, 100 * (mc / ma - 1));
+	struct v4l2_stats st;
+	v4l2_out_stats(paced, &st);
+	printf("paced output: %lu frames written, %lu dropped (read-back busy)%s\n", st.written, st.dropped_busy,
+	       sink_errors ? ", WRITE ERRORS" : "");
+	if (every) {
+		v4l2_out_stats(every, &st);
+		printf("every-frame output: %lu frames written, %lu dropped (read-back busy)\n", st.written,
+		       st.dropped_busy);
+	}
+	v4l2_out_close(paced);
+	v4l2_out_close(every);
+	if (sink_fd >= 0)
+		close(sink_fd);
+	renderer_destroy(s.r);
+	pipeline_destroy(s.pl);
+	platform_close(plat);
+	return 0;
+}

@@ -1,0 +1,64 @@
+#!/bin/sh
+# isoterra — V4L2 output against the real kernel: Debian's kernel under
+# QEMU, vivid with a capture and an output node (node_types=0x101), both on
+# their HDMI connector at 640x480 (the first DV timing), "Loop Video" on and
+# vivid's text overlay off.  isoterra renders headless in the guest and
+# streams every frame to the output node (--v4l2, YUYV, BT.601 limited, GPU
+# conversion); the frames that come back on the capture node must match the
+# app's own rendered frame (its PNG of the same frame): the capture is
+# converted back to RGB on the CPU (hal_probe compare) and the PSNR must
+# reach MIN_PSNR.  Negative control: a capture taken before the app streams
+# (vivid's test pattern) must not match.  Also: the capture node given as
+# --v4l2 is refused with a clear message and rendering goes on.
+# usage: v4l2_loop.sh ISOTERRA HAL_PROBE BUILD_DIR [sanitize]
+BIN=$1
+PROBE=$2
+BUILD=$3
+MIN_PSNR=30
+[ "${4:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $4)"; exit 77; }
+HERE=$(cd "$(dirname "$0")" && pwd)
+HALVM_CACHE="$BUILD/hal-vm-cache"
+. "$HERE/hal_vm_lib.sh"
+halvm_require
+halvm_initramfs || { echo "FAIL: building the initramfs failed"; exit 1; }
+halvm_mesa_cache
+RES=$(mktemp -d "$BUILD/hal-vm-v4l2.XXXXXX")
+[ -n "$ISOTERRA_KEEP" ] && echo "results kept in $RES" || trap 'rm -rf "$RES"' EXIT
+cat >"$RES/env.sh" <<ENV
+BIN=$BIN
+ENV
+cat >>"$RES/env.sh" <<'ENV'
+export EGL_LOG_LEVEL=fatal
+if mountpoint -q /tmp/mesa-cache 2>/dev/null; then export MESA_SHADER_CACHE_DIR=/tmp/mesa-cache; fi
+ENV
+t0=$(date +%s)
+halvm_boot "$RES" "$HERE/v4l2_loop_guest.sh" "${ISOTERRA_VM_TIMEOUT:-560}"
+echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none})"
+grep -aE "^(ok|FAIL|guest)" "$RES/console.log" | tr -d '\r'
+fails=$(grep -ac '^FAIL' "$RES/console.log")
+passes=$(grep -ac '^ok' "$RES/console.log")
+if ! grep -aq "HALVM-EXIT 0" "$RES/console.log"; then
+	echo "FAIL: the guest part failed; console:"
+	tail -40 "$RES/console.log"
+	[ -f "$RES/app.log" ] && { echo "--- app log:"; tail -20 "$RES/app.log"; }
+	exit 1
+fi
+# the looped frames against the app's rendered frame
+REF=$(cat "$RES/ref.name")
+if "$PROBE" compare "$RES/cap.yuv" "$RES/$REF" YUYV bt601 $MIN_PSNR; then
+	echo "ok capture matches the app's frame $REF (PSNR >= $MIN_PSNR dB)"
+	passes=$((passes + 1))
+else
+	echo "FAIL capture does not match the app's frame $REF (PSNR < $MIN_PSNR dB)"
+	fails=$((fails + 1))
+fi
+# negative control: vivid's own picture before the app streamed
+if "$PROBE" compare "$RES/before.yuv" "$RES/$REF" YUYV bt601 $MIN_PSNR; then
+	echo "FAIL the comparison cannot tell vivid's test pattern from the app's frame"
+	fails=$((fails + 1))
+else
+	echo "ok negative control: vivid's test pattern does not match"
+	passes=$((passes + 1))
+fi
+echo "v4l2_loop: $passes passed, $fails failed"
+[ "$fails" -eq 0 ]

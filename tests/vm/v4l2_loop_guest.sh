@@ -1,0 +1,70 @@
+#!/bin/sh
+# isoterra — guest side of v4l2_loop.sh (runs in the VM, chrooted into the
+# host's file system; results in /tmp/res).
+. /tmp/res/env.sh
+R=/tmp/res
+fails=0
+ok() { echo "ok $*"; }
+bad() { echo "FAIL $*"; fails=$((fails + 1)); }
+die() { echo "FAIL $*"; exit 1; }
+WAIT=${WAIT:-400}
+
+modprobe vivid n_devs=1 node_types=0x101 || die "modprobe vivid"
+CAP= OUT=
+for d in /sys/class/video4linux/video*; do
+	case $(cat $d/name) in
+	*vid-cap) CAP=/dev/${d##*/} ;;
+	*vid-out) OUT=/dev/${d##*/} ;;
+	esac
+done
+[ -c "$CAP" ] && [ -c "$OUT" ] || die "vivid nodes not found (cap '$CAP', out '$OUT')"
+echo "guest: vivid capture $CAP, output $OUT"
+# the index of the 640x480 DV timing
+IDX=$(v4l2-ctl -d $OUT --list-dv-timings | awk '/^Index:/ {i = $2} /Active width: 640$/ {w = 1} /Active height: 480$/ && w {print i; exit} /^$/ {w = 0}')
+[ -n "$IDX" ] || die "no 640x480 DV timing: $(v4l2-ctl -d $OUT --list-dv-timings | head -20)"
+v4l2-ctl -d $OUT --set-output=1 && v4l2-ctl -d $OUT --set-dv-bt-timings index=$IDX &&
+	v4l2-ctl -d $CAP --set-input=3 && v4l2-ctl -d $CAP --set-dv-bt-timings index=$IDX &&
+	v4l2-ctl -d $CAP --set-fmt-video=width=640,height=480,pixelformat=YUYV,field=none &&
+	v4l2-ctl -d $CAP --set-ctrl=loop_video=1 && v4l2-ctl -d $CAP --set-ctrl=osd_text_mode=2 ||
+	die "configuring vivid failed"
+v4l2-ctl -d $OUT --get-output --get-dv-timings | grep -E "Output|Active" | tr '\n' ' '
+echo
+capture() { v4l2-ctl -d $CAP --stream-mmap=3 --stream-count=3 --stream-to="$1" 2>&1 | tail -1; }
+capture $R/before.yuv
+[ -s $R/before.yuv ] && ok "capture before the app: $(wc -c <$R/before.yuv) bytes" || die "capture failed"
+
+# format refused: the capture node is no output; the app says so and renders on
+"$BIN" --platform surfaceless --size 64x48 --grid 8 --count 2 --cam-spin 0 --no-water --keyboard off \
+	--v4l2 $CAP --out $R/refused.png >$R/refused.log 2>&1
+rc=$?
+if [ $rc -eq 0 ] && [ -s $R/refused.png ] && grep -q "v4l2.*$CAP" $R/refused.log; then
+	ok "capture node refused, frames rendered anyway: $(grep "v4l2" $R/refused.log | head -1)"
+else
+	bad "capture node as --v4l2: rc $rc: $(cat $R/refused.log)"
+fi
+
+# the app streams to the output node until SIGTERM
+"$BIN" --platform surfaceless --size 640x480 --grid 16 --count 1000000 --cam-spin 0 --no-water --keyboard off \
+	--v4l2 $OUT --v4l2-format YUYV --v4l2-matrix bt601 --v4l2-fps 0 --out "$R/frame%d.png" >$R/app.log 2>&1 &
+APP=$!
+up() { cut -d. -f1 /proc/uptime; }
+end=$(($(up) + WAIT))
+while [ ! -s $R/frame3.png ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
+[ -s $R/frame3.png ] || die "the app did not render 4 frames in $WAIT s: $(tail -5 $R/app.log)"
+grep -q "v4l2: $OUT .*640x480 YUYV" $R/app.log && ok "$(grep "v4l2: $OUT" $R/app.log | head -1)" ||
+	bad "output format not negotiated: $(cat $R/app.log)"
+capture $R/cap.yuv
+# the newest frame the app had written when the capture was taken
+n=3
+while [ -s $R/frame$((n + 1)).png ]; do n=$((n + 1)); done
+echo frame$n.png >$R/ref.name
+[ -s $R/cap.yuv ] && ok "capture while the app streams: $(wc -c <$R/cap.yuv) bytes (frame $n)" || bad "capture failed"
+cmp -s $R/frame2.png $R/frame$n.png && ok "the app's frames are still (frame 2 = frame $n)" ||
+	bad "the app's frames change (frame 2 != frame $n): the capture cannot be matched"
+kill -TERM $APP
+wait $APP
+rc=$?
+[ $rc -eq 0 ] && ok "app exits 0 on SIGTERM" || bad "app exit status $rc: $(tail -3 $R/app.log)"
+grep "v4l2:" $R/app.log | tail -2
+echo "guest: $fails failures"
+[ $fails -eq 0 ]
