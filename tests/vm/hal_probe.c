@@ -1,11 +1,18 @@
-/* isoterra — helper of the V4L2 VM test (tests/vm/v4l2_loop.sh): checks
- * captured frames against the app's rendered frame.
+/* isoterra — helper of the VM tests (tests/vm/).
  *
- *   hal_probe compare CAPTURE.raw REF.png FORMAT MATRIX MIN_PSNR
+ *   hal_probe knobs [isoterra options]
+ *       the app's input path (hal_open, hal_poll: GPIO -> parameter table,
+ *       knob_log) without the renderer, for tests/vm/gpio_knobs.sh: the
+ *       isoterra binary itself crashed (SIGSEGV) in the TCG guest once a
+ *       gpiochip was open, not reproducible under gdb nor on the host
+ *       (see docs/HARDWARE.md), so the GPIO test drives this instead.
+ *
+ *   hal_probe compare CAPTURE.raw REF.png FORMAT MATRIX MIN_PSNR [W H]
  *       the last whole frame of a capture (YUYV, UYVY or NV12) back to RGB
  *       (CPU, limited range, BT.601 or BT.709: an implementation independent
  *       of the app's GPU shader) against the reference PNG: prints the PSNR,
- *       exit 1 below MIN_PSNR.
+ *       exit 1 below MIN_PSNR.  W H: the capture's size when the app scaled
+ *       its frame up to the device's (an integer factor): box-filtered down.
  *   hal_probe convert IN.png OUT.raw [--v4l2-format F --v4l2-matrix M]
  *       (GL) the app's GPU conversion and PBO read-back of an image, to
  *       produce captures by hand when investigating.
@@ -18,7 +25,18 @@
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
+#include <time.h>
+
+static volatile sig_atomic_t stop;
+static void on_term(int s) { (void)s; stop = 1; }
+
+static void nap_ms(int ms)
+{
+	struct timespec ts = { ms / 1000, (long)(ms % 1000) * 1000000L };
+	nanosleep(&ts, NULL);
+}
 
 static int parse(int argc, char **argv, struct params *p)
 {
@@ -29,6 +47,37 @@ static int parse(int argc, char **argv, struct params *p)
 		return -1;
 	}
 	return r == CLI_RUN ? 0 : -1;
+}
+
+/* The app's input path without the renderer: hal_open, then hal_poll (GPIO
+ * knobs and buttons -> the parameter table, knob_log) every 5 ms, as the
+ * frame loop calls it once per frame; SIGTERM ends it. */
+static int knobs(int argc, char **argv)
+{
+	struct params p;
+	if (parse(argc, argv, &p) < 0)
+		return 2;
+	p.osd = false;  /* no GL here */
+	p.keyboard = 1; /* off */
+	p.v4l2[0] = 0;
+	struct sigaction sa;
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = on_term;
+	sigemptyset(&sa.sa_mask);
+	if (sigaction(SIGTERM, &sa, NULL) < 0 || sigaction(SIGINT, &sa, NULL) < 0) {
+		log_error("sigaction failed");
+		return 2;
+	}
+	char err[512];
+	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
+	if (!h) {
+		log_error("%s", err);
+		return 2;
+	}
+	while (!stop && !hal_poll(h, &p))
+		nap_ms(5);
+	hal_close(h);
+	return 0;
 }
 
 static uint8_t *read_file(const char *path, size_t *len)
@@ -112,7 +161,7 @@ static int convert(int argc, char **argv)
 	return rc;
 }
 
-static int compare(char **argv)
+static int compare(int argc, char **argv)
 {
 	char err[512];
 	struct image ref = { 0 };
@@ -126,7 +175,16 @@ static int compare(char **argv)
 		kr = 0.2126;
 		kb = 0.0722;
 	}
-	int w = ref.width, h = ref.height;
+	/* the capture's size (default: the reference's); an integer multiple
+	 * of the reference's is box-filtered down to it (the app scales its
+	 * frame to the device's size) */
+	int w = argc >= 8 ? atoi(argv[6]) : ref.width, h = argc >= 8 ? atoi(argv[7]) : ref.height;
+	int fx = w / ref.width, fy = h / ref.height;
+	if (w < 2 || h < 2 || fx < 1 || fy < 1 || fx * ref.width != w || fy * ref.height != h) {
+		log_error("compare: capture %dx%d is no integer multiple of the reference %dx%d", w, h, ref.width,
+			  ref.height);
+		return 2;
+	}
 	bool nv12 = !strcmp(fmt, "NV12"), uyvy = !strcmp(fmt, "UYVY");
 	if (!nv12 && !uyvy && strcmp(fmt, "YUYV")) {
 		log_error("compare: format %s not supported (YUYV, UYVY, NV12)", fmt);
@@ -164,6 +222,20 @@ static int compare(char **argv)
 			}
 			got.rgba[4 * ((size_t)y * w + x) + 3] = 255;
 		}
+	if (fx > 1 || fy > 1) {
+		struct image small = { ref.width, ref.height, malloc((size_t)ref.width * ref.height * 4) };
+		for (int y = 0; y < ref.height; y++)
+			for (int x = 0; x < ref.width; x++)
+				for (int k = 0; k < 4; k++) {
+					int sum = 0;
+					for (int j = 0; j < fy; j++)
+						for (int i = 0; i < fx; i++)
+							sum += got.rgba[4 * ((size_t)(y * fy + j) * w + (size_t)(x * fx + i)) + k];
+					small.rgba[4 * ((size_t)y * ref.width + x) + k] = (uint8_t)((sum + fx * fy / 2) / (fx * fy));
+				}
+		image_free(&got);
+		got = small;
+	}
 	struct image_diff d;
 	image_compare(&got, &ref, 48, &d);
 	printf("capture vs rendered frame (%s, %dx%d, %zu frames captured): PSNR %.2f dB, mean abs %.2f, max %d\n", fmt, w,
@@ -178,10 +250,12 @@ static int compare(char **argv)
 
 int main(int argc, char **argv)
 {
+	if (argc >= 2 && !strcmp(argv[1], "knobs"))
+		return knobs(argc - 1, argv + 1);
 	if (argc >= 4 && !strcmp(argv[1], "convert"))
 		return convert(argc - 1, argv + 1);
-	if (argc == 7 && !strcmp(argv[1], "compare"))
-		return compare(argv + 1);
-	fprintf(stderr, "usage: hal_probe convert|compare ... (see tests/vm/hal_probe.c)\n");
+	if ((argc == 7 || argc == 9) && !strcmp(argv[1], "compare"))
+		return compare(argc - 1, argv + 1);
+	fprintf(stderr, "usage: hal_probe knobs|convert|compare ... (see tests/vm/hal_probe.c)\n");
 	return 2;
 }

@@ -88,13 +88,29 @@ INIT
 }
 
 # Mesa's shader cache for the guest, kept between runs: software rendering
-# in the guest compiles every shader anew otherwise (minutes under TCG).
-# The guest's CPU (-cpu max) differs from the host's, so it has its own
-# folder; tests/vm of the display backend uses the same one.  Sets
-# HALVM_MESA_CACHE ("" when it cannot be created: no cache).
+# in the guest compiles every shader anew otherwise (a minute or more under
+# TCG).  The guest's CPU (-cpu max) differs from the host's, so it has its
+# own folder.  Mesa's cache mmaps its index, which a 9p mount does not serve
+# well, so the guest copies the folder into its tmpfs at the start
+# (halvm_env's MESA_SHADER_CACHE_DIR) and back at the end (save_cache).
+# Sets HALVM_MESA_CACHE ("" when it cannot be created: no cache).
 halvm_mesa_cache() {
-	HALVM_MESA_CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/vm-mesa-$HALVM_REL}
+	HALVM_MESA_CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/hal-vm-mesa-$HALVM_REL}
 	mkdir -p "$HALVM_MESA_CACHE" 2>/dev/null || HALVM_MESA_CACHE=
+}
+
+# halvm_env RESULTS_DIR: the guest's environment (sourced by the guest
+# scripts): the shader cache and save_cache, quiet EGL.
+halvm_env() {
+	cat >>"$1/env.sh" <<'ENV'
+export EGL_LOG_LEVEL=fatal
+save_cache() { :; }
+if mountpoint -q /tmp/mesa-cache 2>/dev/null; then
+	mkdir -p /tmp/mesa-local && cp -a /tmp/mesa-cache/. /tmp/mesa-local/ &&
+		export MESA_SHADER_CACHE_DIR=/tmp/mesa-local
+	save_cache() { cp -a /tmp/mesa-local/. /tmp/mesa-cache/ 2>/dev/null; }
+fi
+ENV
 }
 
 # halvm_boot RESULTS_DIR GUEST_SCRIPT TIMEOUT_S: boots, runs the script in

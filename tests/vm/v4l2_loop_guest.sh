@@ -19,16 +19,24 @@ for d in /sys/class/video4linux/video*; do
 done
 [ -c "$CAP" ] && [ -c "$OUT" ] || die "vivid nodes not found (cap '$CAP', out '$OUT')"
 echo "guest: vivid capture $CAP, output $OUT"
-# the index of the 640x480 DV timing
-IDX=$(v4l2-ctl -d $OUT --list-dv-timings | awk '/^Index:/ {i = $2} /Active width: 640$/ {w = 1} /Active height: 480$/ && w {print i; exit} /^$/ {w = 0}')
-[ -n "$IDX" ] || die "no 640x480 DV timing: $(v4l2-ctl -d $OUT --list-dv-timings | head -20)"
-v4l2-ctl -d $OUT --set-output=1 && v4l2-ctl -d $OUT --set-dv-bt-timings index=$IDX &&
-	v4l2-ctl -d $CAP --set-input=3 && v4l2-ctl -d $CAP --set-dv-bt-timings index=$IDX &&
-	v4l2-ctl -d $CAP --set-fmt-video=width=640,height=480,pixelformat=YUYV,field=none &&
+# HDMI on both sides; the output keeps its DV timing, the capture input
+# gets the same one (looping needs the same size and format on both sides)
+v4l2-ctl -d $OUT --set-output=1 || die "VIDIOC_S_OUTPUT"
+OW=$(v4l2-ctl -d $OUT --get-dv-timings | awk '/Active width:/ {print $3}')
+OH=$(v4l2-ctl -d $OUT --get-dv-timings | awk '/Active height:/ {print $3}')
+[ -n "$OW" ] && [ -n "$OH" ] || die "no DV timing on the output: $(v4l2-ctl -d $OUT --get-dv-timings 2>&1)"
+v4l2-ctl -d $CAP --set-input=3 || die "VIDIOC_S_INPUT"
+IDX=$(v4l2-ctl -d $CAP --list-dv-timings | awk -v W=$OW -v H=$OH '/^Index:/ {i = $2; w = 0}
+	$0 ~ "Active width: " W "$" {w = 1} $0 ~ "Active height: " H "$" && w {print i; exit}')
+[ -n "$IDX" ] || die "the capture has no ${OW}x$OH DV timing: $(v4l2-ctl -d $CAP --list-dv-timings 2>&1 | head -12)"
+v4l2-ctl -d $CAP --set-dv-bt-timings index=$IDX &&
+	v4l2-ctl -d $CAP --set-fmt-video=width=$OW,height=$OH,pixelformat=YUYV,field=none &&
 	v4l2-ctl -d $CAP --set-ctrl=loop_video=1 && v4l2-ctl -d $CAP --set-ctrl=osd_text_mode=2 ||
 	die "configuring vivid failed"
-v4l2-ctl -d $OUT --get-output --get-dv-timings | grep -E "Output|Active" | tr '\n' ' '
-echo
+echo "$OW $OH" >$R/size
+# the app renders an eighth of that (software rendering in the guest is slow)
+SW=$((OW / 8)) SH=$((OH / 8))
+echo "guest: HDMI ${OW}x$OH on both sides (timing $IDX), the app renders ${SW}x$SH"
 capture() { v4l2-ctl -d $CAP --stream-mmap=3 --stream-count=3 --stream-to="$1" 2>&1 | tail -1; }
 capture $R/before.yuv
 [ -s $R/before.yuv ] && ok "capture before the app: $(wc -c <$R/before.yuv) bytes" || die "capture failed"
@@ -44,14 +52,14 @@ else
 fi
 
 # the app streams to the output node until SIGTERM
-"$BIN" --platform surfaceless --size 640x480 --grid 16 --count 1000000 --cam-spin 0 --no-water --keyboard off \
+"$BIN" --platform surfaceless --size ${SW}x$SH --grid 16 --count 1000000 --cam-spin 0 --no-water --keyboard off \
 	--v4l2 $OUT --v4l2-format YUYV --v4l2-matrix bt601 --v4l2-fps 0 --out "$R/frame%d.png" >$R/app.log 2>&1 &
 APP=$!
 up() { cut -d. -f1 /proc/uptime; }
 end=$(($(up) + WAIT))
 while [ ! -s $R/frame3.png ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
 [ -s $R/frame3.png ] || die "the app did not render 4 frames in $WAIT s: $(tail -5 $R/app.log)"
-grep -q "v4l2: $OUT .*640x480 YUYV" $R/app.log && ok "$(grep "v4l2: $OUT" $R/app.log | head -1)" ||
+grep -q "v4l2: $OUT .* YUYV" $R/app.log && ok "$(grep "v4l2: $OUT" $R/app.log | head -1)" ||
 	bad "output format not negotiated: $(cat $R/app.log)"
 capture $R/cap.yuv
 # the newest frame the app had written when the capture was taken
@@ -66,5 +74,6 @@ wait $APP
 rc=$?
 [ $rc -eq 0 ] && ok "app exits 0 on SIGTERM" || bad "app exit status $rc: $(tail -3 $R/app.log)"
 grep "v4l2:" $R/app.log | tail -2
+save_cache
 echo "guest: $fails failures"
 [ $fails -eq 0 ]
