@@ -26,7 +26,7 @@ OW=$(v4l2-ctl -d $OUT --get-dv-timings | awk '/Active width:/ {print $3}')
 OH=$(v4l2-ctl -d $OUT --get-dv-timings | awk '/Active height:/ {print $3}')
 [ -n "$OW" ] && [ -n "$OH" ] || die "no DV timing on the output: $(v4l2-ctl -d $OUT --get-dv-timings 2>&1)"
 v4l2-ctl -d $CAP --set-input=3 || die "VIDIOC_S_INPUT"
-IDX=$(v4l2-ctl -d $CAP --list-dv-timings | awk -v W=$OW -v H=$OH '/^Index:/ {i = $2; w = 0}
+IDX=$(v4l2-ctl -d $CAP --list-dv-timings | awk -v W=$OW -v H=$OH '/Index:/ {i = $2; w = 0}
 	$0 ~ "Active width: " W "$" {w = 1} $0 ~ "Active height: " H "$" && w {print i; exit}')
 [ -n "$IDX" ] || die "the capture has no ${OW}x$OH DV timing: $(v4l2-ctl -d $CAP --list-dv-timings 2>&1 | head -12)"
 v4l2-ctl -d $CAP --set-dv-bt-timings index=$IDX &&
