@@ -16,6 +16,7 @@
 #include "log.h"
 #include "mc.h"
 #include "noise.h"
+#include "edits.h" /* curves + heightmap (issue 6) */
 
 #include <math.h>
 #include <stdlib.h>
@@ -285,6 +286,7 @@ void pipeline_destroy(struct pipeline *pl)
 			glDeleteBuffers(1, &bufs[i]);
 	if (pl->noise_ready)
 		noise_gl_destroy(&pl->ng);
+	edits_gl_release(); /* curves + heightmap (issue 6); re-uploaded on the next bind */
 	free(pl->ns);
 	free(pl);
 }
@@ -317,6 +319,8 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 	bind_all(pl);
 	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
+	if (edits_gl_bind(pl->p_density, p) < 0) /* curves + heightmap (issue 6) */
+		return -1;
 	glUseProgram(pl->p_density);
 	glDispatchCompute(div_up((uint64_t)pl->g.nx + 3, 4), div_up((uint64_t)pl->g.ny + 3, 4),
 			  div_up((uint64_t)pl->g.nz + 3, 4));
