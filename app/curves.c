@@ -344,7 +344,7 @@ int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, si
 		snprintf(err, errlen, "too many curve segments (%d, at most %d)", total_cubics, 1 << 24);
 		return -1;
 	}
-	size_t nq = 2 * (size_t)total_cubics + 1, nc = 2 * (size_t)total_cubics + (size_t)s->npaths + 1;
+	size_t nq = 2 * (size_t)total_cubics + 1, nc = 4 * (size_t)total_cubics + (size_t)s->npaths + 1;
 	q->ctrl = calloc(nc, sizeof(*q->ctrl));
 	q->prm = calloc(nc, sizeof(*q->prm));
 	q->first = calloc(nq, sizeof(int));
