@@ -119,8 +119,12 @@ int edits_load(const struct params *p, char *err, size_t errlen)
 	/* curves */
 	if (p->curves[0]) {
 		struct file_key k;
-		if (file_key_of(p->curves, &k, "curves", err, errlen) < 0)
+		if (file_key_of(p->curves, &k, "curves", err, errlen) < 0) {
+			struct curve_set s; /* the loader's message: format or open error */
+			if (curves_load(p->curves, &s, err, errlen) == 0)
+				curve_set_free(&s);
 			return -1;
+		}
 		if (!same_key(&k, &curves_key) || !E.curves_from_file) {
 			struct curve_set s;
 			if (curves_load(p->curves, &s, err, errlen) < 0)
@@ -146,8 +150,12 @@ int edits_load(const struct params *p, char *err, size_t errlen)
 	/* heightmap */
 	if (p->heightmap[0]) {
 		struct file_key k;
-		if (file_key_of(p->heightmap, &k, "heightmap", err, errlen) < 0)
+		if (file_key_of(p->heightmap, &k, "heightmap", err, errlen) < 0) {
+			struct heightmap hm; /* the loader's message: format or open error */
+			if (heightmap_load(p->heightmap, &hm, err, errlen) == 0)
+				heightmap_free(&hm);
 			return -1;
+		}
 		if (!same_key(&k, &hm_key)) {
 			struct heightmap hm;
 			if (heightmap_load(p->heightmap, &hm, err, errlen) < 0)
