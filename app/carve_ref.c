@@ -164,11 +164,16 @@ static void accumulate(const struct edits *e, const struct params *p, const floa
 		float c[3][4], cl[4];
 		for (int k = 0; k < 3; k++)
 			memcpy(c[k], e->quads.ctrl[f + k], sizeof(float) * 4);
+		const float *prm = e->quads.prm[f];
+		float reach = prm[0] + prm[1];
+		float lox = fminf(fminf(c[0][0], c[1][0]), c[2][0]) - reach, loz = fminf(fminf(c[0][2], c[1][2]), c[2][2]) - reach;
+		float hix = fmaxf(fmaxf(c[0][0], c[1][0]), c[2][0]) + reach, hiz = fmaxf(fmaxf(c[0][2], c[1][2]), c[2][2]) + reach;
+		if (pos[0] < lox || pos[1] < loz || pos[0] > hix || pos[1] > hiz)
+			continue;
 		if (iterative)
 			closest_iter(c, pos, cl);
 		else
 			carve_ref_closest(c, pos, cl);
-		const float *prm = e->quads.prm[f];
 		float ad = fabsf(cl[0]);
 		float th = carve_ref_theta(ad, prm[0], prm[1]);
 		sh += cl[2] * th;

@@ -5,6 +5,7 @@
 #include "gpu.h"
 #include "log.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,9 +26,9 @@ static struct {
 	GLuint hm_tex;
 	unsigned hm_gen;
 	bool hm_ready;
-	GLuint p_bake, p_bake_iter, p_test;
-	GLuint b_bake, b_in, b_out;
-	GLsizeiptr bake_cap, in_cap, out_cap;
+	GLuint p_bake[8], p_test;     /* bake: [iterative | dense << 1 | heightmap << 2] */
+	GLuint b_bake, b_zero, b_tiles, b_in, b_out;
+	GLsizeiptr bake_cap, zero_cap, tiles_cap, in_cap, out_cap;
 } G;
 
 void edits_gl_release(void)
@@ -36,12 +37,13 @@ void edits_gl_release(void)
 		glDeleteBuffers(4, G.buf);
 	if (G.hm_tex)
 		glDeleteTextures(1, &G.hm_tex);
-	GLuint progs[3] = { G.p_bake, G.p_bake_iter, G.p_test };
-	for (int i = 0; i < 3; i++)
-		if (progs[i])
-			glDeleteProgram(progs[i]);
-	GLuint bufs[3] = { G.b_bake, G.b_in, G.b_out };
-	for (int i = 0; i < 3; i++)
+	for (int i = 0; i < 8; i++)
+		if (G.p_bake[i])
+			glDeleteProgram(G.p_bake[i]);
+	if (G.p_test)
+		glDeleteProgram(G.p_test);
+	GLuint bufs[5] = { G.b_bake, G.b_zero, G.b_tiles, G.b_in, G.b_out };
+	for (int i = 0; i < 5; i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
 	memset(&G, 0, sizeof(G));
@@ -203,18 +205,72 @@ static int read_back(GLuint b, GLsizeiptr size, void *out)
 	return ok ? 0 : -1;
 }
 
+/* The 8x8 tiles of the map that touch a non-empty hash cell (conservative
+ * by one texel), as (tx | ty << 16).  Returns the count or -1. */
+static int bake_tiles(const struct curve_hash *h, const struct bake_opts *o, uint32_t **out)
+{
+	int tx = (o->res[0] + 7) / 8, tz = (o->res[1] + 7) / 8;
+	uint8_t *mark = calloc((size_t)tx * (size_t)tz, 1);
+	if (!mark)
+		return -1;
+	float tw = o->size[0] / (float)o->res[0], th = o->size[1] / (float)o->res[1];
+	int n = 0;
+	for (int cz = 0; h->pivot && cz < h->dim; cz++)
+		for (int cx = 0; cx < h->dim; cx++) {
+			if (h->pivot[2 * (cx + cz * h->dim) + 1] == 0)
+				continue;
+			float x0 = h->origin[0] + (float)cx * h->cell[0], z0 = h->origin[1] + (float)cz * h->cell[1];
+			int i0 = (int)floorf((x0 - o->origin[0]) / tw) - 1;
+			int i1 = (int)ceilf((x0 + h->cell[0] - o->origin[0]) / tw) + 1;
+			int j0 = (int)floorf((z0 - o->origin[1]) / th) - 1;
+			int j1 = (int)ceilf((z0 + h->cell[1] - o->origin[1]) / th) + 1;
+			i0 = i0 < 0 ? 0 : i0;
+			j0 = j0 < 0 ? 0 : j0;
+			i1 = i1 > o->res[0] ? o->res[0] : i1;
+			j1 = j1 > o->res[1] ? o->res[1] : j1;
+			for (int j = j0 / 8; j1 > j0 && j <= (j1 - 1) / 8; j++)
+				for (int i = i0 / 8; i1 > i0 && i <= (i1 - 1) / 8; i++)
+					if (!mark[(size_t)j * (size_t)tx + (size_t)i]) {
+						mark[(size_t)j * (size_t)tx + (size_t)i] = 1;
+						n++;
+					}
+		}
+	*out = malloc(sizeof(uint32_t) * (size_t)(n ? n : 1));
+	if (!*out) {
+		free(mark);
+		return -1;
+	}
+	int k = 0;
+	for (int j = 0; j < tz; j++)
+		for (int i = 0; i < tx; i++)
+			if (mark[(size_t)j * (size_t)tx + (size_t)i])
+				(*out)[k++] = (uint32_t)i | ((uint32_t)j << 16);
+	free(mark);
+	return n;
+}
+
 int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen)
 {
-	GLuint *prog = o->iterative ? &G.p_bake_iter : &G.p_bake;
-	if (!*prog) {
-		*prog = gpu_compute_program("curve_bake.comp", o->iterative ? "#define CURVE_ITERATIVE 1\n" : NULL, err,
-					    errlen);
-		if (!*prog)
-			return -1;
-	}
 	if (o->res[0] < 1 || o->res[1] < 1 || o->res[0] > 16384 || o->res[1] > 16384) {
 		snprintf(err, errlen, "bake resolution %dx%d out of range", o->res[0], o->res[1]);
 		return -1;
+	}
+	char lerr[512];
+	if (edits_load(p, lerr, sizeof(lerr)) < 0) {
+		snprintf(err, errlen, "%s", lerr);
+		return -1;
+	}
+	const struct edits *e = edits_get();
+	bool dense = o->dense || o->iterative, hm = e->hm.w > 0;
+	int variant = (o->iterative ? 1 : 0) | (dense ? 2 : 0) | (hm ? 4 : 0);
+	GLuint *prog = &G.p_bake[variant];
+	if (!*prog) {
+		char defs[128];
+		snprintf(defs, sizeof(defs), "%s%s%s", o->iterative ? "#define CURVE_ITERATIVE 1\n" : "",
+			 dense ? "#define BAKE_DENSE 1\n" : "", hm ? "#define BAKE_HEIGHTMAP 1\n" : "");
+		*prog = gpu_compute_program("curve_bake.comp", defs, err, errlen);
+		if (!*prog)
+			return -1;
 	}
 	GLsizeiptr bytes = (GLsizeiptr)o->res[0] * o->res[1] * 4;
 	GLint max_ssbo = 0;
@@ -238,7 +294,56 @@ int curves_bake(const struct params *p, const struct bake_opts *o, float *out, c
 			   o->size[1] / (float)o->res[1]);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G.b_bake);
 	glUseProgram(*prog);
-	glDispatchCompute((GLuint)(o->res[0] + 7) / 8, (GLuint)(o->res[1] + 7) / 8, 1);
+	if (dense) {
+		glDispatchCompute((GLuint)(o->res[0] + 7) / 8, (GLuint)(o->res[1] + 7) / 8, 1);
+	} else {
+		/* zero the map (GPU copy from a zero buffer), then the tiles */
+		if (G.zero_cap < bytes) {
+			void *z = calloc(1, (size_t)bytes);
+			if (!z) {
+				snprintf(err, errlen, "out of memory");
+				glUseProgram(0);
+				return -1;
+			}
+			if (!G.b_zero)
+				glGenBuffers(1, &G.b_zero);
+			glBindBuffer(GL_COPY_READ_BUFFER, G.b_zero);
+			glBufferData(GL_COPY_READ_BUFFER, bytes, z, GL_STATIC_DRAW);
+			glBindBuffer(GL_COPY_READ_BUFFER, 0);
+			free(z);
+			G.zero_cap = bytes;
+		}
+		glBindBuffer(GL_COPY_READ_BUFFER, G.b_zero);
+		glBindBuffer(GL_COPY_WRITE_BUFFER, G.b_bake);
+		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+		glBindBuffer(GL_COPY_READ_BUFFER, 0);
+		glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+		uint32_t *tiles = NULL;
+		int nt = bake_tiles(&e->hash, o, &tiles);
+		if (nt < 0) {
+			snprintf(err, errlen, "out of memory");
+			glUseProgram(0);
+			return -1;
+		}
+		if (nt > 0) {
+			if (ensure(&G.b_tiles, &G.tiles_cap, (GLsizeiptr)nt * 4) < 0) {
+				free(tiles);
+				snprintf(err, errlen, "cannot allocate the tile list");
+				glUseProgram(0);
+				return -1;
+			}
+			glBindBuffer(GL_SHADER_STORAGE_BUFFER, G.b_tiles);
+			glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)nt * 4, tiles);
+			glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+			int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
+			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_ntiles"), nt);
+			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_groups_x"), gx);
+			glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G.b_tiles);
+			glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+			glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
+		}
+		free(tiles);
+	}
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	glUseProgram(0);
 	if (gpu_check("curve bake") < 0) {

@@ -76,13 +76,16 @@ void edits_gl_release(void);
 /* The curves' 2D displacement map (shaders/curve_bake.comp): res[0] x
  * res[1] texels over [origin, origin + size) in XZ, x fastest; each texel
  * Θ_closest · (h - H) at its centre, H the heightmap (bilinear) or 0.
- * iterative: the baseline (32 line segments per curve, every curve, no
- * hash).  The map stays in an SSBO (binding 12, explicit capacity);
+ * By default only the 8x8 tiles that touch a non-empty hash cell run
+ * (the map is zeroed first); dense: every texel; iterative: the baseline
+ * (32 line segments per curve, every curve, no hash).  The map stays in an SSBO (binding 12, explicit capacity);
  * out != NULL gets a copy.  0 or -1 with err. */
 struct bake_opts {
 	int res[2];
 	float origin[2], size[2];
-	bool iterative;
+	bool iterative; /* the baseline (implies dense) */
+	bool dense;     /* every texel (the thesis's dispatch) instead of the
+			   8x8 tiles over non-empty hash cells */
 };
 int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen);
 

@@ -172,14 +172,35 @@ float curve_theta(float d, float hw, float lam)
 // height by smoothstep(blend_lo, blend_hi, Θ_closest), then the closest
 // curve's lateral inclination: h -= I |d| / sqrt(I² + 1) · s^exp · side with
 // s = smoothstep(incl_lo, incl_hi, Θ_closest).
+bool curve_near(int f, vec2 pos) // broad phase: within the control triangle's box padded by the reach
+{
+	vec4 prm = curve_prm[f];
+	vec2 q0 = curve_ctrl[f].xz, q1 = curve_ctrl[f + 1].xz, q2 = curve_ctrl[f + 2].xz;
+	float reach = prm.x + prm.y;
+	vec2 lo = min(min(q0, q1), q2) - reach, hi = max(max(q0, q1), q2) + reach;
+	return !(pos.x < lo.x || pos.y < lo.y || pos.x > hi.x || pos.y > hi.y);
+}
+
 vec4 curve_accumulate(vec2 pos, int start, int count)
 {
 	float sh = 0.0, sw = 0.0;
 	float bd = 1e30, bh = 0.0, bi = 0.0, bth = 0.0, bside = 1.0;
-	for (int i = start; i < start + count; i++) {
+	// A curve outside its padded box has no influence (and is never nearer
+	// than one that has): skip it.  The box tests run in an inner loop so
+	// that each invocation only reaches the closed form for its candidates
+	// (SIMD lanes and GPU threads then do max(candidates) solves, not
+	// count).
+	int end = start + count;
+	int i = start;
+	for (;;) {
+		while (i < end && !curve_near(curve_index[i], pos))
+			i++;
+		if (i >= end)
+			break;
 		int f = curve_index[i];
-		vec4 cl = CURVE_CLOSEST(f, pos);
+		i++;
 		vec4 prm = curve_prm[f];
+		vec4 cl = CURVE_CLOSEST(f, pos);
 		float ad = abs(cl.x);
 		float th = curve_theta(ad, prm.x, prm.y);
 		sh += cl.z * th;

@@ -820,11 +820,17 @@ static void test_eval_gpu(struct params *p)
 	CHECK(bad == 0, "GPU curve_eval/carve vs CPU: %d of %d differ (worst %.3g)", bad, n, worst);
 	CHECK(influenced > 200, "points under the curves' influence: %d", influenced);
 	/* displacement bake: GPU vs CPU, and the iterative baseline near it */
-	struct bake_opts o = { { 96, 80 }, { -120, -110 }, { 240, 220 }, false };
+	struct bake_opts o = { { 96, 80 }, { -120, -110 }, { 240, 220 }, false, false };
 	float *g = malloc(sizeof(float) * 96 * 80), *c = malloc(sizeof(float) * 96 * 80), *gi = malloc(sizeof(float) * 96 * 80);
 	rc = curves_bake(p, &o, g, err, sizeof(err));
 	CHECK(rc == 0, "bake: %s", err);
 	carve_ref_bake(edits_get(), p, &o, c);
+	o.dense = true; /* every texel: the same map as the tiles over non-empty cells */
+	CHECK(curves_bake(p, &o, gi, err, sizeof(err)) == 0, "dense bake: %s", err);
+	int tdiff = 0;
+	for (int i = 0; i < 96 * 80; i++)
+		tdiff += gi[i] != g[i];
+	CHECK(tdiff == 0, "tiled bake vs dense bake: %d texels differ", tdiff);
 	o.iterative = true;
 	CHECK(curves_bake(p, &o, gi, err, sizeof(err)) == 0, "iterative bake: %s", err);
 	double wb = 0, wi = 0, mean_i = 0;
