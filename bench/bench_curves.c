@@ -224,6 +224,8 @@ int main(int argc, char **argv)
 		int dims[5] = { 1, 8, 16, 32, 64 };
 		o.iterative = false;
 		for (int i = 0; i < 5; i++) {
+			if (dims[i] == 1 && res > 512)
+				continue; /* every curve at every texel: minutes at 2048^2 on llvmpipe */
 			if (edits_set_curves(&s, dims[i], err, sizeof(err)) < 0) {
 				fprintf(stderr, "bench: %s\n", err);
 				return 1;
