@@ -113,6 +113,8 @@ int main(int argc, char **argv)
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 
+	char breakdown[8][160];
+	memset(breakdown, 0, sizeof(breakdown));
 	printf("%-6s %12s %12s %8s %10s %12s %10s\n", "grid", "density ms", "full ms", "ratio", "Mvox/s", "Mtris/s",
 	       "triangles");
 	for (int s = 0; s < nsizes; s++) {
@@ -129,6 +131,15 @@ int main(int argc, char **argv)
 		}
 		double td = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
 		double tf = time_runs(pl, &p, FULL, 3, budget);
+		/* one profiled run: where the time goes */
+		double ms[PASS_COUNT];
+		pipeline_profile(pl, true, NULL);
+		pipeline_run(pl, &p);
+		glFinish();
+		pipeline_profile(pl, false, ms);
+		snprintf(breakdown[s], sizeof(breakdown[s]),
+			 "%-6d density %8.2f  classify %8.2f  reduce+setup %8.2f  vertices %8.2f  indices %8.2f", sizes[s],
+			 ms[PASS_DENSITY], ms[PASS_CLASSIFY], ms[PASS_REDUCE], ms[PASS_VERTICES], ms[PASS_INDICES]);
 		struct extract_stats st;
 		pipeline_read_stats(pl, &st);
 		double vox = (double)g.nx * g.ny * g.nz;
@@ -136,6 +147,11 @@ int main(int argc, char **argv)
 		       st.triangles / (tf * 1e3), st.triangles, st.overflow ? " (overflow)" : "");
 		pipeline_destroy(pl);
 	}
+
+	printf("\nper pass (ms, one run with glFinish after every pass):\n");
+	for (int s = 0; s < nsizes; s++)
+		if (breakdown[s][0])
+			printf("  %s\n", breakdown[s]);
 
 	int cmp_grid = quick ? 64 : 128;
 	printf("\ncompaction methods, same field, grid %d^3 (ratio = time / HistoPyramid time):\n", cmp_grid);
