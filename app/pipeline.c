@@ -514,6 +514,8 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	}
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
+	if (edits_gl_bind(pl->p_vertices, p) < 0) /* normals and AO read density() */
+		return -1;
 	glUseProgram(pl->p_vertices);
 	glDispatchComputeIndirect(status_off + 8 * 4);
 	mark(pl, PASS_VERTICES, &t);

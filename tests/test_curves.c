@@ -22,6 +22,7 @@
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
+#include "world.h"
 
 #include <float.h>
 #include <math.h>
@@ -1044,6 +1045,152 @@ static void test_road_centreline(void)
 	edits_clear();
 }
 
+/* ---- edits re-generate only the affected world blocks ------------------------ */
+
+#define WB_LODS 2
+#define WB_R 12 /* block indices -WB_R..WB_R-1 in x and z, -4..3 in y */
+struct wb_snap {
+	int gens[WB_LODS][8][2 * WB_R][2 * WB_R];
+	int state[WB_LODS][8][2 * WB_R][2 * WB_R];
+};
+
+static void wb_snapshot(const struct world *w, struct wb_snap *s)
+{
+	for (int l = 0; l < WB_LODS; l++)
+		for (int y = 0; y < 8; y++)
+			for (int z = 0; z < 2 * WB_R; z++)
+				for (int x = 0; x < 2 * WB_R; x++) {
+					int idx[3] = { x - WB_R, y - 4, z - WB_R };
+					s->gens[l][y][z][x] = world_block_generations(w, l, idx, &s->state[l][y][z][x]);
+				}
+}
+
+/* Blocks of the world (known before the edit) whose density samples see a
+ * curve (Θ > 0 somewhere in the block's XZ footprint padded by its sample
+ * margin), by sampling the CPU mirror of the carve on a fine XZ grid: the
+ * blocks an edit of these curves must re-generate. */
+static void wb_touched(const struct params *p, const struct wb_snap *before, bool touched[WB_LODS][2 * WB_R][2 * WB_R])
+{
+	const struct edits *e = edits_get();
+	memset(touched, 0, sizeof(bool) * WB_LODS * 4 * WB_R * WB_R);
+	const float step = 0.25f;
+	for (float z = -WB_R * p->block_size * 2; z < WB_R * p->block_size * 2; z += step)
+		for (float x = -WB_R * p->block_size * 2; x < WB_R * p->block_size * 2; x += step) {
+			float ev[4];
+			carve_ref_eval(e, p, x, z, false, ev);
+			if (ev[1] <= 0.0f)
+				continue;
+			for (int l = 0; l < WB_LODS; l++) {
+				float bs = p->block_size * (float)(1 << l);
+				/* world.c: 1 + AO_MARGIN (6) density samples around a block */
+				float pad = 7.0f * bs / (float)p->block_cells;
+				for (int bz = 0; bz < 2 * WB_R; bz++)
+					for (int bx = 0; bx < 2 * WB_R; bx++) {
+						float lx = (float)(bx - WB_R) * bs, lz = (float)(bz - WB_R) * bs;
+						if (x >= lx - pad && x <= lx + bs + pad && z >= lz - pad && z <= lz + bs + pad)
+							touched[l][bz][bx] = true;
+					}
+			}
+		}
+	(void)before;
+}
+
+/* One edit: the blocks re-generated must include every known block whose
+ * samples the changed curves reach, and lie within the path's padded
+ * bounding box (computed here from the input points). */
+static void wb_check_edit(const char *what, struct world *w, const struct params *p, const struct camera *c,
+			  const struct curve_set *next, const float *pts, int npts, float reach)
+{
+	static struct wb_snap before, after;
+	static bool touched_old[WB_LODS][2 * WB_R][2 * WB_R], touched_new[WB_LODS][2 * WB_R][2 * WB_R];
+	char err[256];
+	wb_snapshot(w, &before);
+	wb_touched(p, &before, touched_old);
+	struct world_stats s0, s1;
+	world_get_stats(w, &s0);
+	CHECK(edits_set_curves(next, 16, err, sizeof(err)) == 0, "%s: %s", what, err);
+	wb_touched(p, &before, touched_new);
+	CHECK(world_fill(w, p, c, 1.0) == 0, "%s: world_fill", what);
+	world_get_stats(w, &s1);
+	wb_snapshot(w, &after);
+	float bx0 = FLT_MAX, bz0 = FLT_MAX, bx1 = -FLT_MAX, bz1 = -FLT_MAX;
+	for (int i = 0; i < npts; i++) {
+		bx0 = fminf(bx0, pts[3 * i] - reach);
+		bx1 = fmaxf(bx1, pts[3 * i] + reach);
+		bz0 = fminf(bz0, pts[3 * i + 2] - reach);
+		bz1 = fmaxf(bz1, pts[3 * i + 2] + reach);
+	}
+	int known = 0, regen = 0, must = 0, missed = 0, outside = 0;
+	for (int l = 0; l < WB_LODS; l++) {
+		float bs = p->block_size * (float)(1 << l);
+		float pad = 8.0f * bs / (float)p->block_cells; /* the margin + one cell of rounding */
+		for (int y = 0; y < 8; y++)
+			for (int z = 0; z < 2 * WB_R; z++)
+				for (int x = 0; x < 2 * WB_R; x++) {
+					int st = before.state[l][y][z][x];
+					if (st == 0) /* unknown or evicted */
+						continue;
+					known++;
+					bool again = after.gens[l][y][z][x] > before.gens[l][y][z][x];
+					regen += again;
+					if (touched_old[l][z][x] || touched_new[l][z][x]) {
+						must++;
+						missed += !again;
+					}
+					float lx = (float)(x - WB_R) * bs, lz = (float)(z - WB_R) * bs;
+					bool in_box = lx + bs + pad >= bx0 && lx - pad <= bx1 && lz + bs + pad >= bz0 && lz - pad <= bz1;
+					outside += again && !in_box;
+				}
+	}
+	printf("  world edit (%s): %d known blocks, %d must re-generate, %d re-generated (%llu generations in all)\n",
+	       what, known, must, regen, (unsigned long long)(s1.generated - s0.generated));
+	CHECK(must > 0, "%s: the edit touches blocks of the view", what);
+	CHECK(missed == 0, "%s: %d blocks under the edit were not re-generated", what, missed);
+	CHECK(outside == 0, "%s: %d blocks away from the edited path were re-generated", what, outside);
+	CHECK(regen < known / 2, "%s: %d of %d blocks re-generated: not local", what, regen, known);
+	CHECK(s1.generated - s0.generated == (uint64_t)regen, "%s: generations %llu == blocks re-generated %d", what,
+	      (unsigned long long)(s1.generated - s0.generated), regen);
+}
+
+static void test_world_edits(void)
+{
+	struct params p;
+	params_defaults(&p);
+	set(&p, "scene=world;block_pool=200;view_distance=40;lod_levels=2;ao_rays=0;fade_time=0;gen_per_frame=64");
+	edits_clear();
+	char err[512] = "";
+	struct world *w = world_create(&p, err, sizeof(err));
+	CHECK(w != NULL, "world_create: %s", err);
+	if (!w)
+		return;
+	struct camera c;
+	float eye[3] = { 0, 14, 30 }, at[3] = { 0, 0, 0 };
+	camera_look(&c, eye, at, p.fov, 1.5f, 0.1f, 100.0f);
+	CHECK(world_fill(w, &p, &c, 0.0) == 0, "world_fill");
+	struct world_stats st;
+	world_get_stats(w, &st);
+	uint64_t g0 = st.generated;
+	CHECK(world_fill(w, &p, &c, 0.5) == 0, "world_fill again");
+	world_get_stats(w, &st);
+	CHECK(st.generated == g0, "no edit, nothing re-generated (%llu -> %llu)", (unsigned long long)g0,
+	      (unsigned long long)st.generated);
+	/* a road across part of the view, then moved, then removed */
+	float a[3 * 3] = { -10, 0.5f, -2, -2, 1.0f, 2, 6, 1.5f, 0 };
+	struct curve_path rp = make_path(3, a, 3.0f, 2.0f, 0.0f, 0.5f);
+	struct curve_set rs = { &rp, 1 };
+	float reach = 3.0f / 2 + 2.0f;
+	wb_check_edit("road added", w, &p, &c, &rs, a, 3, reach);
+	float b[3 * 3] = { -10, 0.5f, -2, -2, 3.0f, 2, 6, 1.5f, 0 }, ab[6 * 3];
+	memcpy(ab, a, sizeof(a));
+	memcpy(ab + 9, b, sizeof(b));
+	rp.pts = b;
+	wb_check_edit("road raised", w, &p, &c, &rs, ab, 6, reach);
+	struct curve_set none = { NULL, 0 };
+	wb_check_edit("road removed", w, &p, &c, &none, b, 3, reach);
+	world_destroy(w);
+	edits_clear();
+}
+
 int main(void)
 {
 	if (!mkdtemp(tmpdir)) {
@@ -1099,6 +1246,7 @@ int main(void)
 	edits_gl_release();
 	test_road_centreline();
 	edits_gl_release();
+	test_world_edits();
 	free(items);
 	platform_close(plat);
 	char cmd[300];
