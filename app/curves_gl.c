@@ -205,9 +205,11 @@ static int read_back(GLuint b, GLsizeiptr size, void *out)
 	return ok ? 0 : -1;
 }
 
-/* The 8x8 tiles of the map that touch a non-empty hash cell (conservative
- * by one texel), as (tx | ty << 16).  Returns the count or -1. */
-static int bake_tiles(const struct curve_hash *h, const struct bake_opts *o, uint32_t **out)
+/* The 8x8 tiles of the map that overlap the padded box of some quadratic
+ * (conservative by one texel), as (tx | ty << 16): outside every padded
+ * box every curve's Θ is 0, so the zeroed map is already right there.
+ * Returns the count or -1. */
+static int bake_tiles(const struct curve_quads *q, const struct bake_opts *o, uint32_t **out)
 {
 	int tx = (o->res[0] + 7) / 8, tz = (o->res[1] + 7) / 8;
 	uint8_t *mark = calloc((size_t)tx * (size_t)tz, 1);
@@ -215,26 +217,24 @@ static int bake_tiles(const struct curve_hash *h, const struct bake_opts *o, uin
 		return -1;
 	float tw = o->size[0] / (float)o->res[0], th = o->size[1] / (float)o->res[1];
 	int n = 0;
-	for (int cz = 0; h->pivot && cz < h->dim; cz++)
-		for (int cx = 0; cx < h->dim; cx++) {
-			if (h->pivot[2 * (cx + cz * h->dim) + 1] == 0)
-				continue;
-			float x0 = h->origin[0] + (float)cx * h->cell[0], z0 = h->origin[1] + (float)cz * h->cell[1];
-			int i0 = (int)floorf((x0 - o->origin[0]) / tw) - 1;
-			int i1 = (int)ceilf((x0 + h->cell[0] - o->origin[0]) / tw) + 1;
-			int j0 = (int)floorf((z0 - o->origin[1]) / th) - 1;
-			int j1 = (int)ceilf((z0 + h->cell[1] - o->origin[1]) / th) + 1;
-			i0 = i0 < 0 ? 0 : i0;
-			j0 = j0 < 0 ? 0 : j0;
-			i1 = i1 > o->res[0] ? o->res[0] : i1;
-			j1 = j1 > o->res[1] ? o->res[1] : j1;
-			for (int j = j0 / 8; j1 > j0 && j <= (j1 - 1) / 8; j++)
-				for (int i = i0 / 8; i1 > i0 && i <= (i1 - 1) / 8; i++)
-					if (!mark[(size_t)j * (size_t)tx + (size_t)i]) {
-						mark[(size_t)j * (size_t)tx + (size_t)i] = 1;
-						n++;
-					}
-		}
+	for (int k = 0; k < q->nquads; k++) {
+		float box[4];
+		curve_hash_padded_box(q, k, box);
+		if (box[2] < o->origin[0] || box[0] > o->origin[0] + o->size[0] || box[3] < o->origin[1] ||
+		    box[1] > o->origin[1] + o->size[1])
+			continue;
+		float i0f = floorf((box[0] - o->origin[0]) / tw) - 1, i1f = ceilf((box[2] - o->origin[0]) / tw) + 1;
+		float j0f = floorf((box[1] - o->origin[1]) / th) - 1, j1f = ceilf((box[3] - o->origin[1]) / th) + 1;
+		int i0 = i0f < 0 ? 0 : (int)i0f, j0 = j0f < 0 ? 0 : (int)j0f;
+		int i1 = i1f > (float)o->res[0] ? o->res[0] : (int)i1f;
+		int j1 = j1f > (float)o->res[1] ? o->res[1] : (int)j1f;
+		for (int j = j0 / 8; j1 > j0 && j <= (j1 - 1) / 8; j++)
+			for (int i = i0 / 8; i1 > i0 && i <= (i1 - 1) / 8; i++)
+				if (!mark[(size_t)j * (size_t)tx + (size_t)i]) {
+					mark[(size_t)j * (size_t)tx + (size_t)i] = 1;
+					n++;
+				}
+	}
 	*out = malloc(sizeof(uint32_t) * (size_t)(n ? n : 1));
 	if (!*out) {
 		free(mark);
@@ -319,7 +319,7 @@ int curves_bake(const struct params *p, const struct bake_opts *o, float *out, c
 		glBindBuffer(GL_COPY_READ_BUFFER, 0);
 		glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 		uint32_t *tiles = NULL;
-		int nt = bake_tiles(&e->hash, o, &tiles);
+		int nt = bake_tiles(&e->quads, o, &tiles);
 		if (nt < 0) {
 			snprintf(err, errlen, "out of memory");
 			glUseProgram(0);

@@ -26,8 +26,10 @@ struct heightmap {
 	int w, h;
 	float *v; /* w*h samples 0..65535 as floats, x fastest, row z = 0 first */
 };
-/* 16-bit (or 8-bit, scaled) grayscale PNG.  GeoTIFF (.tif/.tiff) is refused
- * with a message: this build has no GDAL.  0 or -1 with err. */
+/* 16-bit (or 8-bit, scaled) grayscale PNG, or GeoTIFF (.tif/.tiff) through
+ * GDAL when built with it (band 1, valid range mapped onto 0..65535,
+ * no-data at the minimum; refused with a message otherwise).  0 or -1
+ * with err. */
 int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen);
 void heightmap_free(struct heightmap *hm);
 /* Writes a 16-bit grayscale PNG atomically (temp file + rename). */
@@ -76,7 +78,7 @@ void edits_gl_release(void);
 /* The curves' 2D displacement map (shaders/curve_bake.comp): res[0] x
  * res[1] texels over [origin, origin + size) in XZ, x fastest; each texel
  * Θ_closest · (h - H) at its centre, H the heightmap (bilinear) or 0.
- * By default only the 8x8 tiles that touch a non-empty hash cell run
+ * By default only the 8x8 tiles that overlap a quadratic's padded box run
  * (the map is zeroed first); dense: every texel; iterative: the baseline
  * (32 line segments per curve, every curve, no hash).  The map stays in an SSBO (binding 12, explicit capacity);
  * out != NULL gets a copy.  0 or -1 with err. */
@@ -85,7 +87,7 @@ struct bake_opts {
 	float origin[2], size[2];
 	bool iterative; /* the baseline (implies dense) */
 	bool dense;     /* every texel (the thesis's dispatch) instead of the
-			   8x8 tiles over non-empty hash cells */
+			   8x8 tiles over the padded boxes */
 };
 int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen);
 

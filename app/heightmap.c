@@ -12,14 +12,104 @@
 
 #define HEIGHTMAP_MAX_SIDE 16384
 
+#ifdef ISOTERRA_HAVE_GDAL
+#include <cpl_error.h>
+#include <gdal.h>
+#include <math.h>
+
+/* GeoTIFF (any raster GDAL opens) through GDAL: band 1 as floats, the
+ * band's valid range [min, max] mapped onto 0..65535 (so heightmap_base /
+ * heightmap_height place it as they place a PNG), no-data samples at min. */
+static int load_gdal(const char *path, struct heightmap *hm, char *err, size_t errlen)
+{
+	static int registered;
+	if (!registered) {
+		GDALAllRegister();
+		registered = 1;
+	}
+	CPLPushErrorHandler(CPLQuietErrorHandler);
+	CPLErrorReset();
+	GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+	if (!ds) {
+		const char *m = CPLGetLastErrorMsg();
+		snprintf(err, errlen, "heightmap '%s': GDAL cannot read it as a GeoTIFF: %s", path,
+			 m && m[0] ? m : "unknown error");
+		CPLPopErrorHandler();
+		return -1;
+	}
+	int rc = -1;
+	float *v = NULL;
+	int w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+	if (GDALGetRasterCount(ds) < 1) {
+		snprintf(err, errlen, "heightmap '%s': the GeoTIFF has no raster band", path);
+		goto out;
+	}
+	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) {
+		snprintf(err, errlen, "heightmap '%s' is %dx%d; 2x2 to %dx%d samples are supported", path, w, h,
+			 HEIGHTMAP_MAX_SIDE, HEIGHTMAP_MAX_SIDE);
+		goto out;
+	}
+	GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+	v = malloc(sizeof(float) * (size_t)w * (size_t)h);
+	if (!band || !v) {
+		snprintf(err, errlen, "heightmap '%s': %s", path, v ? "no band 1" : "out of memory");
+		goto out;
+	}
+	CPLErrorReset();
+	if (GDALRasterIO(band, GF_Read, 0, 0, w, h, v, w, h, GDT_Float32, 0, 0) != CE_None) {
+		const char *m = CPLGetLastErrorMsg();
+		snprintf(err, errlen, "heightmap '%s': GDAL cannot read the samples: %s", path,
+			 m && m[0] ? m : "read error");
+		goto out;
+	}
+	int has_nodata = 0;
+	double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+	size_t n = (size_t)w * (size_t)h;
+	float lo = INFINITY, hi = -INFINITY;
+	for (size_t i = 0; i < n; i++) {
+		if (!isfinite(v[i]) || (has_nodata && (double)v[i] == (double)(float)nodata))
+			continue;
+		lo = v[i] < lo ? v[i] : lo;
+		hi = v[i] > hi ? v[i] : hi;
+	}
+	if (!(lo <= hi)) {
+		snprintf(err, errlen, "heightmap '%s': every sample is no-data", path);
+		goto out;
+	}
+	float k = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
+	for (size_t i = 0; i < n; i++) {
+		bool valid = isfinite(v[i]) && !(has_nodata && (double)v[i] == (double)(float)nodata);
+		v[i] = valid ? (v[i] - lo) * k : 0.0f;
+	}
+	hm->v = v;
+	hm->w = w;
+	hm->h = h;
+	v = NULL;
+	rc = 0;
+out:
+	free(v);
+	GDALClose(ds);
+	CPLPopErrorHandler();
+	return rc;
+}
+#endif
+
 int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen)
 {
 	memset(hm, 0, sizeof(*hm));
 	const char *dot = strrchr(path, '.');
 	if (dot && (!strcasecmp(dot, ".tif") || !strcasecmp(dot, ".tiff"))) {
+#ifdef ISOTERRA_HAVE_GDAL
+		if (access(path, R_OK) != 0) {
+			snprintf(err, errlen, "cannot open heightmap file '%s' (GeoTIFF, read through GDAL)", path);
+			return -1;
+		}
+		return load_gdal(path, hm, err, errlen);
+#else
 		snprintf(err, errlen, "heightmap '%s': GeoTIFF needs GDAL, which this build does not use; convert it to a "
 			 "16-bit grayscale PNG (gdal_translate -ot UInt16 -of PNG)", path);
 		return -1;
+#endif
 	}
 	if (!dot || strcasecmp(dot, ".png")) {
 		snprintf(err, errlen, "heightmap '%s': unknown format (a 16-bit grayscale .png is needed)", path);

@@ -186,7 +186,7 @@ int main(int argc, char **argv)
 		edits_set_curves(&none, 16, err, sizeof(err));
 		printf("floor: the same dispatch with no curves: %.1f ms\n\n", time_bake(&p, &o, 3, budget / 2));
 	}
-	printf("analytic = closed form + hash over the tiles of non-empty cells; dense = the same, every texel;\n"
+	printf("analytic = closed form + hash over the 8x8 tiles that overlap a padded box; dense = the same, every texel;\n"
 	       "ratio = iterative / analytic\n");
 	printf("%-3s %-40s %6s %9s %9s %12s %10s %14s %8s\n", "set", "shape", "quads", "CPU ms", "entries", "analytic ms",
 	       "dense ms", "iterative ms", "ratio");

@@ -2,8 +2,9 @@
 // invocation per texel, disp = Θ_closest · (h - H(x,z)), H the heightmap
 // (bilinear, with BAKE_HEIGHTMAP) or 0.
 //   default        closed form + spatial hash, over the 8x8 tiles that
-//                  touch a non-empty hash cell (the host lists them and
-//                  zeroes the map first): texels in empty cells cost nothing
+//                  overlap some quadratic's padded box (the host lists
+//                  them and zeroes the map first): texels no curve reaches
+//                  cost nothing
 //   BAKE_DENSE     closed form + hash, every texel (the thesis's dispatch)
 //   CURVE_ITERATIVE (+ BAKE_DENSE) the benchmark's baseline: 32 line
 //                  segments per curve, every curve, no hash

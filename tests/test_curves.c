@@ -686,6 +686,57 @@ static void hm_path(char *buf, size_t len, const char *name)
 #define HM_H 7
 static uint16_t hm_data[HM_W * HM_H];
 
+#ifdef ISOTERRA_HAVE_GDAL
+#include <gdal.h>
+/* GeoTIFF through GDAL: a Float32 DEM in metres with a no-data sample is
+ * read with its valid range [min, max] mapped onto 0..65535; garbage and a
+ * band-less file are refused with a message naming the file. */
+static void test_geotiff(void)
+{
+	char path[600], err[512];
+	const int W = 7, H = 5;
+	float dem[7 * 5];
+	for (int z = 0; z < H; z++)
+		for (int x = 0; x < W; x++)
+			dem[z * W + x] = 250.0f + 3.5f * (float)x - 2.0f * (float)z; /* 242 .. 271 */
+	dem[2 * W + 3] = -9999.0f;                                                  /* no data */
+	GDALAllRegister();
+	hm_path(path, sizeof(path), "dem.tif");
+	GDALDriverH drv = GDALGetDriverByName("GTiff");
+	CHECK(drv != NULL, "GDAL has the GTiff driver");
+	if (!drv)
+		return;
+	GDALDatasetH ds = GDALCreate(drv, path, W, H, 1, GDT_Float32, NULL);
+	CHECK(ds != NULL, "create %s", path);
+	if (!ds)
+		return;
+	GDALRasterBandH b = GDALGetRasterBand(ds, 1);
+	CHECK(GDALSetRasterNoDataValue(b, -9999.0) == CE_None, "set no-data");
+	CHECK(GDALRasterIO(b, GF_Write, 0, 0, W, H, dem, W, H, GDT_Float32, 0, 0) == CE_None, "write GeoTIFF");
+	GDALClose(ds);
+	struct heightmap hm;
+	CHECK(heightmap_load(path, &hm, err, sizeof(err)) == 0, "load GeoTIFF: %s", err);
+	int bad = 0;
+	for (int i = 0; i < W * H && hm.v; i++) {
+		float want = i == 2 * W + 3 ? 0.0f : (dem[i] - 242.0f) / (271.0f - 242.0f) * 65535.0f;
+		bad += fabsf(hm.v[i] - want) > 0.05f;
+	}
+	CHECK(hm.w == W && hm.h == H && bad == 0, "GeoTIFF %dx%d: %d samples differ from the normalised DEM", hm.w, hm.h,
+	      bad);
+	heightmap_free(&hm);
+	hm_path(path, sizeof(path), "garbage.tif");
+	FILE *f = fopen(path, "w");
+	if (f) {
+		fputs("II*\\0 this is not a TIFF", f);
+		fclose(f);
+	}
+	CHECK(heightmap_load(path, &hm, err, sizeof(err)) < 0 && strstr(err, "garbage.tif") && strstr(err, "GDAL"),
+	      "garbage GeoTIFF refused: %s", err);
+	printf("  GeoTIFF through GDAL: %dx%d Float32 DEM with no-data read and normalised; garbage refused (%s)\n", W,
+	       H, err);
+}
+#endif
+
 static void test_heightmap_cpu(struct params *p, const struct noise_set *ns)
 {
 	char path[256], err[512];
@@ -703,6 +754,9 @@ static void test_heightmap_cpu(struct params *p, const struct noise_set *ns)
 	CHECK(hm.w == HM_W && hm.h == HM_H && bad == 0, "16-bit round trip (%dx%d, %d differ)", hm.w, hm.h, bad);
 	heightmap_free(&hm);
 	CHECK(heightmap_load("x.tif", &hm, err, sizeof(err)) < 0 && strstr(err, "GDAL"), "GeoTIFF: %s", err);
+#ifdef ISOTERRA_HAVE_GDAL
+	test_geotiff();
+#endif
 	/* load through the parameters */
 	char kv[512];
 	snprintf(kv, sizeof(kv), "field=heightmap;heightmap=%s;heightmap_scale=2;heightmap_height=50;heightmap_base=-10;"
