@@ -154,6 +154,14 @@ float carve_ref_theta(float d, float hw, float lam)
 	return psi * psi * psi * (psi * (psi * 6.0f - 15.0f) + 10.0f);
 }
 
+static float seg_d2(const float p[2], const float a[2], const float b[2])
+{
+	float ab[2] = { b[0] - a[0], b[1] - a[1] }, ap[2] = { p[0] - a[0], p[1] - a[1] };
+	float t = clampf((ap[0] * ab[0] + ap[1] * ab[1]) / fmaxf(ab[0] * ab[0] + ab[1] * ab[1], 1e-20f), 0.0f, 1.0f);
+	float dx = ap[0] - ab[0] * t, dz = ap[1] - ab[1] * t;
+	return dx * dx + dz * dz;
+}
+
 static void accumulate(const struct edits *e, const struct params *p, const float pos[2], const int32_t *list,
 		       int count, bool iterative, float out[4])
 {
@@ -170,6 +178,19 @@ static void accumulate(const struct edits *e, const struct params *p, const floa
 		float hix = fmaxf(fmaxf(c[0][0], c[1][0]), c[2][0]) + reach, hiz = fmaxf(fmaxf(c[0][2], c[1][2]), c[2][2]) + reach;
 		if (pos[0] < lox || pos[1] < loz || pos[0] > hix || pos[1] > hiz)
 			continue;
+		/* outside the control triangle and beyond the reach of its edges
+		 * (curves.glsl curve_near) */
+		float q[3][2] = { { c[0][0], c[0][2] }, { c[1][0], c[1][2] }, { c[2][0], c[2][2] } };
+		float e0 = cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], pos[0] - q[0][0], pos[1] - q[0][1]);
+		float e1 = cross2(q[2][0] - q[1][0], q[2][1] - q[1][1], pos[0] - q[1][0], pos[1] - q[1][1]);
+		float e2 = cross2(q[0][0] - q[2][0], q[0][1] - q[2][1], pos[0] - q[2][0], pos[1] - q[2][1]);
+		bool inside = (e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f) || (e0 <= 0.0f && e1 <= 0.0f && e2 <= 0.0f);
+		if (!inside) {
+			float r = reach * 1.001f + 1e-3f;
+			float d2 = fminf(fminf(seg_d2(pos, q[0], q[1]), seg_d2(pos, q[1], q[2])), seg_d2(pos, q[2], q[0]));
+			if (d2 > r * r)
+				continue;
+		}
 		if (iterative)
 			closest_iter(c, pos, cl);
 		else

@@ -205,10 +205,12 @@ static int read_back(GLuint b, GLsizeiptr size, void *out)
 	return ok ? 0 : -1;
 }
 
-/* The 8x8 tiles of the map that overlap the padded box of some quadratic
- * (conservative by one texel), as (tx | ty << 16): outside every padded
- * box every curve's Θ is 0, so the zeroed map is already right there.
- * Returns the count or -1. */
+/* The 8x8 tiles of the map that some quadratic can reach, as (tx | ty <<
+ * 16): a tile inside a quadratic's padded box is taken when its centre is
+ * within w/2 + λ + the tile's half diagonal + one texel (+ a rounding
+ * margin) of the curve (CPU closed form, carve_ref_closest).  A texel no
+ * curve reaches has Θ = 0 everywhere, so the zeroed map is already right
+ * there.  Returns the count or -1. */
 static int bake_tiles(const struct curve_quads *q, const struct bake_opts *o, uint32_t **out)
 {
 	int tx = (o->res[0] + 7) / 8, tz = (o->res[1] + 7) / 8;
@@ -228,12 +230,23 @@ static int bake_tiles(const struct curve_quads *q, const struct bake_opts *o, ui
 		int i0 = i0f < 0 ? 0 : (int)i0f, j0 = j0f < 0 ? 0 : (int)j0f;
 		int i1 = i1f > (float)o->res[0] ? o->res[0] : (int)i1f;
 		int j1 = j1f > (float)o->res[1] ? o->res[1] : (int)j1f;
+		float c[3][4];
+		curve_quads_get(q, k, c);
+		float span = fmaxf(fmaxf(fabsf(box[0]), fabsf(box[2])), fmaxf(fabsf(box[1]), fabsf(box[3])));
+		float reach = q->prm[q->first[k]][0] + q->prm[q->first[k]][1] + 4.0f * hypotf(tw, th) + 1e-4f * span;
 		for (int j = j0 / 8; j1 > j0 && j <= (j1 - 1) / 8; j++)
-			for (int i = i0 / 8; i1 > i0 && i <= (i1 - 1) / 8; i++)
-				if (!mark[(size_t)j * (size_t)tx + (size_t)i]) {
-					mark[(size_t)j * (size_t)tx + (size_t)i] = 1;
-					n++;
-				}
+			for (int i = i0 / 8; i1 > i0 && i <= (i1 - 1) / 8; i++) {
+				if (mark[(size_t)j * (size_t)tx + (size_t)i])
+					continue;
+				float ctr[2] = { o->origin[0] + ((float)i * 8.0f + 4.0f) * tw,
+						 o->origin[1] + ((float)j * 8.0f + 4.0f) * th };
+				float cl[4];
+				carve_ref_closest(c, ctr, cl);
+				if (fabsf(cl[0]) > reach + hypotf(tw, th))
+					continue;
+				mark[(size_t)j * (size_t)tx + (size_t)i] = 1;
+				n++;
+			}
 	}
 	*out = malloc(sizeof(uint32_t) * (size_t)(n ? n : 1));
 	if (!*out) {

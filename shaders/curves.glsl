@@ -172,21 +172,39 @@ float curve_theta(float d, float hw, float lam)
 // height by smoothstep(blend_lo, blend_hi, Θ_closest), then the closest
 // curve's lateral inclination: h -= I |d| / sqrt(I² + 1) · s^exp · side with
 // s = smoothstep(incl_lo, incl_hi, Θ_closest).
-bool curve_near(int f, vec2 pos) // broad phase: within the control triangle's box padded by the reach
+float curve_seg_d2(vec2 p, vec2 a, vec2 b)
+{
+	vec2 ab = b - a, ap = p - a;
+	float t = clamp(dot(ap, ab) / max(dot(ab, ab), 1e-20), 0.0, 1.0);
+	vec2 d = ap - ab * t;
+	return dot(d, d);
+}
+
+// Broad phase: a quadratic lies in its control triangle, so it cannot reach
+// pos when pos is outside the triangle's box padded by the reach, or
+// outside the triangle and farther than the reach (+ a relative margin, so
+// rounding never drops a curve with Θ > 0) from its edges.
+bool curve_near(int f, vec2 pos)
 {
 	vec4 prm = curve_prm[f];
 	vec2 q0 = curve_ctrl[f].xz, q1 = curve_ctrl[f + 1].xz, q2 = curve_ctrl[f + 2].xz;
 	float reach = prm.x + prm.y;
 	vec2 lo = min(min(q0, q1), q2) - reach, hi = max(max(q0, q1), q2) + reach;
-	return !(pos.x < lo.x || pos.y < lo.y || pos.x > hi.x || pos.y > hi.y);
+	if (pos.x < lo.x || pos.y < lo.y || pos.x > hi.x || pos.y > hi.y)
+		return false;
+	float e0 = curve_cross(q1 - q0, pos - q0), e1 = curve_cross(q2 - q1, pos - q1), e2 = curve_cross(q0 - q2, pos - q2);
+	if ((e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0))
+		return true;
+	float r = reach * 1.001 + 1e-3;
+	return min(min(curve_seg_d2(pos, q0, q1), curve_seg_d2(pos, q1, q2)), curve_seg_d2(pos, q2, q0)) <= r * r;
 }
 
 vec4 curve_accumulate(vec2 pos, int start, int count)
 {
 	float sh = 0.0, sw = 0.0;
 	float bd = 1e30, bh = 0.0, bi = 0.0, bth = 0.0, bside = 1.0;
-	// A curve outside its padded box has no influence (and is never nearer
-	// than one that has): skip it.  The box tests run in an inner loop so
+	// A curve that cannot reach pos (curve_near) has no influence (and is
+	// never nearer than one that has): skip it.  The box tests run in an inner loop so
 	// that each invocation only reaches the closed form for its candidates
 	// (SIMD lanes and GPU threads then do max(candidates) solves, not
 	// count).

@@ -10,3 +10,6 @@ $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
 	libegl-dev libgles-dev libpng-dev \
 	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
+# GeoTIFF heightmaps (optional: the build finds GDAL through pkg-config and
+# works without it; with it the GeoTIFF test runs)
+$SUDO apt-get install -y -q --no-install-recommends libgdal-dev
