@@ -29,7 +29,7 @@ static int load_gdal(const char *path, struct heightmap *hm, char *err, size_t e
 	}
 	CPLPushErrorHandler(CPLQuietErrorHandler);
 	CPLErrorReset();
-	GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+	GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, NULL, NULL, NULL);
 	if (!ds) {
 		const char *m = CPLGetLastErrorMsg();
 		snprintf(err, errlen, "heightmap '%s': GDAL cannot read it as a GeoTIFF: %s", path,
