@@ -97,6 +97,12 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 		world_draw(wd, r, &c, &p, t);
 		glFinish();
 		ft[f] = now_ms() - t0;
+		if (getenv("BENCH_TRACE")) { /* per-frame trace: time, blocks drawn, generated so far */
+			struct world_stats s2;
+			world_get_stats(wd, &s2);
+			fprintf(stderr, "frame %d: %.1f ms, %d drawn, %llu generated\n", f, ft[f], s2.drawn,
+				(unsigned long long)s2.generated);
+		}
 	}
 	qsort(ft, (size_t)frames, sizeof(double), cmp_d);
 	struct world_stats st;
