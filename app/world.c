@@ -38,6 +38,7 @@ struct block {
 	double born;         /* time it became drawable (fade in) */
 	float dist;          /* distance to the camera this frame */
 	uint32_t frame;      /* last frame it was wanted */
+	bool visible;        /* in the view frustum (else only prefetched) */
 	int readback;        /* index in the readback ring, or -1 */
 	bool stale;          /* terrain edited under it: regenerate in place */
 	int generations;     /* times generated (tests) */
@@ -64,6 +65,7 @@ struct world {
 	uint32_t cap, count; /* hash table of blocks (open addressing) */
 	struct readback rb[READBACKS];
 	uint32_t frame;
+	double credit_ms;    /* generation budget left (negative: owed) */
 	struct world_stats st;
 	/* this frame's wanted blocks, nearest first */
 	int *want;
@@ -371,8 +373,15 @@ static int push_want(struct world *w, int b)
 /* The blocks this camera wants, nearest first. */
 static int plan(struct world *w, const struct params *p, const struct camera *c)
 {
-	float pl[6][4];
+	/* Blocks are wanted in a frustum widened by `prefetch` (the view turns
+	 * while blocks stream in), drawn only when in the real one. */
+	float pl[6][4], wide[6][4], proj[16], vp[16];
 	frustum(c->viewproj, pl);
+	memcpy(proj, c->proj, sizeof(proj));
+	proj[0] /= p->prefetch;
+	proj[5] /= p->prefetch;
+	mat4_mul(vp, proj, c->view);
+	frustum(vp, wide);
 	w->nwant = 0;
 	for (int lod = 0; lod < p->lod_levels; lod++) {
 		float s = block_world_size(p, lod), range = lod_range(p, lod);
@@ -395,7 +404,7 @@ static int plan(struct world *w, const struct params *p, const struct camera *c)
 					float blo[3], bhi[3];
 					block_aabb(p, k, blo, bhi);
 					float d = aabb_distance(c->eye, blo, bhi);
-					if (d > range || !aabb_visible(pl, blo, bhi))
+					if (d > range || !aabb_visible(wide, blo, bhi))
 						continue;
 					int b = find_block(w, k, true);
 					if (b < 0)
@@ -403,6 +412,7 @@ static int plan(struct world *w, const struct params *p, const struct camera *c)
 					/* pointers may move with a rehash: use indices */
 					w->blocks[b].dist = d;
 					w->blocks[b].frame = w->frame;
+					w->blocks[b].visible = aabb_visible(pl, blo, bhi);
 					if (w->blocks[b].state == B_EMPTY) {
 						w->st.empty_skipped++;
 						continue;
@@ -557,7 +567,6 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 
 int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic)
 {
-	double t0 = now_ms();
 	w->frame++;
 	/* terrain edits (curves / heightmap files changed, or set through the
 	 * API): only the blocks under the changed region are generated again */
@@ -573,15 +582,34 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	if (plan(w, p, c) < 0)
 		return -1;
 	int made = 0;
-	for (int i = 0; i < w->nwant && made < p->gen_per_frame; i++) {
-		int b = w->want[i];
+	bool budgeted = !deterministic && p->gen_budget_ms > 0;
+	/* The budget is a credit: each frame adds gen_budget_ms (banked up to
+	 * one frame's worth), each block spends what it really took.  A block
+	 * that costs more than a frame's budget (a 32^3 block with AO on a
+	 * software rasteriser) is then generated every few frames instead of
+	 * in every frame, and the frame rate holds. */
+	if (budgeted)
+		w->credit_ms = fmin(w->credit_ms + p->gen_budget_ms, p->gen_budget_ms);
+	/* Order: coverage first, then detail.  The coarsest level alone covers
+	 * the whole view (finer blocks lie over it), so its missing blocks come
+	 * first, then the next finer level's; visible blocks before prefetched
+	 * ones; nearest first within each (want[] is sorted by distance). */
+	int n = w->nwant, passes = p->lod_levels * 2;
+	for (int k = 0; k < n * passes && made < p->gen_per_frame; k++) {
+		int pass = k / n, lod = p->lod_levels - 1 - pass % p->lod_levels;
+		bool vis = pass < p->lod_levels;
+		int b = w->want[k % n];
 		struct block *blk = &w->blocks[b];
+		/* a block edited under (stale) is generated again into its own slot */
 		bool regen = blk->stale && blk->slot >= 0 && (blk->state == B_READY || blk->state == B_PENDING);
-		if (blk->state != B_FREE && !regen)
+		if ((blk->state != B_FREE && !regen) || blk->key[3] != lod || blk->visible != vis)
 			continue;
 		if (regen && blk->readback >= 0)
 			continue; /* its previous result is still in flight */
-		if (!deterministic && p->gen_budget_ms > 0 && made > 0 && now_ms() - t0 > p->gen_budget_ms)
+		/* a hole on screen (a visible coarsest block missing) is worse
+		 * than a slow frame: one such block per frame whatever the credit */
+		bool urgent = !regen && vis && lod == p->lod_levels - 1 && made == 0;
+		if (budgeted && w->credit_ms <= 0.0 && !urgent)
 			break;
 		if (free_readback(w) < 0) {
 			collect(w, true);
@@ -591,11 +619,14 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 		int slot = regen ? blk->slot : take_slot(w, blk->dist);
 		if (slot < 0)
 			break; /* pool full of nearer blocks */
+		double tb = now_ms();
 		if (generate(w, p, b, slot, now) < 0)
 			return -1;
 		made++;
-		if (!deterministic && p->gen_budget_ms > 0)
+		if (budgeted) {
 			glFlush();
+			w->credit_ms = fmax(w->credit_ms - (now_ms() - tb), -4.0 * p->gen_budget_ms);
+		}
 	}
 	if (deterministic)
 		collect(w, true);
@@ -621,7 +652,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 	/* want[] is sorted nearest first: front to back */
 	for (int i = 0; i < w->nwant; i++) {
 		struct block *blk = &w->blocks[w->want[i]];
-		if ((blk->state != B_READY && blk->state != B_PENDING) || blk->slot < 0)
+		if ((blk->state != B_READY && blk->state != B_PENDING) || blk->slot < 0 || !blk->visible)
 			continue;
 		float fade = 1.0f;
 		int lod = blk->key[3];

@@ -60,6 +60,9 @@ struct autopilot {
 	float pos[3], dir[3];     /* position, unit heading */
 	float yaw, pitch;         /* heading angles, radians */
 	float min_clearance_seen; /* most negative margin to rock seen (tests) */
+	bool manual;              /* steered by autopilot_steer (camera=manual) */
+	float in_move[3];         /* held input: forward, right, up (-1..1) */
+	float in_turn[2];         /* held input: yaw right, pitch up (-1..1) */
 	const struct params *p;
 	struct noise_set *ns;
 };
@@ -67,6 +70,9 @@ int autopilot_init(struct autopilot *a, const struct params *p);
 void autopilot_free(struct autopilot *a);
 /* Advances the fixed-step simulation to time t (deterministic). */
 void autopilot_advance(struct autopilot *a, double t);
+/* Manual flight from now on: holds this input (forward, right, up; yaw,
+ * pitch; each -1..1) until the next call.  Still never enters rock. */
+void autopilot_steer(struct autopilot *a, const float move[3], const float turn[2]);
 /* Camera looking along the heading (slightly down). */
 void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far);
 
