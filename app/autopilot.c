@@ -74,9 +74,55 @@ void autopilot_free(struct autopilot *a)
 	a->ns = NULL;
 }
 
+/* Manual flight (camera=manual): the held input moves and turns the camera;
+ * the same collision rule applies, so a developer cannot fly into rock
+ * either: a move that would come within fly_clearance of rock is tried
+ * without its vertical part, then horizontally only along each axis, and
+ * otherwise not taken. */
+static void step_manual(struct autopilot *a)
+{
+	const struct params *p = a->p;
+	float rate = 1.2f * (float)STEP;
+	a->yaw += a->in_turn[0] * rate;
+	a->pitch = fmaxf(-1.4f, fminf(1.4f, a->pitch + a->in_turn[1] * rate));
+	heading(a->yaw, a->pitch, a->dir);
+	float right[3] = { -sinf(a->yaw), 0.0f, cosf(a->yaw) };
+	float v = p->fly_speed * (float)STEP, mv[3];
+	for (int k = 0; k < 3; k++)
+		mv[k] = (a->dir[k] * a->in_move[0] + right[k] * a->in_move[1]) * v;
+	mv[1] += a->in_move[2] * v;
+	const float tries[4][3] = { { 1, 1, 1 }, { 1, 0, 1 }, { 1, 0, 0 }, { 0, 0, 1 } };
+	for (int i = 0; i < 4; i++) {
+		float next[3];
+		for (int k = 0; k < 3; k++)
+			next[k] = a->pos[k] + mv[k] * tries[i][k];
+		if (dens(a, next) <= -p->fly_clearance || dens(a, next) < dens(a, a->pos)) {
+			memcpy(a->pos, next, sizeof(next));
+			break;
+		}
+	}
+}
+
+void autopilot_steer(struct autopilot *a, const float move[3], const float turn[2])
+{
+	a->manual = true;
+	for (int k = 0; k < 3; k++)
+		a->in_move[k] = fmaxf(-1.0f, fminf(1.0f, move[k]));
+	for (int k = 0; k < 2; k++)
+		a->in_turn[k] = fmaxf(-1.0f, fminf(1.0f, turn[k]));
+}
+
 static void step(struct autopilot *a)
 {
 	const struct params *p = a->p;
+	if (a->manual) {
+		step_manual(a);
+		float margin = -dens(a, a->pos);
+		if (margin < a->min_clearance_seen)
+			a->min_clearance_seen = margin;
+		a->t += STEP;
+		return;
+	}
 	float t = (float)a->t;
 	float seedph = (float)(p->seed % 1000) * 0.137f;
 	/* wandering wish: slow, seeded, deterministic */
@@ -105,7 +151,7 @@ static void step(struct autopilot *a)
 		climb = 0.35f;
 	else if (here < -2.5f * p->fly_height)
 		climb = -0.25f;
-	float rate = 1.5f * (float)STEP; /* rad per step */
+	float rate = 0.3f * (float)STEP; /* rad per step: a calm, cinematic turn */
 	float dyaw = remainderf(best_yaw - a->yaw, 2.0f * (float)M_PI);
 	a->yaw += fmaxf(-rate, fminf(rate, dyaw));
 	float tp = fmaxf(best_pitch, 0.0f) + climb;

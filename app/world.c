@@ -19,6 +19,7 @@
  * a 16-byte copy of its status: empty blocks are remembered, get no slot
  * and are never generated again. */
 #include "world.h"
+#include "edits.h"
 #include "gpu.h"
 #include "log.h"
 #include "pipeline.h"
@@ -37,7 +38,10 @@ struct block {
 	double born;         /* time it became drawable (fade in) */
 	float dist;          /* distance to the camera this frame */
 	uint32_t frame;      /* last frame it was wanted */
+	bool visible;        /* in the view frustum (else only prefetched) */
 	int readback;        /* index in the readback ring, or -1 */
+	bool stale;          /* terrain edited under it: regenerate in place */
+	int generations;     /* times generated (tests) */
 };
 
 struct readback {
@@ -61,6 +65,7 @@ struct world {
 	uint32_t cap, count; /* hash table of blocks (open addressing) */
 	struct readback rb[READBACKS];
 	uint32_t frame;
+	double credit_ms;    /* generation budget left (negative: owed) */
 	struct world_stats st;
 	/* this frame's wanted blocks, nearest first */
 	int *want;
@@ -98,6 +103,8 @@ static int find_block(struct world *w, const int k[4], bool create)
 			b->state = B_FREE;
 			b->slot = -1;
 			b->readback = -1;
+			b->stale = false;
+			b->generations = 0;
 			w->count++;
 			return (int)i;
 		}
@@ -313,6 +320,21 @@ static void height_band(const struct params *p, const float eye[3], float range,
 	*yhi = reach;
 	if (p->floor_strength > 0 && p->floor_y - 1.0f > *ylo)
 		*ylo = p->floor_y - 1.0f;
+	/* terrain edits: the heightmap's own range; curves put the surface at
+	 * their heights (cut and fill) */
+	static int field_heightmap = -1;
+	if (field_heightmap < 0)
+		field_heightmap = params_enum_index(params_find("field"), "heightmap");
+	if (p->field == field_heightmap) {
+		float extra = p->heightmap_detail + 1.6f * p->heightmap_noise * p->noise_amp + p->warp_amp + 1.0f;
+		*ylo = fminf(*ylo, p->heightmap_base - extra);
+		*yhi = fmaxf(*yhi, p->heightmap_base + p->heightmap_height + extra);
+	}
+	const struct curve_quads *q = &edits_get()->quads;
+	for (int i = 0; i < q->nctrl; i++) {
+		*ylo = fminf(*ylo, q->ctrl[i][1] - 1.0f);
+		*yhi = fmaxf(*yhi, q->ctrl[i][1] + 1.0f);
+	}
 }
 
 static int cmp_want(const void *a, const void *b, void *ctx);
@@ -351,8 +373,15 @@ static int push_want(struct world *w, int b)
 /* The blocks this camera wants, nearest first. */
 static int plan(struct world *w, const struct params *p, const struct camera *c)
 {
-	float pl[6][4];
+	/* Blocks are wanted in a frustum widened by `prefetch` (the view turns
+	 * while blocks stream in), drawn only when in the real one. */
+	float pl[6][4], wide[6][4], proj[16], vp[16];
 	frustum(c->viewproj, pl);
+	memcpy(proj, c->proj, sizeof(proj));
+	proj[0] /= p->prefetch;
+	proj[5] /= p->prefetch;
+	mat4_mul(vp, proj, c->view);
+	frustum(vp, wide);
 	w->nwant = 0;
 	for (int lod = 0; lod < p->lod_levels; lod++) {
 		float s = block_world_size(p, lod), range = lod_range(p, lod);
@@ -375,7 +404,7 @@ static int plan(struct world *w, const struct params *p, const struct camera *c)
 					float blo[3], bhi[3];
 					block_aabb(p, k, blo, bhi);
 					float d = aabb_distance(c->eye, blo, bhi);
-					if (d > range || !aabb_visible(pl, blo, bhi))
+					if (d > range || !aabb_visible(wide, blo, bhi))
 						continue;
 					int b = find_block(w, k, true);
 					if (b < 0)
@@ -383,6 +412,7 @@ static int plan(struct world *w, const struct params *p, const struct camera *c)
 					/* pointers may move with a rehash: use indices */
 					w->blocks[b].dist = d;
 					w->blocks[b].frame = w->frame;
+					w->blocks[b].visible = aabb_visible(pl, blo, bhi);
 					if (w->blocks[b].state == B_EMPTY) {
 						w->st.empty_skipped++;
 						continue;
@@ -459,7 +489,12 @@ static void collect(struct world *w, bool wait)
 		/* status words 20..23: triangles needed, vertices needed, written */
 		if (v[0] > w->tcap || v[1] > w->vcap)
 			w->st.overflowed++;
-		if (m && v[0] == 0) {
+		if (m && v[0] == 0 && blk->stale) {
+			/* edited since: the empty result is stale, ask again */
+			blk->state = B_FREE;
+			blk->stale = false;
+			free_slot(w, (int)(blk - w->blocks));
+		} else if (m && v[0] == 0) {
 			blk->state = B_EMPTY;
 			free_slot(w, (int)(blk - w->blocks));
 			w->st.empty_found++;
@@ -505,10 +540,14 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 	q.closed = false;
 	if (pipeline_run(w->pl, &q) < 0)
 		return -1;
+	bool in_place = blk->stale && blk->slot == slot;
 	blk->slot = slot;
 	w->slot_block[slot] = b;
 	blk->state = B_PENDING;
-	blk->born = now;
+	if (!in_place)
+		blk->born = now; /* a regenerated block does not fade in again */
+	blk->stale = false;
+	blk->generations++;
 	w->st.generated++;
 	int r = free_readback(w);
 	if (r >= 0) {
@@ -528,31 +567,66 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 
 int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic)
 {
-	double t0 = now_ms();
 	w->frame++;
+	/* terrain edits (curves / heightmap files changed, or set through the
+	 * API): only the blocks under the changed region are generated again */
+	char err[512];
+	if (edits_load(p, err, sizeof(err)) < 0) {
+		log_error("%s", err);
+		return -1;
+	}
+	float xz[4];
+	if (edits_take_changes(xz))
+		world_invalidate(w, p, xz);
 	collect(w, false);
 	if (plan(w, p, c) < 0)
 		return -1;
 	int made = 0;
-	for (int i = 0; i < w->nwant && made < p->gen_per_frame; i++) {
-		int b = w->want[i];
-		if (w->blocks[b].state != B_FREE)
+	bool budgeted = !deterministic && p->gen_budget_ms > 0;
+	/* The budget is a credit: each frame adds gen_budget_ms (banked up to
+	 * one frame's worth), each block spends what it really took.  A block
+	 * that costs more than a frame's budget (a 32^3 block with AO on a
+	 * software rasteriser) is then generated every few frames instead of
+	 * in every frame, and the frame rate holds. */
+	if (budgeted)
+		w->credit_ms = fmin(w->credit_ms + p->gen_budget_ms, p->gen_budget_ms);
+	/* Order: coverage first, then detail.  The coarsest level alone covers
+	 * the whole view (finer blocks lie over it), so its missing blocks come
+	 * first, then the next finer level's; visible blocks before prefetched
+	 * ones; nearest first within each (want[] is sorted by distance). */
+	int n = w->nwant, passes = p->lod_levels * 2;
+	for (int k = 0; k < n * passes && made < p->gen_per_frame; k++) {
+		int pass = k / n, lod = p->lod_levels - 1 - pass % p->lod_levels;
+		bool vis = pass < p->lod_levels;
+		int b = w->want[k % n];
+		struct block *blk = &w->blocks[b];
+		/* a block edited under (stale) is generated again into its own slot */
+		bool regen = blk->stale && blk->slot >= 0 && (blk->state == B_READY || blk->state == B_PENDING);
+		if ((blk->state != B_FREE && !regen) || blk->key[3] != lod || blk->visible != vis)
 			continue;
-		if (!deterministic && p->gen_budget_ms > 0 && made > 0 && now_ms() - t0 > p->gen_budget_ms)
+		if (regen && blk->readback >= 0)
+			continue; /* its previous result is still in flight */
+		/* a hole on screen (a visible coarsest block missing) is worse
+		 * than a slow frame: one such block per frame whatever the credit */
+		bool urgent = !regen && vis && lod == p->lod_levels - 1 && made == 0;
+		if (budgeted && w->credit_ms <= 0.0 && !urgent)
 			break;
 		if (free_readback(w) < 0) {
 			collect(w, true);
 			if (free_readback(w) < 0)
 				break;
 		}
-		int slot = take_slot(w, w->blocks[b].dist);
+		int slot = regen ? blk->slot : take_slot(w, blk->dist);
 		if (slot < 0)
 			break; /* pool full of nearer blocks */
+		double tb = now_ms();
 		if (generate(w, p, b, slot, now) < 0)
 			return -1;
 		made++;
-		if (!deterministic && p->gen_budget_ms > 0)
+		if (budgeted) {
 			glFlush();
+			w->credit_ms = fmax(w->credit_ms - (now_ms() - tb), -4.0 * p->gen_budget_ms);
+		}
 	}
 	if (deterministic)
 		collect(w, true);
@@ -578,7 +652,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 	/* want[] is sorted nearest first: front to back */
 	for (int i = 0; i < w->nwant; i++) {
 		struct block *blk = &w->blocks[w->want[i]];
-		if ((blk->state != B_READY && blk->state != B_PENDING) || blk->slot < 0)
+		if ((blk->state != B_READY && blk->state != B_PENDING) || blk->slot < 0 || !blk->visible)
 			continue;
 		float fade = 1.0f;
 		int lod = blk->key[3];
@@ -601,6 +675,53 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 			  c->eye[2] + p->view_distance };
 	renderer_water(r, c, p, rect);
 	return renderer_end(r);
+}
+
+int world_invalidate(struct world *w, const struct params *p, const float xz[4])
+{
+	int marked = 0;
+	for (uint32_t i = 0; i < w->cap; i++) {
+		struct block *blk = &w->blocks[i];
+		if (blk->key[3] < 0 || blk->state == B_FREE)
+			continue;
+		/* what the block's generation reads: its cells, the density margin
+		 * (normals, short AO rays) and the long AO rays */
+		float lo[3], hi[3];
+		block_aabb(p, blk->key, lo, hi);
+		float cell = block_world_size(p, blk->key[3]) / (float)w->n;
+		float pad = (float)(1 + AO_MARGIN + 1) * cell;
+		if (p->ao_rays > 0)
+			pad += (float)p->ao_long_steps * p->ao_long_step;
+		if (hi[0] + pad < xz[0] || lo[0] - pad > xz[2] || hi[2] + pad < xz[1] || lo[2] - pad > xz[3])
+			continue;
+		if (blk->state == B_EMPTY) {
+			blk->state = B_FREE; /* may not be empty any more */
+		} else if (blk->slot >= 0) {
+			blk->stale = true;
+		} else {
+			blk->state = B_FREE;
+		}
+		marked++;
+	}
+	w->st.invalidated += (uint64_t)marked;
+	return marked;
+}
+
+int world_block_generations(const struct world *w, int lod, const int idx[3], int *state)
+{
+	int k[4] = { idx[0], idx[1], idx[2], lod };
+	uint32_t mask = w->cap - 1;
+	for (uint32_t i = hash_key(k) & mask;; i = (i + 1) & mask) {
+		const struct block *b = &w->blocks[i];
+		if (b->key[3] < 0) {
+			*state = 0;
+			return -1;
+		}
+		if (!memcmp(b->key, k, sizeof(b->key))) {
+			*state = (int)b->state;
+			return b->generations;
+		}
+	}
 }
 
 void world_get_stats(const struct world *w, struct world_stats *st)

@@ -20,6 +20,7 @@ struct world_stats {
 	uint64_t empty_skipped;   /* requests skipped because known empty */
 	uint64_t evicted;         /* slots taken back from a farther block */
 	uint64_t overflowed;      /* blocks that hit the slot capacity */
+	uint64_t invalidated;     /* blocks marked for regeneration by terrain edits */
 	int ready, pending, empty_known, drawn, wanted;
 };
 
@@ -35,6 +36,19 @@ int world_fill(struct world *w, const struct params *p, const struct camera *c, 
 int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now);
 void world_get_stats(const struct world *w, struct world_stats *st);
 
+/* Terrain edits (curves, heightmap; app/edits.h): marks every known block
+ * whose density samples (the block, its sample margin and the reach of its
+ * ambient-occlusion rays) overlap the world XZ box (xmin, zmin, xmax, zmax)
+ * for regeneration.  A drawable block keeps its mesh until the new one
+ * replaces it in the same slot; a block known to be empty is forgotten (an
+ * embankment may fill it).  world_update() calls it itself with the region
+ * edits_take_changes() reports, so an edit re-generates only the affected
+ * blocks.  Returns the number of blocks marked. */
+int world_invalidate(struct world *w, const struct params *p, const float xz[4]);
+/* Test hook: how many times block (lod, idx) was generated, its state
+ * (0 unknown/free, 1 pending, 2 ready, 3 empty) in *state; -1 if unknown. */
+int world_block_generations(const struct world *w, int lod, const int idx[3], int *state);
+
 /* Test hooks: generate one block (lod, index) into a scratch slot and read
  * its mesh back (positions/normals; indices local). 0/-1. */
 int world_block_mesh(struct world *w, const struct params *p, int lod, const int idx[3], struct mesh *m);
@@ -46,6 +60,9 @@ struct autopilot {
 	float pos[3], dir[3];     /* position, unit heading */
 	float yaw, pitch;         /* heading angles, radians */
 	float min_clearance_seen; /* most negative margin to rock seen (tests) */
+	bool manual;              /* steered by autopilot_steer (camera=manual) */
+	float in_move[3];         /* held input: forward, right, up (-1..1) */
+	float in_turn[2];         /* held input: yaw right, pitch up (-1..1) */
 	const struct params *p;
 	struct noise_set *ns;
 };
@@ -53,6 +70,9 @@ int autopilot_init(struct autopilot *a, const struct params *p);
 void autopilot_free(struct autopilot *a);
 /* Advances the fixed-step simulation to time t (deterministic). */
 void autopilot_advance(struct autopilot *a, double t);
+/* Manual flight from now on: holds this input (forward, right, up; yaw,
+ * pitch; each -1..1) until the next call.  Still never enters rock. */
+void autopilot_steer(struct autopilot *a, const float move[3], const float turn[2]);
 /* Camera looking along the heading (slightly down). */
 void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far);
 

@@ -10,25 +10,13 @@
  * usage: bench_pipeline [--quick] [--platform NAME] [--sizes 64,128,256]
  * Times are wall-clock around glFinish(), median of repeated runs. */
 #include "app.h"
+#include "bench.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
-
-static double now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
 
 enum what { DENSITY_ONLY, FULL };
 
@@ -37,44 +25,23 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 {
 	double t[64];
 	int n = 0;
-	double start = now_ms();
+	double start = bench_now_ms();
 	/* warm-up (shader JIT, first-touch of buffers) */
 	if (w == DENSITY_ONLY)
 		pipeline_density(pl, p);
 	else
 		pipeline_run(pl, p);
 	glFinish();
-	while (n < 64 && (n < min_reps || now_ms() - start < budget)) {
-		double t0 = now_ms();
+	while (n < 64 && (n < min_reps || bench_now_ms() - start < budget)) {
+		double t0 = bench_now_ms();
 		int rc = w == DENSITY_ONLY ? pipeline_density(pl, p) : pipeline_run(pl, p);
 		glFinish();
 		if (rc < 0)
 			return -1;
-		t[n++] = now_ms() - t0;
+		t[n++] = bench_now_ms() - t0;
 	}
-	qsort(t, (size_t)n, sizeof(double), cmp_d);
+	qsort(t, (size_t)n, sizeof(double), bench_cmp_double);
 	return t[n / 2];
-}
-
-static void machine(const struct gpu_caps *caps)
-{
-	char cpu[256] = "unknown CPU";
-	FILE *f = fopen("/proc/cpuinfo", "r");
-	if (f) {
-		char line[512];
-		while (fgets(line, sizeof(line), f))
-			if (!strncmp(line, "model name", 10)) {
-				char *c = strchr(line, ':');
-				if (c) {
-					snprintf(cpu, sizeof(cpu), "%s", c + 2);
-					cpu[strcspn(cpu, "\n")] = 0;
-				}
-				break;
-			}
-		fclose(f);
-	}
-	printf("machine: %s, %ld cores\n", cpu, sysconf(_SC_NPROCESSORS_ONLN));
-	printf("GL: %s | %s\n", caps->renderer, caps->version);
 }
 
 int main(int argc, char **argv)
@@ -109,7 +76,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;
 	}
-	machine(&caps);
+	bench_print_machine(&caps);
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 

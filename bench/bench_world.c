@@ -8,6 +8,7 @@
  *  3. peak resident memory.
  * usage: bench_world [--quick] [--platform NAME] */
 #include "app.h"
+#include "bench.h"
 #include "world.h"
 
 #include <stdio.h>
@@ -16,19 +17,6 @@
 #include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
-
-static double now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
 
 /* blocks/s over a 8 x 2 x 8 slab of blocks around the ground */
 static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
@@ -50,7 +38,7 @@ static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
 	pipeline_run(pl, &q); /* warm-up: shader compilation */
 	glFinish();
 	*tris = 0;
-	double t0 = now_ms();
+	double t0 = bench_now_ms();
 	int done = 0;
 	for (int i = 0; i < nb; i++) {
 		g.base[0] = (i % 8) * g.nx;
@@ -61,7 +49,7 @@ static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
 		done++;
 	}
 	glFinish();
-	double t = now_ms() - t0;
+	double t = bench_now_ms() - t0;
 	struct extract_stats st;
 	pipeline_read_stats(pl, &st);
 	*tris = st.triangles;
@@ -87,18 +75,24 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 	autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
 	double *ft = malloc(sizeof(double) * (size_t)frames);
-	double start = now_ms();
+	double start = bench_now_ms();
 	for (int f = 0; f < frames; f++) {
-		double t0 = now_ms();
+		double t0 = bench_now_ms();
 		double t = (t0 - start) / 1e3;
 		autopilot_advance(&ap, t);
 		autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
 		world_update(wd, &p, &c, t, false);
 		world_draw(wd, r, &c, &p, t);
 		glFinish();
-		ft[f] = now_ms() - t0;
+		ft[f] = bench_now_ms() - t0;
+		if (getenv("BENCH_TRACE")) { /* per-frame trace: time, blocks drawn, generated so far */
+			struct world_stats s2;
+			world_get_stats(wd, &s2);
+			fprintf(stderr, "frame %d: %.1f ms, %d drawn, %llu generated\n", f, ft[f], s2.drawn,
+				(unsigned long long)s2.generated);
+		}
 	}
-	qsort(ft, (size_t)frames, sizeof(double), cmp_d);
+	qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
 	struct world_stats st;
 	world_get_stats(wd, &st);
 	printf("  %4dx%-4d  %4d frames  p50 %7.1f ms (%5.1f fps)  p99 %7.1f ms  blocks drawn %d, generated %llu\n", w,
@@ -133,8 +127,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;
 	}
-	long cores = sysconf(_SC_NPROCESSORS_ONLN);
-	printf("machine: %ld cores; GL: %s | %s\n", cores, caps.renderer, caps.version);
+	bench_print_machine(&caps);
 	struct params p;
 	params_defaults(&p);
 	p.scene = 1;

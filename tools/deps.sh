@@ -16,3 +16,6 @@ $SUDO apt-get install -y -q --no-install-recommends \
 $SUDO apt-get install -y -q --no-install-recommends \
 	libgpiod-dev v4l-utils make \
 	qemu-system-x86 busybox-static cpio kmod linux-image-amd64 linux-headers-amd64 linux-source-6.1
+# GeoTIFF heightmaps (optional: the build finds GDAL through pkg-config and
+# works without it; with it the GeoTIFF test runs)
+$SUDO apt-get install -y -q --no-install-recommends libgdal-dev
