@@ -3,15 +3,16 @@
 # QEMU, vivid with a capture and an output node (node_types=0x101), both on
 # their HDMI connector with the output's DV timing (1280x720), "Loop Video"
 # on and vivid's text overlay off.  isoterra renders headless in the guest and
-# renders frames an eighth of that (software rendering in the guest is
+# renders frames a quarter of that (software rendering in the guest is
 # slow) and streams every one to the output node (--v4l2, YUYV, BT.601
-# limited, GPU conversion, scaled up to the device's size); on the capture
-# side 8x8 blocks are averaged back down for the comparison; the frames that come back on the capture node must match the
+# limited, GPU conversion); vivid scales them 4x onto the HDMI timing, so on
+# the capture side 4x4 blocks are averaged back down for the comparison; the frames that come back on the capture node must match the
 # app's own rendered frame (its PNG of the same frame): the capture is
 # converted back to RGB on the CPU (hal_probe compare) and the PSNR must
 # reach MIN_PSNR.  Negative control: a capture taken before the app streams
 # (vivid's test pattern) must not match.  Also: the capture node given as
-# --v4l2 is refused with a clear message and rendering goes on.
+# --v4l2 is refused with one clear message (exit 2), and an output node
+# another program streams to is reported busy while the frames are rendered.
 # usage: v4l2_loop.sh ISOTERRA HAL_PROBE BUILD_DIR [sanitize]
 BIN=$1
 PROBE=$2

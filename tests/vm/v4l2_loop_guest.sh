@@ -34,21 +34,36 @@ v4l2-ctl -d $CAP --set-dv-bt-timings index=$IDX &&
 	v4l2-ctl -d $CAP --set-ctrl=loop_video=1 && v4l2-ctl -d $CAP --set-ctrl=osd_text_mode=2 ||
 	die "configuring vivid failed"
 echo "$OW $OH" >$R/size
-# the app renders an eighth of that (software rendering in the guest is slow)
-SW=$((OW / 8)) SH=$((OH / 8))
+# the app renders a quarter of that (software rendering in the guest is
+# slow); vivid scales the output up to 4x
+SW=$((OW / 4)) SH=$((OH / 4))
 echo "guest: HDMI ${OW}x$OH on both sides (timing $IDX), the app renders ${SW}x$SH"
 capture() { v4l2-ctl -d $CAP --stream-mmap=3 --stream-count=3 --stream-to="$1" 2>&1 | tail -1; }
 capture $R/before.yuv
 [ -s $R/before.yuv ] && ok "capture before the app: $(wc -c <$R/before.yuv) bytes" || die "capture failed"
 
-# format refused: the capture node is no output; the app says so and renders on
-"$BIN" --platform surfaceless --size 64x48 --grid 8 --count 2 --cam-spin 0 --no-water --keyboard off \
-	--v4l2 $CAP --out $R/refused.png >$R/refused.log 2>&1
+# not an output: the capture node is refused with one clear message (bad
+# configuration: exit 2)
+"$BIN" --platform surfaceless --size 64x48 --grid 8 --count 2 --keyboard off --v4l2 $CAP \
+	--out $R/refused.png >$R/refused.log 2>&1
 rc=$?
-if [ $rc -eq 0 ] && [ -s $R/refused.png ] && grep -q "v4l2.*$CAP" $R/refused.log; then
-	ok "capture node refused, frames rendered anyway: $(grep "v4l2" $R/refused.log | head -1)"
-else
+[ $rc -eq 2 ] && grep -q "v4l2 $CAP .*not a video output" $R/refused.log &&
+	ok "capture node refused: $(grep "error" $R/refused.log | head -1)" ||
 	bad "capture node as --v4l2: rc $rc: $(cat $R/refused.log)"
+# busy: another program streams to the output node; the app says so once
+# and renders its frames anyway
+v4l2-ctl -d $OUT --stream-out-mmap --stream-count=100000 >/dev/null 2>&1 &
+OTHER=$!
+sleep 2
+"$BIN" --platform surfaceless --size 64x48 --grid 8 --count 2 --cam-spin 0 --no-water --keyboard off \
+	--v4l2 $OUT --out $R/busy.png >$R/busy.log 2>&1
+rc=$?
+kill $OTHER
+wait $OTHER
+if [ $rc -eq 0 ] && [ -s $R/busy.png ] && grep -qi "busy" $R/busy.log; then
+	ok "busy device reported, frames rendered: $(grep -i busy $R/busy.log | head -1)"
+else
+	bad "busy output: rc $rc: $(cat $R/busy.log)"
 fi
 
 # the app streams to the output node until SIGTERM
