@@ -17,7 +17,11 @@
 BIN=$1
 PROBE=$2
 BUILD=$3
-MIN_PSNR=30
+# vivid scales the 4x smaller frames up with its own coarse scaler (not
+# block-exact: it softens and shifts edges by a line), and YUYV halves the
+# chroma: the looped frame measured 21.6 dB against the app's frame, vivid's
+# test pattern 9.4 dB.  The threshold sits between the two.
+MIN_PSNR=18
 [ "${4:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $4)"; exit 77; }
 HERE=$(cd "$(dirname "$0")" && pwd)
 HALVM_CACHE="$BUILD/hal-vm-cache"
