@@ -5,6 +5,7 @@
 #include "log.h"
 #include "ply.h"
 #include "platform.h"
+#include "display.h" /* issue 4: display platforms */
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,7 +49,9 @@ int run_headless(const struct params *p_in)
 	log_set_level(p.verbose ? LOG_DEBUG : LOG_INFO);
 	shader_set_dir(p.shader_dir);
 
-	struct platform_options po = { .name = p.platform, .width = w, .height = h, .debug = p.verbose };
+	struct platform_options po = { .name = p.platform, .width = w, .height = h, .debug = p.verbose,
+		.fullscreen = p.fullscreen, .hide_cursor = p.hide_cursor, .drm_device = p.drm_device,
+		.mode = p.mode, .kms_legacy = p.kms_legacy };
 	struct platform *plat = platform_open(&po, err, sizeof(err));
 	if (!plat) {
 		log_error("%s", err);
@@ -57,6 +60,18 @@ int run_headless(const struct params *p_in)
 	int rc = 1;
 	struct pipeline *pl = NULL;
 	struct renderer *r = NULL;
+	/* issue 4: display platforms render at the window's / mode's size */
+	struct display_loop disp;
+	display_begin(&disp, plat, &p);
+	if (plat->headless && p.count == 0) {
+		log_error("--count 0 (until closed) needs a display platform (gbm, wayland, x11), not '%s'",
+			  plat->backend->name);
+		goto out;
+	}
+	if (!plat->headless) {
+		w = plat->width;
+		h = plat->height;
+	}
 	struct gpu_caps caps;
 	if (gpu_init(&caps, p.verbose, err, sizeof(err)) < 0) {
 		log_error("%s", err);
@@ -78,7 +93,8 @@ int run_headless(const struct params *p_in)
 	struct pipeline_draw d;
 	struct camera cam;
 	float t0 = p.time;
-	for (int f = 0; f < p.count; f++) {
+	int frames = 0;
+	for (int f = 0; p.count == 0 || f < p.count; f++, frames++) {
 		float t = (float)f / p.fps;
 		p.time = t0 + t;
 		if (pipeline_run(pl, &p) < 0)
@@ -101,7 +117,15 @@ int run_headless(const struct params *p_in)
 				goto out;
 			}
 		}
-		if (platform_present(plat) < 0) {
+		if (!plat->headless) { /* issue 4: blit, present, events, signals */
+			int q = display_frame(&disp, plat, &r, &w, &h);
+			if (q < 0)
+				goto out;
+			if (q > 0) {
+				frames++;
+				break;
+			}
+		} else if (platform_present(plat) < 0) {
 			log_error("presenting the frame failed");
 			goto out;
 		}
@@ -113,8 +137,9 @@ int run_headless(const struct params *p_in)
 				 "output clamped (raise --max-triangles / --max-vertices)",
 				 (unsigned long long)st.triangles_needed, (unsigned long long)st.vertices_needed,
 				 st.triangle_capacity, st.vertex_capacity);
-		log_info("%d frame(s) %dx%d, grid %d^3: %u triangles, %u vertices -> %s", p.count, w, h, p.grid,
-			 st.triangles, st.vertices, per_frame ? p.out : name);
+		log_info("%d frame(s) %dx%d, grid %d^3: %u triangles, %u vertices -> %s", frames, w, h, p.grid,
+			 st.triangles, st.vertices,
+			 per_frame ? p.out : frames == p.count ? name : "(stopped early: no image)");
 	}
 	if (p.export_mesh[0]) {
 		struct mesh m;
@@ -134,6 +159,7 @@ out:
 	renderer_destroy(r);
 	pipeline_destroy(pl);
 	platform_close(plat);
+	display_end(&disp);
 	return rc;
 }
 
