@@ -315,19 +315,28 @@ static int choose_window_config(struct platform *p, EGLint renderable, EGLint vi
 		egl_fail(err, errlen, "eglChooseConfig");
 		return -1;
 	}
-	int pick = -1;
+	/* With a visual: that one.  Otherwise 8-bit RGB without alpha (the
+	 * first configs are the deepest, e.g. 10-bit XRGB2101010, which some
+	 * compositors show wrongly), then 8-bit RGB with alpha, then any. */
+	int pick = -1, pick_alpha = -1;
 	for (EGLint i = 0; i < n && pick < 0; i++) {
-		EGLint id = 0, alpha = 0;
+		EGLint id = 0, r = 0, g = 0, b = 0, alpha = 0;
 		if (!eglGetConfigAttrib(p->dpy, configs[i], EGL_NATIVE_VISUAL_ID, &id) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_RED_SIZE, &r) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_GREEN_SIZE, &g) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_BLUE_SIZE, &b) ||
 		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_ALPHA_SIZE, &alpha)) {
 			egl_fail(err, errlen, "eglGetConfigAttrib");
 			return -1;
 		}
-		if (visual ? id == visual : alpha == 0)
+		bool rgb8 = r == 8 && g == 8 && b == 8;
+		if (visual ? id == visual : rgb8 && alpha == 0)
 			pick = (int)i;
+		else if (!visual && rgb8 && pick_alpha < 0)
+			pick_alpha = (int)i;
 	}
-	if (pick < 0 && !visual && n > 0)
-		pick = 0;
+	if (pick < 0 && !visual)
+		pick = pick_alpha >= 0 ? pick_alpha : n > 0 ? 0 : -1;
 	if (pick < 0) {
 		if (visual)
 			snprintf(err, errlen, "no EGLConfig for OpenGL ES 3 windows matches native visual 0x%x "
@@ -337,6 +346,10 @@ static int choose_window_config(struct platform *p, EGLint renderable, EGLint vi
 		return -1;
 	}
 	p->config = configs[pick];
+	EGLint id = 0, alpha = 0;
+	eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, &id);
+	eglGetConfigAttrib(p->dpy, p->config, EGL_ALPHA_SIZE, &alpha);
+	log_debug("EGL window config %d of %d: native visual 0x%x, alpha %d", pick, (int)n, (unsigned)id, (int)alpha);
 	return 0;
 }
 
