@@ -9,4 +9,11 @@ $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
 	libegl-dev libgles-dev libpng-dev \
-	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
+	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev \
+	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev
+# the display tests: X11 in Xvfb, Wayland in Weston, KMS in a real kernel
+# under QEMU (tests/display, tests/vm)
+$SUDO apt-get install -y -q --no-install-recommends \
+	xvfb x11-apps weston \
+	qemu-system-x86 busybox-static linux-image-amd64 kmod cpio python3 \
+	kmscube glmark2-es2-drm
