@@ -160,8 +160,8 @@ static int validate(const struct params *p, char *err, size_t errlen)
 		snprintf(err, errlen, "size: '%s' is not WxH with W and H in 16..16384", p->size);
 		return -1;
 	}
-	if (!ends_with(p->out, ".png")) {
-		snprintf(err, errlen, "out: '%s' must end in .png", p->out);
+	if (!ends_with(p->out, ".png") && !ends_with(p->out, ".y4m") && strcmp(p->out, "-") != 0) {
+		snprintf(err, errlen, "out: '%s' must end in .png or .y4m (or be - for a Y4M stream on stdout)", p->out);
 		return -1;
 	}
 	if (p->export_mesh[0] && !ends_with(p->export_mesh, ".ply")) {
@@ -188,7 +188,8 @@ void cli_print_help(const char *argv0)
 	       "  --size WxH             output size, 16..16384 each (default 1280x720)\n"
 	       "  --grid N               cells per axis of the extracted volume\n"
 	       "  --count N              frames to render, then exit\n"
-	       "  --out FILE.png         output image (%%d in the name: one file per frame)\n"
+	       "  --out FILE.png         output image (%%d in the name: one file per frame);\n"
+	       "                         FILE.y4m or - : a YUV4MPEG2 stream of every frame (pipe into ffmpeg)\n"
 	       "  --export-mesh FILE.ply write the last frame's mesh as binary PLY\n"
 	       "  --preset NAME          start from a preset (see --list-presets)\n"
 	       "  --config FILE          'name = value' lines, applied after the preset\n"

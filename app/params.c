@@ -244,7 +244,12 @@ int params_glsl_decls(char *buf, size_t len)
 		if (!(pi->flags & P_SHADER))
 			continue;
 		const char *ty = pi->type == PT_FLOAT ? "float" : "int";
-		int n = snprintf(buf + used, len - used, "uniform %s u_%s;\n", ty, pi->name);
+		int n;
+		if (pi->flags & P_SPECIALIZE)
+			n = snprintf(buf + used, len - used, "#ifndef u_%s\nuniform %s u_%s;\n#endif\n", pi->name, ty,
+				     pi->name);
+		else
+			n = snprintf(buf + used, len - used, "uniform %s u_%s;\n", ty, pi->name);
 		if (n < 0 || (size_t)n >= len - used)
 			return -1;
 		used += (size_t)n;
@@ -268,6 +273,22 @@ int params_glsl_decls(char *buf, size_t len)
 				c = bar ? bar + 1 : NULL;
 			}
 		}
+	}
+	return (int)used;
+}
+
+int params_glsl_specialization(const struct params *p, char *buf, size_t len)
+{
+	size_t used = 0;
+	buf[0] = 0;
+	for (size_t i = 0; i < param_count; i++) {
+		const struct param_info *pi = &param_table[i];
+		if (!(pi->flags & P_SPECIALIZE) || pi->type == PT_FLOAT || pi->type == PT_STRING)
+			continue;
+		int n = snprintf(buf + used, len - used, "#define u_%s %d\n", pi->name, (int)params_get_number(p, pi));
+		if (n < 0 || (size_t)n >= len - used)
+			return -1;
+		used += (size_t)n;
 	}
 	return (int)used;
 }

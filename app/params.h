@@ -17,6 +17,9 @@ enum param_flags {
 	P_SHADER = 1 << 0, /* exposed to GLSL as "uniform <type> u_<name>;" */
 	P_APP = 1 << 1,    /* application option (size, out, ...) */
 	P_LIVE = 1 << 2,   /* sensible to change live (knobs) */
+	P_SPECIALIZE = 1 << 3, /* P_SHADER that selects code paths: compiled in as a
+	                        * constant (#define u_name V) where the host asks,
+	                        * so drivers need not run every branch */
 };
 
 #define PARAM_STR_MAX 256
@@ -65,6 +68,9 @@ void params_print_help(FILE *f, unsigned flag_mask);
 /* GLSL declarations of every P_SHADER entry and enum constants, NUL-terminated;
  * returns the number of bytes written (excluding NUL) or -1 if buf too small. */
 int params_glsl_decls(char *buf, size_t len);
+/* "#define u_name V\n" for every P_SPECIALIZE entry (the shader variant
+ * key); returns bytes written or -1 if buf is too small. */
+int params_glsl_specialization(const struct params *p, char *buf, size_t len);
 /* True when two parameter sets give the same terrain (all P_SHADER equal). */
 bool params_same_terrain(const struct params *a, const struct params *b);
 

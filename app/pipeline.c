@@ -27,9 +27,21 @@
 #define GUARD_BYTES 1024u   /* canary after every output buffer */
 #define GUARD_WORD 0xa5c3e1f7u
 
+#define DENSITY_VARIANTS 12
+#include <time.h>
+
+/* Density programs specialized on the code-path parameters (fractal family,
+ * noise source, shape, ...), compiled on first use and kept. */
+struct density_variant {
+	char key[512];
+	GLuint prog;
+};
+
 struct pipeline {
 	struct grid g;
-	GLuint p_density, p_classify, p_reduce, p_setup, p_vertices, p_indices;
+	struct density_variant variants[DENSITY_VARIANTS];
+	int next_variant;
+	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
 	struct noise_set *ns;
@@ -38,15 +50,22 @@ struct pipeline {
 	uint32_t owners, words;
 	int top;
 	uint32_t n[MAX_LEVELS], pad[MAX_LEVELS], off[MAX_LEVELS];
+	uint32_t hp_nodes;             /* prefix sums start here */
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
 	uint64_t verts_alloc;          /* vertices the vertex buffer holds */
 	int max_groups;
 	int max_ssbo;
 	int last_mode;
+	bool profile;                  /* glFinish + time every pass (benchmarks) */
+	float density_bias;            /* subtracted from the density (LOD) */
+	bool has_target;
+	struct pipeline_target target;
+	double pass_ms[PASS_COUNT];
 };
 
 void grid_from_params(struct grid *g, const struct params *p)
 {
+	memset(g, 0, sizeof(*g));
 	g->nx = g->nz = p->grid;
 	g->ny = (int)lroundf((float)p->grid * p->vol_height);
 	if (g->ny < 2)
@@ -55,6 +74,33 @@ void grid_from_params(struct grid *g, const struct params *p)
 	g->origin[0] = p->vol_x - 0.5f * p->vol_size;
 	g->origin[1] = p->vol_y - 0.5f * g->cell * (float)g->ny;
 	g->origin[2] = p->vol_z - 0.5f * p->vol_size;
+}
+
+static double now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+/* With profiling on, waits for the GPU and charges the time since the last
+ * mark to pass `which`. */
+static void mark(struct pipeline *pl, int which, double *t)
+{
+	if (!pl->profile)
+		return;
+	glFinish();
+	double n = now_ms();
+	pl->pass_ms[which] += n - *t;
+	*t = n;
+}
+
+void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT])
+{
+	if (ms)
+		memcpy(ms, pl->pass_ms, sizeof(pl->pass_ms));
+	memset(pl->pass_ms, 0, sizeof(pl->pass_ms));
+	pl->profile = on;
 }
 
 static uint32_t div_up(uint64_t a, uint64_t b) { return (uint32_t)((a + b - 1) / b); }
@@ -73,17 +119,37 @@ static void set_common(const struct pipeline *pl, GLuint prog, const struct para
 	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_cells"), pl->g.nx, pl->g.ny, pl->g.nz);
 	glProgramUniform3f(prog, glGetUniformLocation(prog, "u_origin"), pl->g.origin[0], pl->g.origin[1], pl->g.origin[2]);
 	glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cell"), pl->g.cell);
+	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_base"), pl->g.base[0], pl->g.base[1], pl->g.base[2]);
+	glProgramUniform1i(prog, glGetUniformLocation(prog, "u_margin"), grid_margin(&pl->g));
 	GLint loc = glGetUniformLocation(prog, "u_hp_off");
 	if (loc >= 0)
 		glProgramUniform1uiv(prog, loc, MAX_LEVELS, pl->off);
 	loc = glGetUniformLocation(prog, "u_hp_top");
 	if (loc >= 0)
 		glProgramUniform1i(prog, loc, pl->top);
+	loc = glGetUniformLocation(prog, "u_pre_base");
+	if (loc >= 0)
+		glProgramUniform1ui(prog, loc, pl->hp_nodes);
 	loc = glGetUniformLocation(prog, "u_max_groups");
 	if (loc >= 0)
 		glProgramUniform1ui(prog, loc, (GLuint)pl->max_groups);
 	if (p)
 		gpu_set_param_uniforms(prog, p);
+}
+
+void pipeline_set_target(struct pipeline *pl, const struct pipeline_target *t)
+{
+	pl->has_target = t != NULL;
+	if (t)
+		pl->target = *t;
+}
+
+void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_bias)
+{
+	/* same dimensions and margin: the buffers fit */
+	if (g->nx == pl->g.nx && g->ny == pl->g.ny && g->nz == pl->g.nz && g->margin_extra == pl->g.margin_extra)
+		pl->g = *g;
+	pl->density_bias = density_bias;
 }
 
 static void set_caps(GLuint prog, uint32_t tri_cap, uint32_t vert_cap)
@@ -161,6 +227,37 @@ static void write_guard(GLintptr at)
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, at, GUARD_BYTES, g);
 }
 
+/* A program specialized on the code-path parameters (and, for the vertex
+ * pass, on whether it computes ambient occlusion); compiled on first use. */
+static GLuint variant_program(struct pipeline *pl, const char *file, const struct params *p, bool ao, char *err,
+			      size_t errlen)
+{
+	char key[512];
+	int n = snprintf(key, sizeof(key), "// %s\n%s", file, ao ? "#define WITH_AO 1\n" : "");
+	if (n < 0 || params_glsl_specialization(p, key + n, sizeof(key) - (size_t)n) < 0) {
+		snprintf(err, errlen, "shader specialization key too long");
+		return 0;
+	}
+	for (int i = 0; i < DENSITY_VARIANTS; i++)
+		if (pl->variants[i].prog && !strcmp(pl->variants[i].key, key))
+			return pl->variants[i].prog;
+	GLuint prog = gpu_compute_program(file, key, err, errlen);
+	if (!prog)
+		return 0;
+	struct density_variant *v = &pl->variants[pl->next_variant];
+	pl->next_variant = (pl->next_variant + 1) % DENSITY_VARIANTS;
+	if (v->prog)
+		glDeleteProgram(v->prog);
+	snprintf(v->key, sizeof(v->key), "%s", key);
+	v->prog = prog;
+	return prog;
+}
+
+static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	return variant_program(pl, "density.comp", p, false, err, errlen);
+}
+
 static int ensure_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen)
 {
 	if (verts <= pl->verts_alloc)
@@ -211,6 +308,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	pl->words = div_up(owners, 4);
 	uint32_t hp_nodes;
 	plan_levels(pl->words, &pl->top, pl->n, pl->pad, pl->off, &hp_nodes);
+	pl->hp_nodes = hp_nodes;
 
 	/* capacities: automatic = 16 triangles per cell of the largest face,
 	 * never more than the field could ask for (5 per cell) */
@@ -239,18 +337,19 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 		free(pl);
 		return NULL;
 	}
-	if (!(pl->p_density = program("density.comp", err, errlen)) ||
+	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
 	    !(pl->p_classify = program("mc_classify.comp", err, errlen)) ||
 	    !(pl->p_reduce = program("hp_reduce.comp", err, errlen)) ||
+	    !(pl->p_downsweep = program("hp_downsweep.comp", err, errlen)) ||
 	    !(pl->p_setup = program("mc_setup.comp", err, errlen)) ||
-	    !(pl->p_vertices = program("mc_vertices.comp", err, errlen)) ||
+	    !(pl->p_vertices = variant_program(pl, "mc_vertices.comp", p, p->ao_rays > 0, err, errlen)) ||
 	    !(pl->p_indices = program("mc_indices.comp", err, errlen))) {
 		pipeline_destroy(pl);
 		return NULL;
 	}
 	pl->b_dens = make_buffer((GLsizeiptr)(dens * 4), NULL, GL_DYNAMIC_COPY);
 	pl->b_l0 = make_buffer((GLsizeiptr)pl->words * 4, NULL, GL_DYNAMIC_COPY);
-	pl->b_hp = make_buffer((GLsizeiptr)hp_nodes * 8, NULL, GL_DYNAMIC_COPY);
+	pl->b_hp = make_buffer((GLsizeiptr)hp_nodes * 16, NULL, GL_DYNAMIC_COPY); /* pyramid + prefix sums */
 	pl->b_idx = make_buffer((GLsizeiptr)pl->tri_cap * 12 + GUARD_BYTES, NULL, GL_DYNAMIC_DRAW);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_idx);
 	write_guard((GLintptr)pl->tri_cap * 12);
@@ -274,7 +373,10 @@ void pipeline_destroy(struct pipeline *pl)
 {
 	if (!pl)
 		return;
-	GLuint progs[] = { pl->p_density, pl->p_classify, pl->p_reduce, pl->p_setup, pl->p_vertices,
+	for (int i = 0; i < DENSITY_VARIANTS; i++)
+		if (pl->variants[i].prog)
+			glDeleteProgram(pl->variants[i].prog);
+	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
 	for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
 		if (progs[i])
@@ -314,24 +416,36 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 		}
 		pl->noise_ready = true;
 	}
+	char err[512];
+	pl->p_density = density_program(pl, p, err, sizeof(err));
+	if (!pl->p_density) {
+		log_error("%s", err);
+		return -1;
+	}
+	double t = now_ms();
 	bind_all(pl);
 	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
 	glUseProgram(pl->p_density);
-	glDispatchCompute(div_up((uint64_t)pl->g.nx + 3, 4), div_up((uint64_t)pl->g.ny + 3, 4),
-			  div_up((uint64_t)pl->g.nz + 3, 4));
+	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
+	int m2 = 1 + 2 * grid_margin(&pl->g);
+	glDispatchCompute(div_up((uint64_t)pl->g.nx + m2, 4), div_up((uint64_t)pl->g.ny + m2, 4),
+			  div_up((uint64_t)pl->g.nz + m2, 4));
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");
 }
 
 static int run_hp(struct pipeline *pl, const struct params *p)
 {
+	double t = now_ms();
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->pad[1]);
 	glUseProgram(pl->p_classify);
 	dispatch_1d(pl, pl->pad[1]);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	mark(pl, PASS_CLASSIFY, &t);
 
 	set_common(pl, pl->p_reduce, NULL);
 	GLint l_level = glGetUniformLocation(pl->p_reduce, "u_level");
@@ -346,20 +460,64 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
 
+	/* prefix sums, top down: the top node's prefix is 0 */
+	set_common(pl, pl->p_downsweep, NULL);
+	glUseProgram(pl->p_downsweep);
+	{
+		uint32_t zero[2] = { 0, 0 };
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_hp);
+		glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(pl->hp_nodes + pl->off[pl->top]) * 8, 8, zero);
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+		GLint l_lev = glGetUniformLocation(pl->p_downsweep, "u_level");
+		GLint l_cnt = glGetUniformLocation(pl->p_downsweep, "u_count");
+		for (int k = pl->top - 1; k >= 1; k--) {
+			glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+			glProgramUniform1i(pl->p_downsweep, l_lev, k);
+			glProgramUniform1ui(pl->p_downsweep, l_cnt, pl->n[k]);
+			dispatch_1d(pl, pl->n[k]);
+		}
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	}
+
+	GLuint status = pl->b_status;
+	GLintptr status_off = 0;
 	set_common(pl, pl->p_setup, p);
-	set_caps(pl->p_setup, pl->tri_cap, pl->vert_cap);
+	if (pl->has_target) {
+		const struct pipeline_target *tg = &pl->target;
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, tg->vbo, tg->vbo_offset, (GLsizeiptr)tg->vert_cap * VERTEX_BYTES);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 5, tg->ibo, tg->ibo_offset, (GLsizeiptr)tg->tri_cap * 12);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 6, tg->status, tg->status_offset, PIPELINE_STATUS_BYTES);
+		set_caps(pl->p_setup, tg->tri_cap, tg->vert_cap);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), tg->first_index);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), tg->base_vertex);
+		status = tg->status;
+		status_off = tg->status_offset;
+	} else {
+		set_caps(pl->p_setup, pl->tri_cap, pl->vert_cap);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), 0);
+		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), 0);
+	}
 	glUseProgram(pl->p_setup);
 	glDispatchCompute(1, 1, 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+	mark(pl, PASS_REDUCE, &t);
 
-	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pl->b_status);
+	char err[512];
+	pl->p_vertices = variant_program(pl, "mc_vertices.comp", p, p->ao_rays > 0, err, sizeof(err));
+	if (!pl->p_vertices) {
+		log_error("%s", err);
+		return -1;
+	}
+	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
 	glUseProgram(pl->p_vertices);
-	glDispatchComputeIndirect(8 * 4);
+	glDispatchComputeIndirect(status_off + 8 * 4);
+	mark(pl, PASS_VERTICES, &t);
 	set_common(pl, pl->p_indices, p);
 	glUseProgram(pl->p_indices);
-	glDispatchComputeIndirect(12 * 4);
+	glDispatchComputeIndirect(status_off + 12 * 4);
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+	mark(pl, PASS_INDICES, &t);
 	return 0;
 }
 
@@ -405,7 +563,7 @@ int pipeline_run(struct pipeline *pl, const struct params *p)
 	if (pipeline_density(pl, p) < 0)
 		return -1;
 	int rc;
-	switch (p->compaction) {
+	switch (pl->has_target ? COMPACT_HP : p->compaction) {
 	case COMPACT_ATOMIC: rc = run_append(pl, p, false); break;
 	case COMPACT_NONE: rc = run_append(pl, p, true); break;
 	default: rc = run_hp(pl, p); break;
@@ -519,7 +677,7 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 /* ---- HistoPyramid self-test hook ------------------------------------------ */
 
 int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
-		uint32_t *key_rank, uint32_t *prefix, char *err, size_t errlen)
+		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen)
 {
 	struct pipeline pl;
 	memset(&pl, 0, sizeof(pl));
@@ -529,9 +687,11 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	pl.words = div_up(n, 4);
 	uint32_t nodes;
 	plan_levels(pl.words, &pl.top, pl.n, pl.pad, pl.off, &nodes);
+	pl.hp_nodes = nodes;
 	GLuint prog = gpu_compute_program("hp_test.comp", NULL, err, errlen);
 	GLuint reduce = gpu_compute_program("hp_reduce.comp", NULL, err, errlen);
-	if (!prog || !reduce)
+	GLuint down = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen);
+	if (!prog || !reduce || !down)
 		return -1;
 	uint32_t *words = calloc(pl.words ? pl.words : 1, 4);
 	if (!words)
@@ -540,7 +700,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		words[i / 4] |= (uint32_t)bytes[i] << (8 * (i % 4));
 	GLuint b_l0 = make_buffer((GLsizeiptr)pl.words * 4, words, GL_STATIC_DRAW);
 	free(words);
-	GLuint b_hp = make_buffer((GLsizeiptr)nodes * 8, NULL, GL_DYNAMIC_COPY);
+	GLuint b_hp = make_buffer((GLsizeiptr)nodes * 16, NULL, GL_DYNAMIC_COPY);
 	uint32_t outn = n * (comp == 0 ? 5 : 3);
 	GLuint b_out = make_buffer((GLsizeiptr)(outn ? outn : 1) * 8, NULL, GL_DYNAMIC_COPY);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b_l0);
@@ -564,6 +724,19 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		dispatch_1d(&pl, pl.pad[k]);
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
+	set_common(&pl, down, NULL);
+	glUseProgram(down);
+	uint32_t zero2[2] = { 0, 0 };
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b_hp);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(nodes + pl.off[pl.top]) * 8, 8, zero2);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	for (int k = pl.top - 1; k >= 1; k--) {
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+		glProgramUniform1i(down, glGetUniformLocation(down, "u_level"), k);
+		glProgramUniform1ui(down, glGetUniformLocation(down, "u_count"), pl.n[k]);
+		dispatch_1d(&pl, pl.n[k]);
+	}
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	uint32_t top[2];
 	int rc = read_buffer(b_hp, (GLintptr)pl.off[pl.top] * 8, 8, top);
 	if (rc == 0) {
@@ -587,8 +760,11 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		dispatch_1d(&pl, n);
 		if (rc == 0)
 			rc = read_buffer(b_out, 0, (GLsizeiptr)n * 8, tmp);
-		for (uint32_t i = 0; rc == 0 && i < n; i++)
+		for (uint32_t i = 0; rc == 0 && i < n; i++) {
 			prefix[i] = tmp[2 * i];
+			if (prefix_fast)
+				prefix_fast[i] = tmp[2 * i + 1];
+		}
 	} else if (rc == 0) {
 		snprintf(err, errlen, "hp_selftest: total %u exceeds %zu (bad level-0 bytes?)", top[comp], room);
 		rc = -1;
@@ -600,6 +776,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	glDeleteBuffers(1, &b_out);
 	glDeleteProgram(prog);
 	glDeleteProgram(reduce);
+	glDeleteProgram(down);
 	if (rc == 0 && gpu_check("hp_selftest") < 0)
 		rc = -1;
 	return rc;

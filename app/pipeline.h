@@ -4,6 +4,7 @@
  * below are for tests, export and end-of-run reports. */
 #ifndef ISOTERRA_PIPELINE_H
 #define ISOTERRA_PIPELINE_H
+#define PIPELINE_STATUS_BYTES 128
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -31,6 +32,29 @@ enum compaction { COMPACT_HP = 0, COMPACT_ATOMIC = 1, COMPACT_NONE = 2 };
  * (0 = automatic).  Returns NULL with err. */
 struct pipeline *pipeline_create(const struct grid *g, const struct params *p, char *err, size_t errlen);
 void pipeline_destroy(struct pipeline *pl);
+
+/* Per-pass timing for benchmarks: with profiling on, every pass ends with
+ * glFinish and its wall time is added up; pipeline_profile returns the sums
+ * since the last call (ms may be NULL) and resets them. */
+enum { PASS_DENSITY, PASS_CLASSIFY, PASS_REDUCE, PASS_VERTICES, PASS_INDICES, PASS_COUNT };
+void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT]);
+
+/* Output into a slot of someone else's buffers (the world's block pool)
+ * instead of the pipeline's own: vertices at vbo_offset (vert_cap of them),
+ * indices at ibo_offset (tri_cap triangles), the 128-byte status block with
+ * the draw command at status_offset; offsets must honour
+ * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT.  The draw command gets
+ * first_index / base_vertex so one element buffer serves every slot.  NULL
+ * restores the pipeline's own buffers.  HistoPyramid compaction only. */
+struct pipeline_target {
+	GLuint vbo, ibo, status;
+	GLintptr vbo_offset, ibo_offset, status_offset;
+	uint32_t vert_cap, tri_cap;
+	uint32_t first_index, base_vertex;
+};
+void pipeline_set_target(struct pipeline *pl, const struct pipeline_target *t);
+/* Points the pipeline at another grid of the same size (a world block). */
+void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_bias);
 
 /* Runs the density pass only (benchmarks). */
 int pipeline_density(struct pipeline *pl, const struct params *p);
@@ -60,9 +84,10 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
  * (bits 0..2 triangle count, bits 3..5 vertex mask) with the same shaders,
  * returns the totals (triangles, vertices), the (cell, rank) of every output
  * key of component comp (0 triangles, 1 vertices) and every cell's prefix
- * sum.  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
+ * sum, read bottom-up (prefix) and from the down-swept prefix sums
+ * (prefix_fast, may be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
  * context.  0 or -1 with err. */
 int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
-		uint32_t *key_rank, uint32_t *prefix, char *err, size_t errlen);
+		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen);
 
 #endif

@@ -12,86 +12,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "atomic_file.h"
 #include "log.h"
 
 #define VERTEX_BYTES 24u /* 6 float32 */
 #define FACE_BYTES 13u   /* uchar 3 + 3 uint32 */
 #define HEADER_MAX 4096
 #define CHUNK 1024u      /* vertices or faces per fwrite/fread */
-
-/* ---- atomic file: temp in the same directory, fsync, rename -------------- */
-
-struct atomic_file {
-	FILE *f;
-	char *tmp;
-};
-
-static int atomic_open(struct atomic_file *af, const char *path, char *err, size_t errlen)
-{
-	af->f = NULL;
-	af->tmp = malloc(strlen(path) + 8);
-	if (!af->tmp) {
-		snprintf(err, errlen, "out of memory writing '%s'", path);
-		return -1;
-	}
-	sprintf(af->tmp, "%s.XXXXXX", path);
-	int fd = mkstemp(af->tmp);
-	if (fd < 0) {
-		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		free(af->tmp);
-		af->tmp = NULL;
-		return -1;
-	}
-	mode_t mask = umask(0);
-	umask(mask);
-	if (fchmod(fd, 0666 & ~mask) < 0)
-		log_warn("cannot chmod '%s': %s", af->tmp, strerror(errno));
-	af->f = fdopen(fd, "wb");
-	if (!af->f) {
-		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		close(fd);
-		unlink(af->tmp);
-		free(af->tmp);
-		af->tmp = NULL;
-		return -1;
-	}
-	return 0;
-}
-
-static void atomic_abort(struct atomic_file *af)
-{
-	if (af->f)
-		fclose(af->f);
-	if (af->tmp) {
-		unlink(af->tmp);
-		free(af->tmp);
-	}
-	af->f = NULL;
-	af->tmp = NULL;
-}
-
-static int atomic_commit(struct atomic_file *af, const char *path, char *err, size_t errlen)
-{
-	int e = 0;
-	if (fflush(af->f) != 0 || ferror(af->f))
-		e = errno ? errno : EIO;
-	else if (fsync(fileno(af->f)) < 0)
-		e = errno;
-	int rc = fclose(af->f);
-	af->f = NULL;
-	if (!e && rc != 0)
-		e = errno;
-	if (!e && rename(af->tmp, path) < 0)
-		e = errno;
-	if (e) {
-		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(e));
-		atomic_abort(af);
-		return -1;
-	}
-	free(af->tmp);
-	af->tmp = NULL;
-	return 0;
-}
 
 /* ---- little-endian encoding ---------------------------------------------- */
 

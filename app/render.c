@@ -11,8 +11,11 @@ struct renderer {
 	int w, h, samples;
 	GLuint fbo_ms, rb_color_ms, rb_depth;
 	GLuint fbo, rb_color;
-	GLuint prog, vao;
-	GLint l_viewproj, l_eye, l_fog;
+	GLuint prog, vao, sky, water;
+	bool draw_sky;
+	GLint l_viewproj, l_eye, l_fog, l_fade;
+	float clear[3];
+	GLuint surface;
 };
 
 static const char *fbo_status(GLenum s)
@@ -36,6 +39,9 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 	}
 	r->w = width;
 	r->h = height;
+	r->clear[0] = 0.62f;
+	r->clear[1] = 0.74f;
+	r->clear[2] = 0.88f;
 	GLint max_samples = 0, max_rb = 0;
 	glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
 	glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
@@ -74,15 +80,27 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 		renderer_destroy(r);
 		return NULL;
 	}
+	r->draw_sky = true;
 	r->prog = gpu_graphics_program("render.vert", "render.frag", NULL, err, errlen);
-	if (!r->prog) {
+	if (r->prog)
+		r->sky = gpu_graphics_program("sky.vert", "sky.frag", NULL, err, errlen);
+	if (r->sky)
+		r->water = gpu_graphics_program("water.vert", "water.frag", NULL, err, errlen);
+	if (!r->prog || !r->sky || !r->water) {
 		renderer_destroy(r);
 		return NULL;
 	}
 	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
 	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
 	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
+	r->l_fade = glGetUniformLocation(r->prog, "u_fade");
 	glGenVertexArrays(1, &r->vao);
+	r->surface = surface_texture_create();
+	if (!r->surface) {
+		snprintf(err, errlen, "cannot create the surface texture");
+		renderer_destroy(r);
+		return NULL;
+	}
 	return r;
 }
 
@@ -92,8 +110,14 @@ void renderer_destroy(struct renderer *r)
 		return;
 	if (r->prog)
 		glDeleteProgram(r->prog);
+	if (r->sky)
+		glDeleteProgram(r->sky);
+	if (r->water)
+		glDeleteProgram(r->water);
 	if (r->vao)
 		glDeleteVertexArrays(1, &r->vao);
+	if (r->surface)
+		glDeleteTextures(1, &r->surface);
 	GLuint fb[2] = { r->fbo, r->fbo_ms };
 	glDeleteFramebuffers(2, fb);
 	GLuint rb[3] = { r->rb_color, r->rb_color_ms, r->rb_depth };
@@ -101,14 +125,28 @@ void renderer_destroy(struct renderer *r)
 	free(r);
 }
 
-int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
+int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p)
 {
 	glBindFramebuffer(GL_FRAMEBUFFER, r->samples ? r->fbo_ms : r->fbo);
 	glViewport(0, 0, r->w, r->h);
 	/* sky colour (linear -> the shader's fog colour matches it) */
-	glClearColor(0.62f, 0.74f, 0.88f, 1.0f);
+	glClearColor(r->clear[0], r->clear[1], r->clear[2], 1.0f);
 	glClearDepthf(1.0f);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+	glBindVertexArray(r->vao);
+	if (r->draw_sky) {
+		float inv[16];
+		if (mat4_invert(inv, c->viewproj) == 0) {
+			glDisable(GL_DEPTH_TEST);
+			glDepthMask(GL_FALSE);
+			glUseProgram(r->sky);
+			gpu_set_param_uniforms(r->sky, p);
+			glUniformMatrix4fv(glGetUniformLocation(r->sky, "u_inv_viewproj"), 1, GL_FALSE, inv);
+			glUniform3fv(glGetUniformLocation(r->sky, "u_eye"), 1, c->eye);
+			glDrawArrays(GL_TRIANGLES, 0, 3);
+			glDepthMask(GL_TRUE);
+		}
+	}
 	glEnable(GL_DEPTH_TEST);
 	glDepthFunc(GL_LESS);
 	glDisable(GL_CULL_FACE); /* the volume's cut sides show back faces */
@@ -117,25 +155,81 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	gpu_set_param_uniforms(r->prog, p);
 	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(r->l_eye, 1, c->eye);
-	glUniform1f(r->l_fog, 0.35f / (p->vol_size * p->cam_dist * 2.0f));
-
+	float fog_range = p->scene == 1 ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
+	glUniform1f(r->l_fog, 0.35f / fog_range);
+	glUniform1f(r->l_fade, 1.0f);
+	glActiveTexture(GL_TEXTURE0 + SURFACE_TEXTURE_UNIT);
+	glBindTexture(GL_TEXTURE_2D, r->surface);
+	glActiveTexture(GL_TEXTURE0);
 	glBindVertexArray(r->vao);
-	glBindBuffer(GL_ARRAY_BUFFER, d->vbo);
+	return 0;
+}
+
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade)
+{
+	glUniform1f(r->l_fade, fade);
+	glBindBuffer(GL_ARRAY_BUFFER, vbo);
 	glEnableVertexAttribArray(0);
 	glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, (const void *)0);
 	glEnableVertexAttribArray(1);
 	glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 32, (const void *)16);
-	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, d->indirect);
-	if (d->indexed) {
-		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, d->ibo);
-		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)d->indirect_offset);
+	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect);
+	if (ibo) {
+		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)offset);
 	} else {
-		glDrawArraysIndirect(GL_TRIANGLES, (const void *)d->indirect_offset);
+		glDrawArraysIndirect(GL_TRIANGLES, (const void *)offset);
 	}
+}
+
+void renderer_set_clear(struct renderer *r, float red, float green, float blue)
+{
+	r->draw_sky = false;
+	r->clear[0] = red;
+	r->clear[1] = green;
+	r->clear[2] = blue;
+}
+
+void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
+{
+	if (!p->water)
+		return;
+	glUseProgram(r->water);
+	gpu_set_param_uniforms(r->water, p);
+	glUniformMatrix4fv(glGetUniformLocation(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
+	glUniform3fv(glGetUniformLocation(r->water, "u_eye"), 1, c->eye);
+	glUniform4fv(glGetUniformLocation(r->water, "u_water_rect"), 1, rect);
+	float fog_range = p->scene == 1 ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
+	glUniform1f(glGetUniformLocation(r->water, "u_fog_density"), 0.35f / fog_range);
+	glEnable(GL_BLEND);
+	glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+	glDepthMask(GL_FALSE);
+	glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+	glDepthMask(GL_TRUE);
+	glDisable(GL_BLEND);
+	glUseProgram(r->prog);
+}
+
+int renderer_end(struct renderer *r)
+{
+	(void)r;
 	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 	glBindVertexArray(0);
 	glUseProgram(0);
 	return gpu_check("draw");
+}
+
+int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
+{
+	renderer_begin(r, c, p);
+	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 1.0f);
+	/* water inside the volume only, below its top */
+	struct grid g;
+	grid_from_params(&g, p);
+	float rect[4] = { g.origin[0], g.origin[2], g.origin[0] + g.cell * (float)g.nx, g.origin[2] + g.cell * (float)g.nz };
+	if (p->field == 0 && p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)
+		renderer_water(r, c, p, rect);
+	return renderer_end(r);
 }
 
 int renderer_read(struct renderer *r, struct image *img)

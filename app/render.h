@@ -18,10 +18,27 @@ struct camera {
  * yaw advancing cam_spin degrees per second of time t. */
 void camera_orbit(struct camera *c, const struct params *p, const struct grid *g, float t, float aspect);
 void mat4_mul(float out[16], const float a[16], const float b[16]);
+int mat4_invert(float out[16], const float m[16]);
+/* Camera at eye looking at `at` (y up), vertical fov in degrees. */
+void camera_look(struct camera *c, const float eye[3], const float at[3], float fov, float aspect, float zn, float zf);
+
+/* The generated surface texture (albedo variation, bump slopes, height). */
+GLuint surface_texture_create(void);
+#define SURFACE_TEXTURE_UNIT 7
 
 struct renderer;
 struct renderer *renderer_create(int width, int height, char *err, size_t errlen);
 void renderer_destroy(struct renderer *r);
+/* A frame in parts: begin (clear, program, camera), any number of meshes
+ * drawn with their indirect commands (fade < 1 dissolves the mesh with an
+ * ordered dither: no sorting, no popping), end. */
+int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p);
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade);
+int renderer_end(struct renderer *r);
+/* Water plane over the world rectangle x0,z0 - x1,z1 (after the terrain). */
+void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);
+/* Background colour (tests paint it a colour the terrain never has). */
+void renderer_set_clear(struct renderer *r, float red, float green, float blue);
 /* Draws the pipeline's mesh with its indirect command.  0 or -1. */
 int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p);
 /* Resolves and reads the last frame (top row first).  0 or -1. */

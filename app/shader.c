@@ -163,8 +163,9 @@ static int assemble(struct srcbuf *b, const char *stage_define, const char *file
 			   "precision highp float;\nprecision highp int;\n"
 			   "precision highp sampler3D;\nprecision highp usampler3D;\n"
 			   "precision highp image3D;\n";
+	/* the caller's defines come first: they may specialize parameters */
 	if (sb_add(b, head, strlen(head)) || sb_add(b, stage_define, strlen(stage_define)) ||
-	    sb_add(b, decls, strlen(decls)) || (defines && sb_add(b, defines, strlen(defines)))) {
+	    (defines && sb_add(b, defines, strlen(defines))) || sb_add(b, decls, strlen(decls))) {
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}

@@ -10,25 +10,13 @@
  * usage: bench_pipeline [--quick] [--platform NAME] [--sizes 64,128,256]
  * Times are wall-clock around glFinish(), median of repeated runs. */
 #include "app.h"
+#include "bench.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
-
-static double now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
 
 enum what { DENSITY_ONLY, FULL };
 
@@ -37,44 +25,23 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 {
 	double t[64];
 	int n = 0;
-	double start = now_ms();
+	double start = bench_now_ms();
 	/* warm-up (shader JIT, first-touch of buffers) */
 	if (w == DENSITY_ONLY)
 		pipeline_density(pl, p);
 	else
 		pipeline_run(pl, p);
 	glFinish();
-	while (n < 64 && (n < min_reps || now_ms() - start < budget)) {
-		double t0 = now_ms();
+	while (n < 64 && (n < min_reps || bench_now_ms() - start < budget)) {
+		double t0 = bench_now_ms();
 		int rc = w == DENSITY_ONLY ? pipeline_density(pl, p) : pipeline_run(pl, p);
 		glFinish();
 		if (rc < 0)
 			return -1;
-		t[n++] = now_ms() - t0;
+		t[n++] = bench_now_ms() - t0;
 	}
-	qsort(t, (size_t)n, sizeof(double), cmp_d);
+	qsort(t, (size_t)n, sizeof(double), bench_cmp_double);
 	return t[n / 2];
-}
-
-static void machine(const struct gpu_caps *caps)
-{
-	char cpu[256] = "unknown CPU";
-	FILE *f = fopen("/proc/cpuinfo", "r");
-	if (f) {
-		char line[512];
-		while (fgets(line, sizeof(line), f))
-			if (!strncmp(line, "model name", 10)) {
-				char *c = strchr(line, ':');
-				if (c) {
-					snprintf(cpu, sizeof(cpu), "%s", c + 2);
-					cpu[strcspn(cpu, "\n")] = 0;
-				}
-				break;
-			}
-		fclose(f);
-	}
-	printf("machine: %s, %ld cores\n", cpu, sysconf(_SC_NPROCESSORS_ONLN));
-	printf("GL: %s | %s\n", caps->renderer, caps->version);
 }
 
 int main(int argc, char **argv)
@@ -109,10 +76,12 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;
 	}
-	machine(&caps);
+	bench_print_machine(&caps);
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 
+	char breakdown[8][160];
+	memset(breakdown, 0, sizeof(breakdown));
 	printf("%-6s %12s %12s %8s %10s %12s %10s\n", "grid", "density ms", "full ms", "ratio", "Mvox/s", "Mtris/s",
 	       "triangles");
 	for (int s = 0; s < nsizes; s++) {
@@ -129,6 +98,15 @@ int main(int argc, char **argv)
 		}
 		double td = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
 		double tf = time_runs(pl, &p, FULL, 3, budget);
+		/* one profiled run: where the time goes */
+		double ms[PASS_COUNT];
+		pipeline_profile(pl, true, NULL);
+		pipeline_run(pl, &p);
+		glFinish();
+		pipeline_profile(pl, false, ms);
+		snprintf(breakdown[s], sizeof(breakdown[s]),
+			 "%-6d density %8.2f  classify %8.2f  reduce+setup %8.2f  vertices %8.2f  indices %8.2f", sizes[s],
+			 ms[PASS_DENSITY], ms[PASS_CLASSIFY], ms[PASS_REDUCE], ms[PASS_VERTICES], ms[PASS_INDICES]);
 		struct extract_stats st;
 		pipeline_read_stats(pl, &st);
 		double vox = (double)g.nx * g.ny * g.nz;
@@ -136,6 +114,11 @@ int main(int argc, char **argv)
 		       st.triangles / (tf * 1e3), st.triangles, st.overflow ? " (overflow)" : "");
 		pipeline_destroy(pl);
 	}
+
+	printf("\nper pass (ms, one run with glFinish after every pass):\n");
+	for (int s = 0; s < nsizes; s++)
+		if (breakdown[s][0])
+			printf("  %s\n", breakdown[s]);
 
 	int cmp_grid = quick ? 64 : 128;
 	printf("\ncompaction methods, same field, grid %d^3 (ratio = time / HistoPyramid time):\n", cmp_grid);

@@ -1,7 +1,11 @@
 // isoterra — grid uniforms and helpers shared by the extraction passes.
 uniform ivec3 u_cells;   // cells per axis
-uniform vec3 u_origin;   // world position of corner (0,0,0)
+uniform vec3 u_origin;   // world position of global corner (0,0,0)
 uniform float u_cell;    // world size of a cell
+uniform ivec3 u_base;    // global index of this grid's corner (0,0,0)
+uniform int u_margin;    // density samples kept around the corners (>= 1)
+
+ivec3 dens_dims() { return u_cells + 1 + 2 * u_margin; }
 
 // 1D invocation index over a (possibly 2D-split) dispatch of 64-wide groups.
 uint lin_id()
@@ -15,8 +19,9 @@ layout(std430, binding = 0) restrict readonly buffer Dens { float dens[]; };
 // density at corner c (each component -1 .. n+1)
 float D(ivec3 c)
 {
-	ivec3 d = u_cells + 3;
-	return dens[(c.x + 1) + d.x * ((c.y + 1) + d.y * (c.z + 1))];
+	ivec3 d = dens_dims();
+	c += u_margin;
+	return dens[c.x + d.x * (c.y + d.y * c.z)];
 }
 vec3 grad_at(ivec3 c)
 {
@@ -48,12 +53,12 @@ void edge_vertex(ivec3 c, int a, out vec4 pos, out vec4 nrm)
 	c1[a] += 1;
 	float d0 = D(c), d1 = D(c1);
 	float t = (d0 - u_iso) / (d0 - d1);
-	vec3 p = vec3(c);
+	vec3 p = vec3(u_base + c);
 	p[a] += t;
 	pos = vec4(u_origin + p * u_cell, 1.0);
 	vec3 g0 = grad_at(c), g1 = grad_at(c1);
 	vec3 g = g0 + (g1 - g0) * t;
 	float len = length(g);
-	nrm = vec4(len > 1e-20 ? -g / len : vec3(0.0, 1.0, 0.0), 0.0);
+	nrm = vec4(len > 1e-20 ? -g / len : vec3(0.0, 1.0, 0.0), 1.0); // w: ambient visibility
 }
 #endif // DENSITY_WRITER

@@ -57,6 +57,9 @@ float octave_noise(vec3 p, int i)
 	return perlin(p);
 }
 
+// Octaves left out (the "lightweight" density of long AO rays drops 3).
+int g_octave_drop = 0;
+
 float fractal(vec3 ws)
 {
 	float freq = u_noise_freq;
@@ -74,7 +77,7 @@ float fractal(vec3 ws)
 		sum = 1.0;
 		center = 1.0;
 	}
-	for (int i = 0; i < u_octaves; i++) {
+	for (int i = 0; i < u_octaves - g_octave_drop; i++) {
 		vec3 p = octave_point(ws, i, freq);
 		if (u_fractal == FRACTAL_WORLEY) {
 			vec4 F = worley(p, i);

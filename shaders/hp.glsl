@@ -11,6 +11,7 @@ layout(std430, binding = 1) restrict buffer HpBase { uint hp_l0[]; };
 layout(std430, binding = 2) restrict buffer HpLevels { uvec2 hp[]; };
 uniform uint u_hp_off[16];
 uniform int u_hp_top;
+uniform uint u_pre_base; // prefix sums (hp_downsweep.comp) start here
 
 uint l0_byte(uint cell) { return (hp_l0[cell >> 2] >> (8u * (cell & 3u))) & 255u; }
 uint byte_count(uint b, int comp) { return comp == 0 ? (b & 7u) : uint(bitCount(b >> 3)); }
@@ -43,8 +44,18 @@ void hp_traverse(uint key, int comp, out uint cell, out uint rank)
 	rank = key;
 }
 
-// Number of outputs of component comp emitted by cells before `cell`
-// (the prefix sum), read bottom-up from the pyramid.
+// Number of outputs of component comp emitted by cells before `cell`, from
+// the down-swept prefix sums (valid after hp_downsweep.comp).
+uint hp_prefix_fast(uint cell, int comp)
+{
+	uint w = hp_l0[cell >> 2];
+	uint sum = hp[u_pre_base + u_hp_off[1] + (cell >> 2)][comp];
+	for (uint j = 0u; j < (cell & 3u); ++j)
+		sum += byte_count((w >> (8u * j)) & 255u, comp);
+	return sum;
+}
+
+// The same, read bottom-up from the pyramid (no down-sweep needed).
 uint hp_prefix(uint cell, int comp)
 {
 	uint w = hp_l0[cell >> 2];

@@ -29,6 +29,6 @@ void main()
 		hp_traverse(i, u_comp, cell, rank);
 		test_out[i] = uvec2(cell, rank);
 	} else {
-		test_out[i] = uvec2(hp_prefix(i, u_comp), 0u);
+		test_out[i] = uvec2(hp_prefix(i, u_comp), hp_prefix_fast(i, u_comp));
 	}
 }

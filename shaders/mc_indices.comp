@@ -27,7 +27,7 @@ void main()
 		uint qc = uint(q.x + o.x * (q.y + o.y * q.z));
 		uint m = l0_byte(qc) >> 3;
 		uint r = uint(bitCount(m & ((1u << uint(eo.w)) - 1u)));
-		ids[k] = hp_prefix(qc, 1) + r;
+		ids[k] = hp_prefix_fast(qc, 1) + r;
 		ok = ok && ids[k] < vcount;
 	}
 	// a triangle whose vertices fell past the vertex capacity degenerates

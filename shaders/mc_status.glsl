@@ -10,6 +10,8 @@ layout(std430, binding = 6) restrict buffer Status { uint st[32]; };
 uniform uint u_tri_cap;
 uniform uint u_vert_cap;
 uniform uint u_max_groups; // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] we may use
+uniform uint u_first_index; // where this mesh's indices start in the element buffer
+uniform uint u_base_vertex; // added to its indices when drawn
 
 uvec3 groups_for(uint n)
 {
@@ -26,8 +28,8 @@ void st_write_counts(uint tris_needed, uint verts_needed)
 	uint verts = min(verts_needed, u_vert_cap);
 	st[0] = 3u * tris;
 	st[1] = 1u;
-	st[2] = 0u;
-	st[3] = 0u;
+	st[2] = u_first_index;
+	st[3] = u_base_vertex;
 	st[4] = 0u;
 	uvec3 gv = groups_for(verts), gt = groups_for(tris);
 	st[8] = gv.x; st[9] = gv.y; st[10] = gv.z;

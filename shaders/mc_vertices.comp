@@ -4,7 +4,11 @@ layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "hp.glsl"
 #include "mc_status.glsl"
-struct Vertex { vec4 pos; vec4 nrm; };
+#ifdef WITH_AO
+#include "density.glsl"
+#include "ao.glsl"
+#endif
+struct Vertex { vec4 pos; vec4 nrm; }; // nrm.w = ambient visibility
 layout(std430, binding = 4) restrict writeonly buffer Verts { Vertex verts[]; };
 
 void main()
@@ -27,6 +31,11 @@ void main()
 	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
 	vec4 p, n;
 	edge_vertex(c, axis, p, n);
+#ifdef WITH_AO
+	n.w = ao_visibility(p.xyz, n.xyz);
+#else
+	n.w = 1.0;
+#endif
 	verts[v].pos = p;
 	verts[v].nrm = n;
 }

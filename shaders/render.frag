@@ -1,41 +1,95 @@
-// isoterra — terrain fragment shader: directional sun + hemispheric ambient,
-// slope/altitude colouring, distance fog, gamma-correct output.
+// isoterra — terrain shading (GPU Gems 3 ch.1 §4, seed 001 soils):
+// triplanar projection of the generated surface texture with a bump per
+// projection, a detail normal near the camera, per-vertex ambient occlusion,
+// altitude/strata colour bands over a soil colour table, snow on flat high
+// ground, sun + hemispheric sky light, distance/height fog towards the sky
+// colour, gamma-correct output.  u_fade < 1 dissolves a block (dither).
 in vec3 v_pos;
 in vec3 v_nrm;
+in float v_ao;
 uniform vec3 u_eye;
 uniform float u_fog_density;
+uniform float u_fade;
+layout(binding = 7) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
 out vec4 frag;
 
-const vec3 SKY = vec3(0.62, 0.74, 0.88); // sRGB of the clear colour
+#include "shade.glsl"
 
-vec3 srgb_to_linear(vec3 c) { return pow(c, vec3(2.2)); }
+float bayer4(ivec2 p)
+{
+	int m[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+	return (float(m[(p.y & 3) * 4 + (p.x & 3)]) + 0.5) / 16.0;
+}
+
+// soil colour tables (sRGB), indexed by a slow variation; interpolated
+vec3 soil_color(float t)
+{
+	vec3 c[4];
+	if (u_soil == SOIL_ARID) {
+		c[0] = vec3(0.76, 0.60, 0.42); c[1] = vec3(0.70, 0.47, 0.30);
+		c[2] = vec3(0.84, 0.72, 0.52); c[3] = vec3(0.62, 0.42, 0.28);
+	} else if (u_soil == SOIL_VOLCANIC) {
+		c[0] = vec3(0.22, 0.20, 0.20); c[1] = vec3(0.36, 0.22, 0.18);
+		c[2] = vec3(0.30, 0.30, 0.32); c[3] = vec3(0.45, 0.28, 0.20);
+	} else {
+		c[0] = vec3(0.50, 0.42, 0.33); c[1] = vec3(0.60, 0.52, 0.40);
+		c[2] = vec3(0.42, 0.36, 0.30); c[3] = vec3(0.66, 0.58, 0.46);
+	}
+	float x = clamp(t, 0.0, 0.999) * 3.0;
+	int i = int(x);
+	return mix(c[i], c[i + 1], fract(x));
+}
 
 void main()
 {
-	vec3 n = normalize(v_nrm);
+	if (u_fade < 1.0 && u_fade <= bayer4(ivec2(gl_FragCoord.xy)))
+		discard;
+	vec3 n0 = normalize(v_nrm);
 	float back = gl_FrontFacing ? 1.0 : 0.45; // inside of the volume's cut
 	if (!gl_FrontFacing)
-		n = -n;
-	float el = radians(u_light_el), az = radians(u_light_az);
-	vec3 l = vec3(cos(el) * cos(az), sin(el), cos(el) * sin(az));
+		n0 = -n0;
 
-	// albedo: rock with strata on steep faces, grass/soil on flat ground
-	float strata = 0.5 + 0.5 * sin(v_pos.y * 2.7 + sin(v_pos.x * 0.31 + v_pos.z * 0.23) * 1.5);
-	vec3 rock = mix(vec3(0.34, 0.29, 0.25), vec3(0.55, 0.47, 0.38), strata);
-	vec3 grass = mix(vec3(0.20, 0.33, 0.12), vec3(0.36, 0.40, 0.20), strata);
-	float flat_ground = smoothstep(0.62, 0.86, n.y);
+	// triplanar weights (the chapter's: (|n| - 0.2) * 7, normalised)
+	vec3 w = max((abs(n0) - 0.2) * 7.0, 0.0);
+	w /= max(w.x + w.y + w.z, 1e-4);
+	vec2 c1 = v_pos.yz * u_tex_scale, c2 = v_pos.zx * u_tex_scale, c3 = v_pos.xy * u_tex_scale;
+	vec4 t1 = texture(u_surface, c1), t2 = texture(u_surface, c2), t3 = texture(u_surface, c3);
+	// bump per projection, in that projection's tangent plane
+	vec2 b1 = (t1.gb - 0.5) * u_bump, b2 = (t2.gb - 0.5) * u_bump, b3 = (t3.gb - 0.5) * u_bump;
+	vec3 bump = vec3(0.0, b1.x, b1.y) * w.x + vec3(b2.y, 0.0, b2.x) * w.y + vec3(b3.x, b3.y, 0.0) * w.z;
+	vec3 n = normalize(n0 - bump);
+	// detail normal, fading out with distance
+	float dist = length(v_pos - u_eye);
+	float near = u_detail * clamp(1.0 - dist / 25.0, 0.0, 1.0);
+	if (near > 0.0) {
+		vec4 d1 = texture(u_surface, c1 * 5.1), d2 = texture(u_surface, c2 * 5.1), d3 = texture(u_surface, c3 * 5.1);
+		vec3 db = vec3(0.0, d1.g - 0.5, d1.b - 0.5) * w.x + vec3(d2.b - 0.5, 0.0, d2.g - 0.5) * w.y +
+			  vec3(d3.g - 0.5, d3.b - 0.5, 0.0) * w.z;
+		n = normalize(n - db * near);
+	}
+	float tex = t1.r * w.x + t2.r * w.y + t3.r * w.z;
+	float hgt = t1.a * w.x + t2.a * w.y + t3.a * w.z;
+
+	// albedo: soil table along slow variation, strata bands by altitude
+	float slow = texture(u_surface, v_pos.xz * 0.011).a;
+	float band = 0.5 + 0.5 * sin(v_pos.y * 1.7 + slow * 6.0 + n0.y * 0.8);
+	vec3 rock = soil_color(slow * 0.8 + band * 0.25);
+	rock *= mix(1.0, 0.72 + 0.5 * band * band, u_strata);
+	rock *= 0.75 + 0.5 * tex;
+	vec3 grass = mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
+	float flat_ground = smoothstep(0.62, 0.86, n0.y + (hgt - 0.5) * 0.3);
 	vec3 albedo = mix(rock, grass, flat_ground);
-	albedo = mix(albedo, vec3(0.85, 0.87, 0.90), smoothstep(6.0, 10.0, v_pos.y) * smoothstep(0.5, 0.8, n.y));
+	float snow = smoothstep(u_snow_line - 1.0, u_snow_line + 1.0, v_pos.y + hgt * 2.0) * smoothstep(0.5, 0.8, n0.y);
+	albedo = mix(albedo, vec3(0.88, 0.90, 0.93), snow);
 	albedo = srgb_to_linear(albedo);
 
+	vec3 l = sun_dir();
 	float ndl = max(dot(n, l), 0.0);
-	vec3 sky_amb = srgb_to_linear(SKY) * (0.55 + 0.45 * n.y);
+	float occ = mix(1.0, clamp(v_ao, 0.0, 1.0), u_ao_strength);
+	vec3 sky_amb = srgb_to_linear(SKY_HORIZON) * (0.55 + 0.45 * n.y);
 	vec3 ground_amb = vec3(0.09, 0.07, 0.05) * (0.5 - 0.5 * n.y);
-	vec3 light = u_sun * vec3(1.0, 0.95, 0.86) * ndl + u_ambient * 2.0 * (sky_amb + ground_amb);
+	vec3 light = u_sun * vec3(1.0, 0.95, 0.86) * ndl * mix(1.0, occ, 0.5) + u_ambient * 2.0 * (sky_amb + ground_amb) * occ;
 	vec3 col = albedo * light * back;
-
-	float dist = length(v_pos - u_eye);
-	float fog = 1.0 - exp(-dist * u_fog_density);
-	col = mix(col, srgb_to_linear(SKY), clamp(fog, 0.0, 1.0));
-	frag = vec4(pow(col, vec3(1.0 / 2.2)), 1.0);
+	col = apply_fog(col, v_pos, u_eye, u_fog_density);
+	frag = vec4(linear_to_srgb(col), 1.0);
 }

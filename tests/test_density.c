@@ -414,6 +414,7 @@ static void gpu_compare(const char *what, int n, const char *settings, bool text
 	params_defaults(&p);
 	set(&p, settings);
 	struct grid g;
+	memset(&g, 0, sizeof(g));
 	g.nx = g.ny = g.nz = n;
 	g.cell = p.vol_size / (float)n;
 	g.origin[0] = p.vol_x - 0.5f * p.vol_size;

@@ -39,21 +39,25 @@ static void run_case(uint32_t n, int density_pct, int comp)
 	}
 	size_t room = (size_t)n * (comp == 0 ? 5 : 3) + 1;
 	uint32_t *kc = malloc(4 * room), *kr = malloc(4 * room), *gp = malloc(4 * (size_t)(n ? n : 1));
+	uint32_t *gf = malloc(4 * (size_t)(n ? n : 1));
 	uint32_t gt[2] = { 0, 0 };
 	char err[512] = "";
-	int rc = hp_selftest(bytes, n, comp, gt, kc, kr, gp, err, sizeof(err));
+	int rc = hp_selftest(bytes, n, comp, gt, kc, kr, gp, gf, err, sizeof(err));
 	CHECK(rc == 0, "hp_selftest n=%u: %s", n, err);
 	if (rc == 0) {
 		CHECK(gt[0] == total[0] && gt[1] == total[1], "n=%u totals GPU %u/%u CPU %u/%u", n, gt[0], gt[1], total[0],
 		      total[1]);
-		uint32_t key = 0, bad_keys = 0, bad_prefix = 0;
+		uint32_t key = 0, bad_keys = 0, bad_prefix = 0, bad_fast = 0;
 		for (uint32_t i = 0; i < n; i++) {
 			for (int r = 0; r < count_of(bytes[i], comp); r++, key++)
 				if (kc[key] != i || kr[key] != (uint32_t)r)
 					bad_keys++;
 			if (gp[i] != prefix[i])
 				bad_prefix++;
+			if (gf[i] != prefix[i])
+				bad_fast++;
 		}
+		CHECK(bad_fast == 0, "n=%u comp=%d: %u wrong down-swept prefix sums", n, comp, bad_fast);
 		CHECK(bad_keys == 0, "n=%u comp=%d: %u of %u keys traverse to the wrong cell/rank", n, comp, bad_keys, key);
 		CHECK(bad_prefix == 0, "n=%u comp=%d: %u wrong prefix sums", n, comp, bad_prefix);
 	}
@@ -62,6 +66,7 @@ static void run_case(uint32_t n, int density_pct, int comp)
 	free(kc);
 	free(kr);
 	free(gp);
+	free(gf);
 }
 
 int main(void)

@@ -107,7 +107,7 @@ static void check_random_fields(void)
 	int seen[256] = { 0 };
 	for (int s = 0; s < 3; s++) {
 		for (int rep = 0; rep < 6; rep++) {
-			struct grid g = { sizes[s], sizes[s] + 1, sizes[s] + 2, { 0, 0, 0 }, 1.0f };
+			struct grid g = { sizes[s], sizes[s] + 1, sizes[s] + 2, { 0, 0, 0 }, 1.0f, 0, { 0, 0, 0 } };
 			float *d = malloc(sizeof(float) * (size_t)grid_dens_count(&g));
 			for (int k = -1; k <= g.nz + 1; k++)
 				for (int j = -1; j <= g.ny + 1; j++)
@@ -147,7 +147,7 @@ static void check_analytic(void)
 	int sizes[] = { 16, 33, 50 };
 	for (int s = 0; s < 3; s++) {
 		int n = sizes[s];
-		struct grid g = { n, n, n, { -1.2f, -1.2f, -1.2f }, 2.4f / (float)n };
+		struct grid g = { n, n, n, { -1.2f, -1.2f, -1.2f }, 2.4f / (float)n, 0, { 0, 0, 0 } };
 		float *d = sample(&g, f_sphere);
 		struct mesh m;
 		CHECK(mc_ref_extract(&g, d, 0.0f, &m) == 0, "extract sphere");

@@ -311,8 +311,8 @@ static void test_cli(void)
 	PARSE_FAILS("size: '640' is not WxH with W and H in 16..16384", "--size", "640");
 	PARSE_FAILS("size: '640x480x2' is not WxH with W and H in 16..16384", "--size", "640x480x2");
 	PARSE_FAILS("size: '20000x480' is not WxH with W and H in 16..16384", "--size=20000x480");
-	PARSE_FAILS("out: 'x.jpg' must end in .png", "--out", "x.jpg");
-	PARSE_FAILS("out: '.png' must end in .png", "--out", ".png");
+	PARSE_FAILS("out: 'x.jpg' must end in .png or .y4m (or be - for a Y4M stream on stdout)", "--out", "x.jpg");
+	PARSE_FAILS("out: '.png' must end in .png or .y4m (or be - for a Y4M stream on stdout)", "--out", ".png");
 	PARSE_FAILS("export_mesh: 'm.obj' must end in .ply", "--export-mesh", "m.obj");
 	PARSE_FAILS("option '--set' needs NAME=VALUE, got 'iso'", "--set", "iso");
 	PARSE_FAILS("unknown parameter 'bogus' (see --help)", "--set", "bogus=1");

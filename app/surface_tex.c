@@ -1,0 +1,85 @@
+/* isoterra — the embedded surface texture set, generated at start-up (no
+ * asset files): one tileable 128x128 RGBA8 texture whose channels hold a
+ * rock/soil albedo variation (R), the slopes of a fractal height field
+ * (G = d/du, B = d/dv, for per-projection bump mapping) and the height itself
+ * (A, used for strata and detail).  Periodic value-noise fBm, so it tiles. */
+#include "render.h"
+#include "gpu.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#define S 128
+
+static float lattice(int x, int y, int period, uint32_t salt)
+{
+	x = ((x % period) + period) % period;
+	y = ((y % period) + period) % period;
+	uint32_t h = (uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^ salt;
+	h ^= h >> 13;
+	h *= 0x5bd1e995u;
+	h ^= h >> 15;
+	return (float)(h & 0xffffff) / (float)0xffffff;
+}
+
+static float value_noise(float u, float v, int period, uint32_t salt)
+{
+	int x = (int)floorf(u), y = (int)floorf(v);
+	float fx = u - (float)x, fy = v - (float)y;
+	fx = fx * fx * (3.0f - 2.0f * fx);
+	fy = fy * fy * (3.0f - 2.0f * fy);
+	float a = lattice(x, y, period, salt), b = lattice(x + 1, y, period, salt);
+	float c = lattice(x, y + 1, period, salt), d = lattice(x + 1, y + 1, period, salt);
+	return (a + (b - a) * fx) + ((c + (d - c) * fx) - (a + (b - a) * fx)) * fy;
+}
+
+static float fbm(float u, float v, uint32_t salt)
+{
+	float s = 0, a = 0.5f;
+	for (int o = 0, period = 8; o < 5; o++, period *= 2, a *= 0.5f)
+		s += a * value_noise(u * (float)period / S, v * (float)period / S, period, salt + (uint32_t)o);
+	return s;
+}
+
+GLuint surface_texture_create(void)
+{
+	unsigned char *px = malloc(S * S * 4);
+	float *hgt = malloc(sizeof(float) * S * S);
+	if (!px || !hgt) {
+		free(px);
+		free(hgt);
+		return 0;
+	}
+	for (int y = 0; y < S; y++)
+		for (int x = 0; x < S; x++)
+			hgt[y * S + x] = fbm((float)x, (float)y, 0x1234u);
+	for (int y = 0; y < S; y++)
+		for (int x = 0; x < S; x++) {
+			float du = hgt[y * S + (x + 1) % S] - hgt[y * S + (x + S - 1) % S];
+			float dv = hgt[((y + 1) % S) * S + x] - hgt[((y + S - 1) % S) * S + x];
+			float alb = fbm((float)x * 2.0f, (float)y * 2.0f, 0x9876u);
+			unsigned char *p = px + 4 * (y * S + x);
+			p[0] = (unsigned char)fminf(255.0f, alb * 255.0f);
+			p[1] = (unsigned char)fmaxf(0.0f, fminf(255.0f, 128.0f + du * 1200.0f));
+			p[2] = (unsigned char)fmaxf(0.0f, fminf(255.0f, 128.0f + dv * 1200.0f));
+			p[3] = (unsigned char)fminf(255.0f, hgt[y * S + x] * 255.0f);
+		}
+	GLuint tex = 0;
+	glGenTextures(1, &tex);
+	glBindTexture(GL_TEXTURE_2D, tex);
+	glTexStorage2D(GL_TEXTURE_2D, 8, GL_RGBA8, S, S);
+	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, S, S, GL_RGBA, GL_UNSIGNED_BYTE, px);
+	glGenerateMipmap(GL_TEXTURE_2D);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+	glBindTexture(GL_TEXTURE_2D, 0);
+	free(px);
+	free(hgt);
+	if (gpu_check("surface texture") < 0) {
+		glDeleteTextures(1, &tex);
+		return 0;
+	}
+	return tex;
+}

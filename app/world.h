@@ -1,0 +1,65 @@
+/* isoterra — the streaming world: blocks of block_cells^3 cells at several
+ * levels of detail, generated on the GPU into a fixed pool of buffer slots,
+ * nearest first, under a per-frame budget; empty blocks are remembered and
+ * never regenerated; visible blocks are drawn front to back. */
+#ifndef ISOTERRA_WORLD_H
+#define ISOTERRA_WORLD_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <GLES3/gl31.h>
+
+#include "params.h"
+#include "render.h"
+
+struct world;
+
+struct world_stats {
+	uint64_t generated;       /* blocks run through the pipeline */
+	uint64_t empty_found;     /* of those, found to have no triangles */
+	uint64_t empty_skipped;   /* requests skipped because known empty */
+	uint64_t evicted;         /* slots taken back from a farther block */
+	uint64_t overflowed;      /* blocks that hit the slot capacity */
+	int ready, pending, empty_known, drawn, wanted;
+};
+
+struct world *world_create(const struct params *p, char *err, size_t errlen);
+void world_destroy(struct world *w);
+/* Plans and generates blocks for this camera.  deterministic: generate up
+ * to gen_per_frame blocks and wait for their results (offline rendering,
+ * tests); otherwise stop at gen_budget_ms.  now: seconds (fades).  0/-1. */
+int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic);
+/* Generates until every wanted block is ready (or the pool is full). */
+int world_fill(struct world *w, const struct params *p, const struct camera *c, double now);
+/* Draws the visible blocks front to back with the renderer's program. */
+int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now);
+void world_get_stats(const struct world *w, struct world_stats *st);
+
+/* Test hooks: generate one block (lod, index) into a scratch slot and read
+ * its mesh back (positions/normals; indices local). 0/-1. */
+int world_block_mesh(struct world *w, const struct params *p, int lod, const int idx[3], struct mesh *m);
+
+/* ---- autopilot ----------------------------------------------------------- */
+struct noise_set;
+struct autopilot {
+	double t;                 /* simulated time, seconds */
+	float pos[3], dir[3];     /* position, unit heading */
+	float yaw, pitch;         /* heading angles, radians */
+	float min_clearance_seen; /* most negative margin to rock seen (tests) */
+	bool manual;              /* steered by autopilot_steer (camera=manual) */
+	float in_move[3];         /* held input: forward, right, up (-1..1) */
+	float in_turn[2];         /* held input: yaw right, pitch up (-1..1) */
+	const struct params *p;
+	struct noise_set *ns;
+};
+int autopilot_init(struct autopilot *a, const struct params *p);
+void autopilot_free(struct autopilot *a);
+/* Advances the fixed-step simulation to time t (deterministic). */
+void autopilot_advance(struct autopilot *a, double t);
+/* Manual flight from now on: holds this input (forward, right, up; yaw,
+ * pitch; each -1..1) until the next call.  Still never enters rock. */
+void autopilot_steer(struct autopilot *a, const float move[3], const float turn[2]);
+/* Camera looking along the heading (slightly down). */
+void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far);
+
+#endif

@@ -1,0 +1,49 @@
+/* isoterra — what every benchmark shares: a monotonic clock, a comparator
+ * for medians and percentiles, and the machine line printed at the top of
+ * every report (numbers mean nothing without it). */
+#ifndef ISOTERRA_BENCH_H
+#define ISOTERRA_BENCH_H
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "gpu.h"
+
+static inline double bench_now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+static inline int bench_cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+/* "machine: CPU model, N cores" and "GL: renderer | version". */
+static inline void bench_print_machine(const struct gpu_caps *caps)
+{
+	char cpu[256] = "unknown CPU";
+	FILE *f = fopen("/proc/cpuinfo", "r");
+	if (f) {
+		char line[512];
+		while (fgets(line, sizeof(line), f))
+			if (!strncmp(line, "model name", 10)) {
+				char *c = strchr(line, ':');
+				if (c) {
+					snprintf(cpu, sizeof(cpu), "%s", c + 2);
+					cpu[strcspn(cpu, "\n")] = 0;
+				}
+				break;
+			}
+		fclose(f);
+	}
+	printf("machine: %s, %ld cores\n", cpu, sysconf(_SC_NPROCESSORS_ONLN));
+	printf("GL: %s | %s\n", caps->renderer, caps->version);
+}
+
+#endif

@@ -1,0 +1,155 @@
+/* isoterra — streaming world benchmark.
+ *
+ *  1. blocks per second: full 32^3 blocks through density (9 octaves) +
+ *     HistoPyramid extraction, with ambient occlusion on and, as the
+ *     baseline of the ratio, off (the chapter's GeForce 8800: 260 blocks/s);
+ *  2. fly-through frame times (p50 / p99, ms) of the autopilot at 640x480
+ *     and 1280x720 with live streaming under the per-frame budget;
+ *  3. peak resident memory.
+ * usage: bench_world [--quick] [--platform NAME] */
+#include "app.h"
+#include "bench.h"
+#include "world.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+/* blocks/s over a 8 x 2 x 8 slab of blocks around the ground */
+static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
+{
+	char err[512];
+	struct grid g;
+	memset(&g, 0, sizeof(g));
+	g.nx = g.ny = g.nz = p->block_cells;
+	g.cell = p->block_size / (float)p->block_cells;
+	g.margin_extra = 6;
+	struct params q = *p;
+	q.closed = false;
+	q.max_triangles = q.max_vertices = p->block_tris;
+	struct pipeline *pl = pipeline_create(&g, &q, err, sizeof(err));
+	if (!pl) {
+		fprintf(stderr, "bench: %s\n", err);
+		return -1;
+	}
+	pipeline_run(pl, &q); /* warm-up: shader compilation */
+	glFinish();
+	*tris = 0;
+	double t0 = bench_now_ms();
+	int done = 0;
+	for (int i = 0; i < nb; i++) {
+		g.base[0] = (i % 8) * g.nx;
+		g.base[2] = ((i / 8) % 8) * g.nz;
+		g.base[1] = (i / 64 % 2 - 1) * g.ny;
+		pipeline_set_grid(pl, &g, 0.0f);
+		pipeline_run(pl, &q);
+		done++;
+	}
+	glFinish();
+	double t = bench_now_ms() - t0;
+	struct extract_stats st;
+	pipeline_read_stats(pl, &st);
+	*tris = st.triangles;
+	pipeline_destroy(pl);
+	return done / (t / 1e3);
+}
+
+static void flythrough(const struct params *p_in, int w, int h, int frames)
+{
+	char err[512];
+	struct params p = *p_in;
+	snprintf(p.size, sizeof(p.size), "%dx%d", w, h);
+	struct renderer *r = renderer_create(w, h, err, sizeof(err));
+	struct world *wd = world_create(&p, err, sizeof(err));
+	struct autopilot ap;
+	if (!r || !wd || autopilot_init(&ap, &p) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		renderer_destroy(r);
+		world_destroy(wd);
+		return;
+	}
+	struct camera c;
+	autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
+	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
+	double *ft = malloc(sizeof(double) * (size_t)frames);
+	double start = bench_now_ms();
+	for (int f = 0; f < frames; f++) {
+		double t0 = bench_now_ms();
+		double t = (t0 - start) / 1e3;
+		autopilot_advance(&ap, t);
+		autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
+		world_update(wd, &p, &c, t, false);
+		world_draw(wd, r, &c, &p, t);
+		glFinish();
+		ft[f] = bench_now_ms() - t0;
+		if (getenv("BENCH_TRACE")) { /* per-frame trace: time, blocks drawn, generated so far */
+			struct world_stats s2;
+			world_get_stats(wd, &s2);
+			fprintf(stderr, "frame %d: %.1f ms, %d drawn, %llu generated\n", f, ft[f], s2.drawn,
+				(unsigned long long)s2.generated);
+		}
+	}
+	qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
+	struct world_stats st;
+	world_get_stats(wd, &st);
+	printf("  %4dx%-4d  %4d frames  p50 %7.1f ms (%5.1f fps)  p99 %7.1f ms  blocks drawn %d, generated %llu\n", w,
+	       h, frames, ft[frames / 2], 1e3 / ft[frames / 2], ft[frames * 99 / 100], st.drawn,
+	       (unsigned long long)st.generated);
+	free(ft);
+	autopilot_free(&ap);
+	world_destroy(wd);
+	renderer_destroy(r);
+}
+
+int main(int argc, char **argv)
+{
+	const char *plat_name = "auto";
+	int quick = 0;
+	for (int i = 1; i < argc; i++) {
+		if (!strcmp(argv[i], "--quick"))
+			quick = 1;
+		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
+			plat_name = argv[++i];
+		else {
+			fprintf(stderr, "usage: %s [--quick] [--platform NAME]\n", argv[0]);
+			return 2;
+		}
+	}
+	log_set_level(LOG_WARN);
+	char err[512];
+	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
+	struct platform *plat = platform_open(&po, err, sizeof(err));
+	struct gpu_caps caps;
+	if (!plat || gpu_init(&caps, false, err, sizeof(err)) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		return 1;
+	}
+	bench_print_machine(&caps);
+	struct params p;
+	params_defaults(&p);
+	p.scene = 1;
+	int nb = quick ? 32 : 128;
+	uint32_t tris;
+	printf("\nblocks per second (%d^3 cells, %d octaves, %d blocks around the ground):\n", p.block_cells, p.octaves,
+	       nb);
+	struct params q = p;
+	q.ao_rays = 0;
+	double base = blocks_per_second(&q, nb, &tris);
+	double ao = blocks_per_second(&p, nb, &tris);
+	printf("  without AO  %7.1f blocks/s  ratio 1.000\n", base);
+	printf("  with AO     %7.1f blocks/s  ratio %.3f  (%d rays x (%d + %d) steps; GeForce 8800 in the chapter: 260)\n",
+	       ao, ao / base, p.ao_rays, p.ao_short_steps, p.ao_long_steps);
+
+	printf("\nautopilot fly-through, live streaming (budget %.0f ms/frame):\n", p.gen_budget_ms);
+	flythrough(&p, 640, 480, quick ? 40 : 150);
+	flythrough(&p, 1280, 720, quick ? 40 : 150);
+
+	struct rusage ru;
+	getrusage(RUSAGE_SELF, &ru);
+	printf("\npeak RSS: %.1f MB (goal <= 200 MB)\n", ru.ru_maxrss / 1024.0);
+	platform_close(plat);
+	return 0;
+}

@@ -1,0 +1,45 @@
+// isoterra — ambient occlusion of a vertex from rays through the density
+// field (GPU Gems 3 ch.1 §4): short range from the block's density volume
+// (nearest samples, u_ao_short_steps steps of one cell), long range from the
+// density function itself with its highest octaves dropped
+// (u_ao_long_steps steps of u_ao_long_step world units), so gorges and
+// overhangs beyond the volume darken too.  Returns visibility, 1 = open sky.
+// Rays: a spherical Fibonacci set of u_ao_rays directions, the same for
+// every vertex.
+
+vec3 ao_dir(int i, int n)
+{
+	float y = 1.0 - (2.0 * float(i) + 1.0) / float(n);
+	float r = sqrt(max(0.0, 1.0 - y * y));
+	float phi = 2.39996323 * float(i);
+	return vec3(r * cos(phi), y, r * sin(phi));
+}
+
+float ao_visibility(vec3 ws, vec3 nrm)
+{
+	int n = u_ao_rays;
+	if (n <= 0)
+		return 1.0;
+	ivec3 lo = ivec3(-u_margin), hi = u_cells + u_margin;
+	vec3 gpos = (ws - u_origin) / u_cell - vec3(u_base); // grid coordinates
+	float vis = 0.0;
+	for (int r = 0; r < n; r++) {
+		vec3 dir = ao_dir(r, n);
+		if (dot(dir, nrm) < -0.2)
+			dir = reflect(dir, nrm); // rays into the rock tell nothing
+		float v = 1.0;
+		for (int s = 1; s <= u_ao_short_steps; s++) {
+			ivec3 c = ivec3(floor(gpos + dir * (float(s) + 0.5) + 0.5));
+			c = clamp(c, lo, hi);
+			v *= clamp(1.0 - (D(c) - u_iso) * u_ao_short_k, 0.0, 1.0);
+		}
+		g_octave_drop = 3;
+		for (int s = 1; s <= u_ao_long_steps; s++) {
+			float d = density(ws + dir * (float(s) * u_ao_long_step));
+			v *= clamp(1.0 - (d - u_iso) * u_ao_long_k, 0.0, 1.0);
+		}
+		g_octave_drop = 0;
+		vis += v;
+	}
+	return vis / float(n);
+}

@@ -1,0 +1,256 @@
+/* isoterra — the streaming world: neighbouring blocks share identical
+ * vertices, level-of-detail transitions leave no hole seen from above, the
+ * autopilot never enters rock over a long flight, the same seed and time
+ * give the same image, empty blocks are never generated again, and the
+ * default fly-through frame matches its golden image. */
+#include "app.h"
+#include "world.h"
+#include "tcheck.h"
+#include "gpu_fixture.h"
+
+#include <math.h>
+#include <string.h>
+
+static void small_world(struct params *p)
+{
+	params_defaults(p);
+	p->scene = 1;
+	p->block_pool = 160;
+	p->view_distance = 40.0f;
+	p->ao_rays = 4;
+	p->fade_time = 0.0f;
+}
+
+/* vertices of m on the plane axis = v, as sorted (a, b, nx, ny, nz) rows */
+static int face_vertices(const struct mesh *m, int axis, float v, float *out)
+{
+	int n = 0;
+	for (uint32_t i = 0; i < m->nverts; i++) {
+		const float *q = m->pos + 3 * i, *nn = m->nrm + 3 * i;
+		if (q[axis] != v)
+			continue;
+		float *o = out + 5 * n++;
+		o[0] = q[(axis + 1) % 3];
+		o[1] = q[(axis + 2) % 3];
+		o[2] = nn[0];
+		o[3] = nn[1];
+		o[4] = nn[2];
+	}
+	return n;
+}
+
+static int cmp5(const void *a, const void *b)
+{
+	const float *x = a, *y = b;
+	for (int i = 0; i < 5; i++)
+		if (x[i] != y[i])
+			return x[i] < y[i] ? -1 : 1;
+	return 0;
+}
+
+static void check_seams(struct world *w, const struct params *p)
+{
+	int checked = 0;
+	for (int lod = 0; lod < 2; lod++) {
+		float s = p->block_size * (float)(1 << lod);
+		for (int j = -3; j <= 3 && checked < 4 + 4 * lod; j++) {
+			for (int axis = 0; axis < 3; axis += 2) {
+				int a[3] = { 0, j, 0 }, b[3] = { 0, j, 0 };
+				b[axis] = 1;
+				struct mesh ma, mb;
+				if (world_block_mesh(w, p, lod, a, &ma) < 0 || world_block_mesh(w, p, lod, b, &mb) < 0) {
+					CHECK(0, "block meshes");
+					return;
+				}
+				float *fa = malloc(sizeof(float) * 5 * (ma.nverts + 1));
+				float *fb = malloc(sizeof(float) * 5 * (mb.nverts + 1));
+				int na = face_vertices(&ma, axis, s, fa), nb = face_vertices(&mb, axis, s, fb);
+				if (na > 0 || nb > 0) {
+					qsort(fa, (size_t)na, sizeof(float) * 5, cmp5);
+					qsort(fb, (size_t)nb, sizeof(float) * 5, cmp5);
+					CHECK(na == nb && !memcmp(fa, fb, sizeof(float) * 5 * (size_t)na),
+					      "lod %d blocks %d,%d,%d | %d,%d,%d: %d vs %d vertices on the shared face, not identical",
+					      lod, a[0], a[1], a[2], b[0], b[1], b[2], na, nb);
+					checked++;
+				}
+				free(fa);
+				free(fb);
+				mesh_free(&ma);
+				mesh_free(&mb);
+			}
+		}
+	}
+	CHECK(checked >= 4, "only %d shared faces with a surface found", checked);
+	printf("seams: %d shared block faces compared, identical\n", checked);
+}
+
+static void check_no_holes(const struct params *p)
+{
+	char err[512] = "";
+	struct world *w = world_create(p, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 160, err, sizeof(err));
+	CHECK(w && r, "world/renderer: %s", err);
+	if (!w || !r)
+		return;
+	renderer_set_clear(r, 1.0f, 0.0f, 1.0f);
+	struct camera c;
+	/* straight down from above: every pixel must be terrain; the view spans
+	 * all levels (finest to ~12 units, then 24, then 40) */
+	float eye[3] = { 3.0f, 27.0f, 5.0f }, at[3] = { 3.0f, 0.0f, 5.01f };
+	camera_look(&c, eye, at, 60.0f, 1.0f, 0.1f, 200.0f);
+	CHECK(world_fill(w, p, &c, 0.0) == 0, "fill");
+	CHECK(world_draw(w, r, &c, p, 100.0) == 0, "draw");
+	struct image img = { 0 };
+	CHECK(renderer_read(r, &img) == 0, "read");
+	int holes = 0;
+	for (int i = 0; img.rgba && i < img.width * img.height; i++)
+		holes += img.rgba[4 * i] > 250 && img.rgba[4 * i + 1] < 5 && img.rgba[4 * i + 2] > 250;
+	struct world_stats st;
+	world_get_stats(w, &st);
+	int lods[8] = { 0 };
+	(void)lods;
+	printf("no-holes view: %d blocks drawn, %llu generated, %d magenta pixels\n", st.drawn,
+	       (unsigned long long)st.generated, holes);
+	CHECK(holes == 0, "%d background pixels show through the terrain seen from above (LOD cracks)", holes);
+	if (holes && getenv("ISOTERRA_DEBUG_DIR")) {
+		char path[1024];
+		snprintf(path, sizeof(path), "%s/world_holes.png", getenv("ISOTERRA_DEBUG_DIR"));
+		image_write_png(&img, path, err, sizeof(err));
+	}
+	image_free(&img);
+	renderer_destroy(r);
+	world_destroy(w);
+}
+
+static void check_empty_not_regenerated(const struct params *p)
+{
+	char err[512] = "";
+	struct world *w = world_create(p, err, sizeof(err));
+	CHECK(w != NULL, "world: %s", err);
+	if (!w)
+		return;
+	struct autopilot ap;
+	autopilot_init(&ap, p);
+	struct camera c;
+	autopilot_camera(&ap, &c, p->fov, 1.5f, 100.0f);
+	world_fill(w, p, &c, 0.0);
+	struct world_stats a, b;
+	world_get_stats(w, &a);
+	for (int i = 0; i < 5; i++)
+		world_update(w, p, &c, 0.1 * i, true);
+	world_get_stats(w, &b);
+	printf("empty blocks: %llu generated, %llu found empty; 5 more frames: %llu generated, %llu skipped as known empty\n",
+	       (unsigned long long)a.generated, (unsigned long long)a.empty_found, (unsigned long long)b.generated,
+	       (unsigned long long)(b.empty_skipped - a.empty_skipped));
+	CHECK(a.empty_found > 0, "the view has empty blocks");
+	CHECK(b.generated == a.generated, "nothing regenerated for the same view (%llu -> %llu)",
+	      (unsigned long long)a.generated, (unsigned long long)b.generated);
+	CHECK(b.empty_skipped - a.empty_skipped >= 5 * a.empty_found / 2, "known-empty blocks skipped each frame");
+	autopilot_free(&ap);
+	world_destroy(w);
+}
+
+static void check_autopilot(const struct params *p)
+{
+	struct autopilot ap;
+	CHECK(autopilot_init(&ap, p) == 0, "autopilot");
+	float start[3];
+	memcpy(start, ap.pos, sizeof(start));
+	autopilot_advance(&ap, 300.0); /* five minutes */
+	float dx = ap.pos[0] - start[0], dz = ap.pos[2] - start[2];
+	printf("autopilot: 300 s, travelled %.1f units, closest to rock %.3f (density units of air)\n",
+	       sqrt(dx * dx + dz * dz), ap.min_clearance_seen);
+	CHECK(ap.min_clearance_seen > 0.0f, "the camera entered rock (margin %g)", ap.min_clearance_seen);
+	CHECK(dx * dx + dz * dz > 100.0f, "the autopilot went somewhere");
+	autopilot_free(&ap);
+}
+
+/* Manual flight: a developer diving at the ground and pushing forward, with
+ * turns, for two minutes.  The camera moves and turns as asked but never
+ * comes within fly_clearance of rock (the density function is the judge). */
+static void check_manual(const struct params *p)
+{
+	struct autopilot ap;
+	CHECK(autopilot_init(&ap, p) == 0, "autopilot (manual)");
+	float start[3];
+	memcpy(start, ap.pos, sizeof(start));
+	const float dive[3] = { 1.0f, 0.0f, -1.0f }, turn_dn[2] = { 0.3f, -1.0f };
+	autopilot_steer(&ap, dive, turn_dn);
+	autopilot_advance(&ap, 1.0); /* pitch down, fly forward and down */
+	CHECK(ap.pitch < -0.9f && ap.pos[1] < start[1], "manual: pitch %.2f, height %.2f -> %.2f", ap.pitch, start[1],
+	      ap.pos[1]);
+	const float fwd[3] = { 1.0f, 0.3f, -0.5f }, turn[2] = { 0.4f, 0.0f };
+	autopilot_steer(&ap, fwd, turn);
+	autopilot_advance(&ap, 120.0);
+	float dx = ap.pos[0] - start[0], dz = ap.pos[2] - start[2];
+	printf("manual: 120 s diving and turning, travelled %.1f units, closest to rock %.3f (clearance %.2f)\n",
+	       sqrt(dx * dx + dz * dz), ap.min_clearance_seen, p->fly_clearance);
+	CHECK(ap.min_clearance_seen > 0.0f, "manual flight entered rock (margin %g)", ap.min_clearance_seen);
+	CHECK(dx * dx + dz * dz > 4.0f, "manual flight moved");
+	autopilot_free(&ap);
+}
+
+static int world_image(const struct params *p, double t, struct image *img)
+{
+	char err[512] = "";
+	struct world *w = world_create(p, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 96, err, sizeof(err));
+	struct autopilot ap;
+	int rc = -1;
+	if (w && r && autopilot_init(&ap, p) == 0) {
+		struct camera c;
+		autopilot_advance(&ap, t);
+		autopilot_camera(&ap, &c, p->fov, 160.0f / 96.0f, p->view_distance * 1.2f);
+		if (world_fill(w, p, &c, t) == 0 && world_draw(w, r, &c, p, t + 10.0) == 0)
+			rc = renderer_read(r, img);
+		autopilot_free(&ap);
+	}
+	renderer_destroy(r);
+	world_destroy(w);
+	return rc;
+}
+
+static void check_determinism_and_golden(const struct params *p)
+{
+	struct image a = { 0 }, b = { 0 }, ref = { 0 };
+	CHECK(world_image(p, 4.0, &a) == 0, "world image");
+	CHECK(world_image(p, 4.0, &b) == 0, "world image again");
+	if (a.rgba && b.rgba)
+		CHECK(!memcmp(a.rgba, b.rgba, (size_t)a.width * a.height * 4), "same seed and time, same image");
+	const char *src = getenv("ISOTERRA_SRC");
+	char golden[1024], err[512];
+	snprintf(golden, sizeof(golden), "%s/tests/golden/world_160x96.png", src ? src : ".");
+	if (getenv("ISOTERRA_UPDATE_GOLDEN") && a.rgba)
+		CHECK(image_write_png(&a, golden, err, sizeof(err)) == 0, "write golden: %s", err);
+	CHECK(image_read_png(&ref, golden, err, sizeof(err)) == 0, "golden: %s", err);
+	if (a.rgba && ref.rgba) {
+		struct image_diff d;
+		CHECK(image_compare(&a, &ref, 48, &d) == 0, "sizes");
+		printf("world golden: mean abs %.3f, %.3f%% over 48, PSNR %.1f dB\n", d.mean_abs, 100 * d.frac_over, d.psnr);
+		CHECK(d.mean_abs <= 2.0 && d.frac_over <= 0.01, "world frame differs from the golden image");
+	}
+	image_free(&a);
+	image_free(&b);
+	image_free(&ref);
+}
+
+int main(void)
+{
+	struct platform *plat = fixture_open();
+	struct params p;
+	small_world(&p);
+	char err[512] = "";
+	struct world *w = world_create(&p, err, sizeof(err));
+	CHECK(w != NULL, "world_create: %s", err);
+	if (w) {
+		check_seams(w, &p);
+		world_destroy(w);
+	}
+	check_no_holes(&p);
+	check_empty_not_regenerated(&p);
+	check_autopilot(&p);
+	check_manual(&p);
+	check_determinism_and_golden(&p);
+	platform_close(plat);
+	return tc_done("world");
+}
