@@ -194,7 +194,7 @@ void cli_print_help(const char *argv0)
 	       "  --preset NAME          start from a preset (see --list-presets)\n"
 	       "  --config FILE          'name = value' lines, applied after the preset\n"
 	       "  --platform NAME        auto|gbm|wayland|x11|device|surfaceless (built: %s)\n"
-	       "  --fullscreen           wayland/x11 fullscreen; --hide-cursor (x11)\n"
+	       "  --fullscreen           wayland/x11 fullscreen; --hide-cursor (wayland/x11)\n"
 	       "  -D, --drm-device CARD  gbm: /dev/dri/cardN; --mode WxH[@Hz] the display mode\n"
 	       "  --count 0              display platforms: run until closed / SIGINT / SIGTERM\n"
 	       "  --fps-report SECONDS   print the frame rate every SECONDS (and on SIGUSR1)\n"

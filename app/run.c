@@ -176,7 +176,7 @@ static const char *frame_dest(const struct frame_out *o, const struct params *p)
 {
 	if (o->fs->y4m || o->fs->per_frame || o->frames == p->count)
 		return p->out;
-	return "(stopped before the last frame: no image)";
+	return p->count == 0 ? "(display only: no image)" : "(stopped before the last frame: no image)";
 }
 
 static int run_volume(struct params *p, struct frame_out *o)

@@ -1,7 +1,9 @@
 /* isoterra — Wayland display backend: wl_compositor + xdg_wm_base (the
  * xdg-shell glue is generated at build time by wayland-scanner), a
  * wl_egl_window, fullscreen on request, resize on configure, close from
- * xdg_toplevel.close; frame callbacks are counted (p->shown). */
+ * xdg_toplevel.close; frame callbacks are counted (p->shown); with
+ * --hide-cursor the pointer is hidden over the window (wl_pointer.enter ->
+ * set_cursor(NULL)). */
 #include "platform.h"
 
 #include <errno.h>
@@ -26,8 +28,10 @@ struct wl_state {
 	struct xdg_surface *xdg_surface;
 	struct xdg_toplevel *toplevel;
 	struct wl_egl_window *egl_window;
+	struct wl_seat *seat; /* only with --hide-cursor */
+	struct wl_pointer *pointer;
 	int pending_w, pending_h; /* from xdg_toplevel.configure, 0 = our choice */
-	bool configured, closed;
+	bool configured, closed, want_seat;
 	unsigned callbacks_pending;
 };
 
@@ -45,9 +49,88 @@ static void wm_base_ping(void *data, struct xdg_wm_base *base, uint32_t serial)
 
 static const struct xdg_wm_base_listener wm_base_listener = { .ping = wm_base_ping };
 
+/* --hide-cursor: a NULL cursor surface hides the pointer while it is over
+ * the window (the compositor asks on every enter). */
+static void pointer_enter(void *data, struct wl_pointer *ptr, uint32_t serial, struct wl_surface *s, wl_fixed_t x,
+			  wl_fixed_t y)
+{
+	(void)data;
+	(void)s;
+	(void)x;
+	(void)y;
+	wl_pointer_set_cursor(ptr, serial, NULL, 0, 0);
+}
+
+static void pointer_leave(void *data, struct wl_pointer *ptr, uint32_t serial, struct wl_surface *s)
+{
+	(void)data;
+	(void)ptr;
+	(void)serial;
+	(void)s;
+}
+
+static void pointer_motion(void *data, struct wl_pointer *ptr, uint32_t time, wl_fixed_t x, wl_fixed_t y)
+{
+	(void)data;
+	(void)ptr;
+	(void)time;
+	(void)x;
+	(void)y;
+}
+
+static void pointer_button(void *data, struct wl_pointer *ptr, uint32_t serial, uint32_t time, uint32_t button,
+			   uint32_t state)
+{
+	(void)data;
+	(void)ptr;
+	(void)serial;
+	(void)time;
+	(void)button;
+	(void)state;
+}
+
+static void pointer_axis(void *data, struct wl_pointer *ptr, uint32_t time, uint32_t axis, wl_fixed_t value)
+{
+	(void)data;
+	(void)ptr;
+	(void)time;
+	(void)axis;
+	(void)value;
+}
+
+/* wl_seat is bound at version 1: only these pointer events exist there */
+static const struct wl_pointer_listener pointer_listener = {
+	.enter = pointer_enter,
+	.leave = pointer_leave,
+	.motion = pointer_motion,
+	.button = pointer_button,
+	.axis = pointer_axis,
+};
+
+static void seat_capabilities(void *data, struct wl_seat *seat, uint32_t caps)
+{
+	struct wl_state *w = data;
+	if ((caps & WL_SEAT_CAPABILITY_POINTER) && !w->pointer) {
+		w->pointer = wl_seat_get_pointer(seat);
+		if (w->pointer)
+			wl_pointer_add_listener(w->pointer, &pointer_listener, w);
+	} else if (!(caps & WL_SEAT_CAPABILITY_POINTER) && w->pointer) {
+		wl_pointer_destroy(w->pointer);
+		w->pointer = NULL;
+	}
+}
+
+static const struct wl_seat_listener seat_listener = { .capabilities = seat_capabilities };
+
 static void registry_global(void *data, struct wl_registry *reg, uint32_t name, const char *iface, uint32_t version)
 {
 	struct wl_state *w = data;
+	if (strcmp(iface, wl_seat_interface.name) == 0 && w->want_seat && !w->seat) {
+		w->seat = wl_registry_bind(reg, name, &wl_seat_interface, 1);
+		if (w->seat)
+			wl_seat_add_listener(w->seat, &seat_listener, w);
+		return;
+	}
 	if (strcmp(iface, wl_compositor_interface.name) == 0 && !w->compositor) {
 		w->compositor = wl_registry_bind(reg, name, &wl_compositor_interface, version < 4 ? version : 4);
 	} else if (strcmp(iface, xdg_wm_base_interface.name) == 0 && !w->wm_base) {
@@ -191,6 +274,10 @@ static void wayland_close(struct platform *p)
 		xdg_surface_destroy(w->xdg_surface);
 	if (w->surface)
 		wl_surface_destroy(w->surface);
+	if (w->pointer)
+		wl_pointer_destroy(w->pointer);
+	if (w->seat)
+		wl_seat_destroy(w->seat);
 	if (w->wm_base)
 		xdg_wm_base_destroy(w->wm_base);
 	if (w->compositor)
@@ -217,6 +304,7 @@ static int wayland_open(struct platform *p, const struct platform_options *opt, 
 		return -1;
 	}
 	w->p = p;
+	w->want_seat = opt->hide_cursor;
 	p->priv = w;
 	const char *name = getenv("WAYLAND_DISPLAY");
 	w->display = wl_display_connect(NULL);

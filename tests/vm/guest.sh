@@ -67,9 +67,10 @@ else
 	exec 3<>/dev/dri/card0
 fi
 
-# 2. legacy modesetting, --count 3: exits by itself and restores
+# 2. legacy modesetting, --count 3: exits by itself and restores; with
+#    --platform auto (no DISPLAY, no WAYLAND_DISPLAY): auto must pick gbm
 t=$(up)
-timeout 300 "$BIN" --platform gbm $ARGS --count 3 --kms-legacy --out "$R/legacy.png" >"$R/legacy.log" 2>&1
+timeout 300 "$BIN" --platform auto $ARGS --count 3 --kms-legacy --out "$R/legacy.png" >"$R/legacy.log" 2>&1
 echo $? >"$R/legacy.rc"
 state legacy
 say "isoterra (legacy, 3 frames) rc $(cat "$R/legacy.rc") in $(awk "BEGIN { print $(up) - $t }") s"
@@ -89,4 +90,18 @@ t=$(up)
 timeout 180 glmark2-es2-drm --winsys-options drm-device=/dev/dri/card0 -b clear:duration=0.5 >"$R/glmark2.log" 2>&1
 echo $? >"$R/glmark2.rc"
 say "glmark2-es2-drm rc $(cat "$R/glmark2.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+# 5. clear errors: a mode the connector does not offer; then the connector
+#    forced off (sysfs status): no connected display -> gbm fails with one
+#    line, auto falls back to headless
+"$BIN" --platform gbm --mode 123x45 $(echo "$ARGS" | sed 's/--mode [^ ]*//') >"$R/badmode.log" 2>&1
+echo $? >"$R/badmode.rc"
+st=$(ls -d /sys/class/drm/card0-*/status | head -1)
+echo off >"$st"
+"$BIN" --platform gbm $ARGS >"$R/nodisplay.log" 2>&1
+echo $? >"$R/nodisplay.rc"
+# (--count 0 makes a headless pick fail before any rendering, naming it)
+"$BIN" --platform auto $ARGS --count 0 >"$R/auto-off.log" 2>&1
+echo $? >"$R/auto-off.rc"
+echo detect >"$st"
+say "connector $st: $(cat "$st") again"
 : >"$R/done"

@@ -8,11 +8,13 @@
 #     (debugfs: the primary plane shows fbcon's framebuffer again) are those
 #     from before, although another file keeps the card open (so the
 #     kernel's last-close restore cannot do it for the app);
-#   - legacy modesetting (--kms-legacy) with --count 3 exits by itself and
-#     restores too;
+#   - --platform auto picks gbm; legacy modesetting (--kms-legacy) with
+#     --count 3 exits by itself and restores too;
 #   - kmscube and glmark2-es2-drm run in the same guest (sanity peers);
 #     kmscube does not restore the CRTC: after it, with the card still held
-#     open, the console is off -- the negative control of the checks above.
+#     open, the console is off -- the negative control of the checks above;
+#   - clear errors: a mode not offered; the connector forced off (sysfs):
+#     "no connected display", and auto falls back to headless.
 # See tests/vm/README.md and ../shared/vm/RECIPE.md.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/../display/lib.sh"
@@ -75,7 +77,7 @@ qemu-system-x86_64 -machine pc -cpu max -smp 2 -m 1536 -no-reboot \
 QPID=$!
 
 # serve the guest's screendump requests until it powers off
-LIMIT=${ISOTERRA_VM_TIMEOUT:-480}
+LIMIT=${ISOTERRA_VM_TIMEOUT:-720}
 while alive "$QPID"; do
 	for req in "$T"/req-*; do
 		[ -e "$req" ] || continue
@@ -142,11 +144,12 @@ if [ -n "$c" ] && [ "$f" = "$c" ] && [ "$a" != "$c" ]; then
 else
 	bad "KMS state: primary plane fb by '$c' before, '$a' while running, '$f' after SIGTERM (state files in $T)"
 fi
-# legacy modesetting, --count 3
-[ "$(cat "$T/legacy.rc" 2>/dev/null)" = 0 ] && ok "isoterra --kms-legacy --count 3: exit 0" ||
+# legacy modesetting, --count 3, chosen by --platform auto
+[ "$(cat "$T/legacy.rc" 2>/dev/null)" = 0 ] && ok "isoterra --platform auto --kms-legacy --count 3: exit 0" ||
 	bad "isoterra --kms-legacy exit '$(cat "$T/legacy.rc" 2>/dev/null)': $(tail -5 "$T/legacy.log" 2>/dev/null)"
 grep -q "gbm: /dev/dri/card0 Virtual-1 ${W}x$H@[0-9]* (legacy modesetting)" "$T/legacy.log" 2>/dev/null &&
-	ok "legacy modeset: $(grep -m1 'modesetting' "$T/legacy.log")" || bad "no legacy modeset line: $(head -5 "$T/legacy.log" 2>/dev/null)"
+	ok "auto picked gbm (a card with a connected display), legacy modeset: $(grep -m1 'modesetting' "$T/legacy.log")" ||
+	bad "no legacy modeset line (auto did not pick gbm?): $(head -5 "$T/legacy.log" 2>/dev/null)"
 grep -q 'gbm: 3 frames presented, 3 shown' "$T/legacy.log" 2>/dev/null && ok "legacy page flips: 3 presented, 3 shown" ||
 	bad "legacy page flips: $(grep presented "$T/legacy.log" 2>/dev/null)"
 l=$(fbowner "$T/state-legacy.txt")
@@ -154,7 +157,7 @@ l=$(fbowner "$T/state-legacy.txt")
 [ -s "$T/legacy.png" ] && compare "--out of the gbm run vs host headless" "$T/legacy.png" "$T/ref.png" --threshold 32 --max-mean 2.0 --max-frac 0.01
 
 # sanity peers; kmscube is also the negative control of the restore checks
-[ "$(cat "$T/kmscube.rc" 2>/dev/null)" = 0 ] && grep -qi "mode" "$T/kmscube.log" &&
+[ "$(cat "$T/kmscube.rc" 2>/dev/null)" = 0 ] && grep -Eq "Rendered [1-9][0-9]* frames" "$T/kmscube.log" &&
 	ok "kmscube: $(grep -m1 -i 'Using display' "$T/kmscube.log" || head -1 "$T/kmscube.log")" ||
 	bad "kmscube rc $(cat "$T/kmscube.rc" 2>/dev/null): $(tail -5 "$T/kmscube.log" 2>/dev/null)"
 k=$(fbowner "$T/state-kmscube.txt")
@@ -171,6 +174,26 @@ fi
 	ok "glmark2-es2-drm: $(grep -m1 'glmark2 Score' "$T/glmark2.log" | tr -s ' ')" ||
 	bad "glmark2-es2-drm rc $(cat "$T/glmark2.rc" 2>/dev/null): $(tail -5 "$T/glmark2.log" 2>/dev/null)"
 
+# clear errors (no rendering involved)
+if [ "$(cat "$T/badmode.rc" 2>/dev/null)" != 0 ] && grep -q "mode 123x45 not offered by Virtual-1 on /dev/dri/card0" "$T/badmode.log" &&
+	[ "$(grep -c . "$T/badmode.log")" -le 2 ]; then
+	ok "--mode 123x45: exit $(cat "$T/badmode.rc"), one clear line"
+else
+	bad "--mode 123x45: exit $(cat "$T/badmode.rc" 2>/dev/null): $(cat "$T/badmode.log" 2>/dev/null)"
+fi
+if [ "$(cat "$T/nodisplay.rc" 2>/dev/null)" != 0 ] && grep -q "no connected display on /dev/dri/card0" "$T/nodisplay.log" &&
+	[ "$(grep -c . "$T/nodisplay.log")" -le 2 ]; then
+	ok "connector off: --platform gbm exit $(cat "$T/nodisplay.rc"): '$(cat "$T/nodisplay.log")'"
+else
+	bad "connector off: --platform gbm exit $(cat "$T/nodisplay.rc" 2>/dev/null): $(cat "$T/nodisplay.log" 2>/dev/null)"
+fi
+# auto with --count 0: a headless pick is refused by name before rendering
+if [ "$(cat "$T/auto-off.rc" 2>/dev/null)" != 0 ] &&
+	grep -Eq "needs a display platform \(gbm, wayland, x11\), not '(device|surfaceless)'" "$T/auto-off.log"; then
+	ok "connector off: auto -> headless ($(grep -oE "not '[a-z]+'" "$T/auto-off.log"))"
+else
+	bad "connector off: auto: rc $(cat "$T/auto-off.rc" 2>/dev/null): $(cat "$T/auto-off.log" 2>/dev/null)"
+fi
 echo "kms vm test: $(($(date +%s) - t0)) s"
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
