@@ -40,7 +40,7 @@ export WAYLAND_DISPLAY
 t0=$(date +%s)
 
 # 1. fullscreen: the window is the whole output; screenshot vs headless
-"$BIN" --platform wayland --fullscreen $ARGS --count 0 --fps-report 0.2 >"$T/app1.log" 2>&1 &
+"$BIN" --platform wayland --fullscreen --hide-cursor $ARGS --count 0 --fps-report 0.2 >"$T/app1.log" 2>&1 &
 APID=$!
 if wait_frames "$T/app1.log" 4 60 "$APID"; then
 	ok "wayland: frames presented ($(presented "$T/app1.log") so far)"
@@ -76,7 +76,7 @@ if "$BIN" --platform wayland --size 160x120 $ARGS --count 5 --out "$T/app2.png" 
 	"wayland: 5 frames presented"*) [ "$ns" -ge 4 ] && ok "--count 5: $line" || bad "--count 5: $line (want >= 4 shown)" ;;
 	*) bad "--count 5: '$line': $(tail -3 "$T/app2.log")" ;;
 	esac
-	headless "$T/ref160.png" 160x120 $ARGS && compare "--out of a wayland run vs headless" "$T/app2.png" "$T/ref160.png" --max-mean 0 --max-frac 0
+	headless "$T/ref160.png" 160x120 $ARGS --count 5 && compare "--out of a wayland run vs headless (frame 5)" "$T/app2.png" "$T/ref160.png" --max-mean 0 --max-frac 0
 else
 	bad "--count 5 run failed: $(cat "$T/app2.log")"
 fi

@@ -92,7 +92,7 @@ grep -q 'Terminated: stopping' "$T/app2.log" && ok "SIGTERM noticed by the loop"
 # 3. --count N: exits by itself after N frames, writes --out like headless
 if "$BIN" --platform x11 --size 160x120 $ARGS --count 3 --out "$T/app3.png" >"$T/app3.log" 2>&1; then
 	grep -q 'x11: 3 frames presented, 3 shown' "$T/app3.log" && ok "--count 3: 3 frames presented" || bad "--count 3: $(cat "$T/app3.log")"
-	headless "$T/ref160.png" 160x120 $ARGS && compare "--out of an x11 run vs headless" "$T/app3.png" "$T/ref160.png" --max-mean 0 --max-frac 0
+	headless "$T/ref160.png" 160x120 $ARGS --count 3 && compare "--out of an x11 run vs headless (frame 3)" "$T/app3.png" "$T/ref160.png" --max-mean 0 --max-frac 0
 else
 	bad "--count 3 run failed: $(cat "$T/app3.log")"
 fi
