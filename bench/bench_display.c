@@ -6,8 +6,11 @@
  *  2. + blit: the frame blitted to the window's back buffer, glFinish;
  *  3. + present: blit, eglSwapBuffers and the backend's events (page flip,
  *     frame callback, X events): what the display loop does per frame.
+ * The three steps alternate in rounds of --frames frames (so a load change
+ * on a shared machine hits all three alike); the median round is reported.
  * Ratios are to the baseline of the same run; the machine is printed.
- * usage: bench_display [--platform NAME] [--size WxH] [--frames N] [--grid N] */
+ * usage: bench_display [--platform NAME] [--size WxH] [--frames N]
+ *                      [--rounds N] [--grid N] */
 #include "app.h"
 #include "bench.h"
 
@@ -41,7 +44,7 @@ static double run(struct platform *plat, struct renderer *r, const struct pipeli
 int main(int argc, char **argv)
 {
 	const char *plat_name = "auto", *size = "640x480";
-	int frames = 60, grid = 64;
+	int frames = 3, rounds = 15, grid = 64;
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--platform") && i + 1 < argc)
 			plat_name = argv[++i];
@@ -49,16 +52,19 @@ int main(int argc, char **argv)
 			size = argv[++i];
 		else if (!strcmp(argv[i], "--frames") && i + 1 < argc)
 			frames = atoi(argv[++i]);
+		else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
+			rounds = atoi(argv[++i]);
 		else if (!strcmp(argv[i], "--grid") && i + 1 < argc)
 			grid = atoi(argv[++i]);
 		else {
-			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--grid N]\n", argv[0]);
+			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--rounds N] [--grid N]\n",
+				argv[0]);
 			return 2;
 		}
 	}
 	int w, h;
-	if (cli_parse_size(size, &w, &h) < 0 || frames < 1 || grid < 2) {
-		fprintf(stderr, "bench_display: bad --size, --frames or --grid\n");
+	if (cli_parse_size(size, &w, &h) < 0 || frames < 1 || rounds < 1 || rounds > 1000 || grid < 2) {
+		fprintf(stderr, "bench_display: bad --size, --frames, --rounds or --grid\n");
 		return 2;
 	}
 	log_set_level(LOG_WARN);
@@ -84,8 +90,8 @@ int main(int argc, char **argv)
 	}
 	w = plat->width;
 	h = plat->height;
-	printf("platform %s (%s), %dx%d, grid %d^3, %d frames per step\n", plat->backend->name, plat->device_desc, w,
-	       h, grid, frames);
+	printf("platform %s (%s), %dx%d, grid %d^3, %d rounds of %d frames per step\n", plat->backend->name,
+	       plat->device_desc, w, h, grid, rounds, frames);
 	struct params p;
 	params_defaults(&p);
 	p.grid = grid;
@@ -107,10 +113,20 @@ int main(int argc, char **argv)
 	if (run(plat, r, &d, &cam, &p, PRESENT, 3) < 0)
 		goto fail;
 	static const char *names[] = { "draw (headless frame)", "draw + blit to window", "draw + blit + present" };
-	double ms[3];
-	for (int s = DRAW; s <= PRESENT; s++)
-		if ((ms[s] = run(plat, r, &d, &cam, &p, (enum step)s, frames)) < 0)
-			goto fail;
+	double ms[3], *t = malloc(sizeof(double) * 3 * (size_t)rounds);
+	if (!t)
+		goto fail;
+	for (int k = 0; k < rounds; k++)
+		for (int s = DRAW; s <= PRESENT; s++)
+			if ((t[s * rounds + k] = run(plat, r, &d, &cam, &p, (enum step)s, frames)) < 0) {
+				free(t);
+				goto fail;
+			}
+	for (int s = DRAW; s <= PRESENT; s++) {
+		qsort(t + s * rounds, (size_t)rounds, sizeof(double), bench_cmp_double);
+		ms[s] = t[s * rounds + rounds / 2];
+	}
+	free(t);
 	for (int s = DRAW; s <= PRESENT; s++)
 		printf("  %-24s %8.2f ms/frame  %7.1f fps  ratio %.3f\n", names[s], ms[s], 1e3 / ms[s], ms[s] / ms[DRAW]);
 	printf("  presented %lu, shown %lu\n", plat->presented, plat->shown);
