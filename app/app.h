@@ -12,6 +12,8 @@
 #include "ply.h"
 #include "noise.h"
 #include "density_ref.h"
+#include "curves.h"
+#include "edits.h"
 #include "mc.h"
 #include "gpu.h"
 #include "pipeline.h"

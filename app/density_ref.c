@@ -5,6 +5,7 @@
  * noise=texture, where the GPU's hardware trilinear filter is approximated
  * here by exact fp32 trilinear interpolation (see tests/test_density.c). */
 #include "density_ref.h"
+#include "edits.h" /* curves and heightmap: carve_ref.c */
 
 #include <math.h>
 
@@ -17,7 +18,7 @@ static const float octave_shift[3] = { 17.31f, -9.17f, 23.53f };
 #define PI_F 3.14159265358979f
 
 /* values of the FIELD_/SHAPE_/... enums (index in the params.def choices) */
-enum { FIELD_TERRAIN, FIELD_TORUS, FIELD_BUMPS, FIELD_RIPPLE, FIELD_SPHERE, FIELD_CHECKER };
+enum { FIELD_TERRAIN, FIELD_TORUS, FIELD_BUMPS, FIELD_RIPPLE, FIELD_SPHERE, FIELD_CHECKER, FIELD_HEIGHTMAP };
 enum { SHAPE_GROUND, SHAPE_PLANET, SHAPE_CAVES };
 enum { NOISE_ALU, NOISE_TEXTURE };
 enum { FRACTAL_GEISS, FRACTAL_FBM, FRACTAL_TURBULENCE, FRACTAL_RIDGED, FRACTAL_MULTIFRACTAL, FRACTAL_HETERO,
@@ -194,6 +195,13 @@ static float shelf_term(const struct params *p, float y)
 float density_ref(const struct params *p, const struct noise_set *ns, float x, float y, float z)
 {
 	x += p->time * p->scroll_speed;
+	if (p->field == FIELD_HEIGHTMAP) { /* carve_ref.c; needs edits_load(p) */
+		const float hp[3] = { x, y, z };
+		float hd = heightmap_ref_height(edits_get(), p, ns, x, z, true) - y;
+		if (p->heightmap_noise != 0.0f)
+			hd += p->heightmap_noise * p->noise_amp * fractal_ref(p, ns, hp);
+		return carve_ref_density(edits_get(), p, x, y, z, hd);
+	}
 	if (p->field != FIELD_TERRAIN)
 		return test_field(p, x, y, z);
 
@@ -236,7 +244,7 @@ float density_ref(const struct params *p, const struct noise_set *ns, float x, f
 		float amount = sat((p->flat_outer - dist) * (1.0f / fmaxf(p->flat_outer - p->flat_inner, 1e-4f))) * 0.9f;
 		d = d + amount * ((p->flat_y - orig[1]) - d);
 	}
-	return d;
+	return carve_ref_density(edits_get(), p, orig[0], orig[1], orig[2], d); /* curves: cut and fill */
 }
 
 void density_ref_volume(const struct params *p, const struct noise_set *ns, const float origin[3], float cell,

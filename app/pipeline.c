@@ -16,6 +16,7 @@
 #include "log.h"
 #include "mc.h"
 #include "noise.h"
+#include "edits.h" /* curves + heightmap (issue 6) */
 
 #include <math.h>
 #include <stdlib.h>
@@ -387,6 +388,7 @@ void pipeline_destroy(struct pipeline *pl)
 			glDeleteBuffers(1, &bufs[i]);
 	if (pl->noise_ready)
 		noise_gl_destroy(&pl->ng);
+	edits_gl_release(); /* curves + heightmap (issue 6); re-uploaded on the next bind */
 	free(pl->ns);
 	free(pl);
 }
@@ -426,6 +428,8 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 	bind_all(pl);
 	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
+	if (edits_gl_bind(pl->p_density, p) < 0) /* curves + heightmap (issue 6) */
+		return -1;
 	glUseProgram(pl->p_density);
 	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
 	int m2 = 1 + 2 * grid_margin(&pl->g);
@@ -510,6 +514,8 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	}
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
+	if (edits_gl_bind(pl->p_vertices, p) < 0) /* normals and AO read density() */
+		return -1;
 	glUseProgram(pl->p_vertices);
 	glDispatchComputeIndirect(status_off + 8 * 4);
 	mark(pl, PASS_VERTICES, &t);

@@ -19,6 +19,7 @@
  * a 16-byte copy of its status: empty blocks are remembered, get no slot
  * and are never generated again. */
 #include "world.h"
+#include "edits.h"
 #include "gpu.h"
 #include "log.h"
 #include "pipeline.h"
@@ -39,6 +40,8 @@ struct block {
 	uint32_t frame;      /* last frame it was wanted */
 	bool visible;        /* in the view frustum (else only prefetched) */
 	int readback;        /* index in the readback ring, or -1 */
+	bool stale;          /* terrain edited under it: regenerate in place */
+	int generations;     /* times generated (tests) */
 };
 
 struct readback {
@@ -100,6 +103,8 @@ static int find_block(struct world *w, const int k[4], bool create)
 			b->state = B_FREE;
 			b->slot = -1;
 			b->readback = -1;
+			b->stale = false;
+			b->generations = 0;
 			w->count++;
 			return (int)i;
 		}
@@ -315,6 +320,21 @@ static void height_band(const struct params *p, const float eye[3], float range,
 	*yhi = reach;
 	if (p->floor_strength > 0 && p->floor_y - 1.0f > *ylo)
 		*ylo = p->floor_y - 1.0f;
+	/* terrain edits: the heightmap's own range; curves put the surface at
+	 * their heights (cut and fill) */
+	static int field_heightmap = -1;
+	if (field_heightmap < 0)
+		field_heightmap = params_enum_index(params_find("field"), "heightmap");
+	if (p->field == field_heightmap) {
+		float extra = p->heightmap_detail + 1.6f * p->heightmap_noise * p->noise_amp + p->warp_amp + 1.0f;
+		*ylo = fminf(*ylo, p->heightmap_base - extra);
+		*yhi = fmaxf(*yhi, p->heightmap_base + p->heightmap_height + extra);
+	}
+	const struct curve_quads *q = &edits_get()->quads;
+	for (int i = 0; i < q->nctrl; i++) {
+		*ylo = fminf(*ylo, q->ctrl[i][1] - 1.0f);
+		*yhi = fmaxf(*yhi, q->ctrl[i][1] + 1.0f);
+	}
 }
 
 static int cmp_want(const void *a, const void *b, void *ctx);
@@ -469,7 +489,12 @@ static void collect(struct world *w, bool wait)
 		/* status words 20..23: triangles needed, vertices needed, written */
 		if (v[0] > w->tcap || v[1] > w->vcap)
 			w->st.overflowed++;
-		if (m && v[0] == 0) {
+		if (m && v[0] == 0 && blk->stale) {
+			/* edited since: the empty result is stale, ask again */
+			blk->state = B_FREE;
+			blk->stale = false;
+			free_slot(w, (int)(blk - w->blocks));
+		} else if (m && v[0] == 0) {
 			blk->state = B_EMPTY;
 			free_slot(w, (int)(blk - w->blocks));
 			w->st.empty_found++;
@@ -515,10 +540,14 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 	q.closed = false;
 	if (pipeline_run(w->pl, &q) < 0)
 		return -1;
+	bool in_place = blk->stale && blk->slot == slot;
 	blk->slot = slot;
 	w->slot_block[slot] = b;
 	blk->state = B_PENDING;
-	blk->born = now;
+	if (!in_place)
+		blk->born = now; /* a regenerated block does not fade in again */
+	blk->stale = false;
+	blk->generations++;
 	w->st.generated++;
 	int r = free_readback(w);
 	if (r >= 0) {
@@ -539,6 +568,16 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic)
 {
 	w->frame++;
+	/* terrain edits (curves / heightmap files changed, or set through the
+	 * API): only the blocks under the changed region are generated again */
+	char err[512];
+	if (edits_load(p, err, sizeof(err)) < 0) {
+		log_error("%s", err);
+		return -1;
+	}
+	float xz[4];
+	if (edits_take_changes(xz))
+		world_invalidate(w, p, xz);
 	collect(w, false);
 	if (plan(w, p, c) < 0)
 		return -1;
@@ -560,11 +599,16 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 		int pass = k / n, lod = p->lod_levels - 1 - pass % p->lod_levels;
 		bool vis = pass < p->lod_levels;
 		int b = w->want[k % n];
-		if (w->blocks[b].state != B_FREE || w->blocks[b].key[3] != lod || w->blocks[b].visible != vis)
+		struct block *blk = &w->blocks[b];
+		/* a block edited under (stale) is generated again into its own slot */
+		bool regen = blk->stale && blk->slot >= 0 && (blk->state == B_READY || blk->state == B_PENDING);
+		if ((blk->state != B_FREE && !regen) || blk->key[3] != lod || blk->visible != vis)
 			continue;
+		if (regen && blk->readback >= 0)
+			continue; /* its previous result is still in flight */
 		/* a hole on screen (a visible coarsest block missing) is worse
 		 * than a slow frame: one such block per frame whatever the credit */
-		bool urgent = vis && lod == p->lod_levels - 1 && made == 0;
+		bool urgent = !regen && vis && lod == p->lod_levels - 1 && made == 0;
 		if (budgeted && w->credit_ms <= 0.0 && !urgent)
 			break;
 		if (free_readback(w) < 0) {
@@ -572,7 +616,7 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 			if (free_readback(w) < 0)
 				break;
 		}
-		int slot = take_slot(w, w->blocks[b].dist);
+		int slot = regen ? blk->slot : take_slot(w, blk->dist);
 		if (slot < 0)
 			break; /* pool full of nearer blocks */
 		double tb = now_ms();
@@ -631,6 +675,53 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 			  c->eye[2] + p->view_distance };
 	renderer_water(r, c, p, rect);
 	return renderer_end(r);
+}
+
+int world_invalidate(struct world *w, const struct params *p, const float xz[4])
+{
+	int marked = 0;
+	for (uint32_t i = 0; i < w->cap; i++) {
+		struct block *blk = &w->blocks[i];
+		if (blk->key[3] < 0 || blk->state == B_FREE)
+			continue;
+		/* what the block's generation reads: its cells, the density margin
+		 * (normals, short AO rays) and the long AO rays */
+		float lo[3], hi[3];
+		block_aabb(p, blk->key, lo, hi);
+		float cell = block_world_size(p, blk->key[3]) / (float)w->n;
+		float pad = (float)(1 + AO_MARGIN + 1) * cell;
+		if (p->ao_rays > 0)
+			pad += (float)p->ao_long_steps * p->ao_long_step;
+		if (hi[0] + pad < xz[0] || lo[0] - pad > xz[2] || hi[2] + pad < xz[1] || lo[2] - pad > xz[3])
+			continue;
+		if (blk->state == B_EMPTY) {
+			blk->state = B_FREE; /* may not be empty any more */
+		} else if (blk->slot >= 0) {
+			blk->stale = true;
+		} else {
+			blk->state = B_FREE;
+		}
+		marked++;
+	}
+	w->st.invalidated += (uint64_t)marked;
+	return marked;
+}
+
+int world_block_generations(const struct world *w, int lod, const int idx[3], int *state)
+{
+	int k[4] = { idx[0], idx[1], idx[2], lod };
+	uint32_t mask = w->cap - 1;
+	for (uint32_t i = hash_key(k) & mask;; i = (i + 1) & mask) {
+		const struct block *b = &w->blocks[i];
+		if (b->key[3] < 0) {
+			*state = 0;
+			return -1;
+		}
+		if (!memcmp(b->key, k, sizeof(b->key))) {
+			*state = (int)b->state;
+			return b->generations;
+		}
+	}
 }
 
 void world_get_stats(const struct world *w, struct world_stats *st)

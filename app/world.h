@@ -20,6 +20,7 @@ struct world_stats {
 	uint64_t empty_skipped;   /* requests skipped because known empty */
 	uint64_t evicted;         /* slots taken back from a farther block */
 	uint64_t overflowed;      /* blocks that hit the slot capacity */
+	uint64_t invalidated;     /* blocks marked for regeneration by terrain edits */
 	int ready, pending, empty_known, drawn, wanted;
 };
 
@@ -34,6 +35,19 @@ int world_fill(struct world *w, const struct params *p, const struct camera *c, 
 /* Draws the visible blocks front to back with the renderer's program. */
 int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now);
 void world_get_stats(const struct world *w, struct world_stats *st);
+
+/* Terrain edits (curves, heightmap; app/edits.h): marks every known block
+ * whose density samples (the block, its sample margin and the reach of its
+ * ambient-occlusion rays) overlap the world XZ box (xmin, zmin, xmax, zmax)
+ * for regeneration.  A drawable block keeps its mesh until the new one
+ * replaces it in the same slot; a block known to be empty is forgotten (an
+ * embankment may fill it).  world_update() calls it itself with the region
+ * edits_take_changes() reports, so an edit re-generates only the affected
+ * blocks.  Returns the number of blocks marked. */
+int world_invalidate(struct world *w, const struct params *p, const float xz[4]);
+/* Test hook: how many times block (lod, idx) was generated, its state
+ * (0 unknown/free, 1 pending, 2 ready, 3 empty) in *state; -1 if unknown. */
+int world_block_generations(const struct world *w, int lod, const int idx[3], int *state);
 
 /* Test hooks: generate one block (lod, index) into a scratch slot and read
  * its mesh back (positions/normals; indices local). 0/-1. */

@@ -12,6 +12,7 @@
 
 #include "noise.glsl"
 #include "fractal.glsl"
+#include "carve.glsl" // curves (cut and fill) and the heightmap base
 
 #define PI_F 3.14159265358979
 
@@ -82,6 +83,12 @@ float shelf_term(float y)
 float density(vec3 ws)
 {
 	ws.x += u_time * u_scroll_speed; // animation: the field scrolls along x
+	if (u_field == FIELD_HEIGHTMAP) { // heightmap base (+ 3D noise detail), then the curves
+		float hd = hm_height(ws.xz, true) - ws.y;
+		if (u_heightmap_noise != 0.0)
+			hd += u_heightmap_noise * u_noise_amp * fractal(ws);
+		return carve_density(ws, hd);
+	}
 	if (u_field != FIELD_TERRAIN)
 		return test_field(ws);
 
@@ -120,5 +127,5 @@ float density(vec3 ws)
 		float amount = dens_sat((u_flat_outer - dist) * (1.0 / max(u_flat_outer - u_flat_inner, 1e-4))) * 0.9;
 		d = d + amount * ((u_flat_y - ws_orig.y) - d);
 	}
-	return d;
+	return carve_density(ws_orig, d); // curves: cut and fill
 }

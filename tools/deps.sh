@@ -9,7 +9,12 @@ $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
 	libegl-dev libgles-dev libpng-dev \
-	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev \
+	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
+# GeoTIFF heightmaps (optional: the build finds GDAL through pkg-config and
+# works without it; with it the GeoTIFF test runs)
+$SUDO apt-get install -y -q --no-install-recommends libgdal-dev
+# the display backends (meson options -Dgbm/-Dwayland/-Dx11, auto)
+$SUDO apt-get install -y -q --no-install-recommends \
 	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev
 # the display tests: X11 in Xvfb, Wayland in Weston, KMS in a real kernel
 # under QEMU (tests/display, tests/vm)

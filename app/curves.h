@@ -1,0 +1,157 @@
+/* isoterra — terrain editing with 3D Bézier curves (roads, rivers,
+ * railways), after Nascimento (2020), see docs/CURVES.md:
+ *
+ *   polyline (file)  ->  chain of 3D cubic Béziers (handles with smoothing Ω)
+ *                    ->  each cubic split at its XZ inflection (or t = 0.5)
+ *                    ->  two 3D quadratic Béziers (handle intersection, Y averaged)
+ *                    ->  lateral inclination from the XZ curvature
+ *                    ->  uniform 2D spatial hash (pivot + index tables)
+ *                    ->  SSBOs for the density function (shaders/curves.glsl)
+ *
+ * World axes: Y is up, curves are compared with samples in XZ. */
+#ifndef ISOTERRA_CURVES_H
+#define ISOTERRA_CURVES_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_KIND_COUNT };
+extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway" */
+
+/* One input polyline and its carving parameters. */
+struct curve_path {
+	int kind;              /* enum curve_kind */
+	float width;           /* w: full width of the flat part */
+	float falloff;         /* λ: blend distance beyond w/2 */
+	float inclination;     /* gain of the lateral inclination: tan α = gain · XZ curvature */
+	float smoothing;       /* Ω in [0,1]: handle length, 0 = the polyline itself */
+	int npts;
+	float *pts;            /* npts * 3: world x, y (up), z */
+	char label[192];       /* where it came from, for messages ("roads.geojson: feature 2") */
+};
+
+struct curve_set {
+	struct curve_path *paths;
+	int npaths;
+};
+
+/* Defaults of the per-path parameters by kind (w, λ, inclination gain, Ω). */
+void curve_path_defaults(struct curve_path *p, int kind);
+void curve_set_free(struct curve_set *s);
+/* Deep copy; 0 or -1 (out of memory). */
+int curve_set_copy(struct curve_set *dst, const struct curve_set *src);
+/* Appends a path (deep copy of pts); 0 or -1. */
+int curve_set_add(struct curve_set *s, const struct curve_path *p);
+/* Influence distance of a path: w/2 + λ. */
+float curve_path_reach(const struct curve_path *p);
+/* Same kind, parameters and points (bitwise floats). */
+bool curve_path_equal(const struct curve_path *a, const struct curve_path *b);
+
+/* ---- curve pipeline ------------------------------------------------------ */
+
+struct cubic3 {
+	float p[4][3];
+};
+struct quad3 {
+	float p[3][3];
+};
+
+/* Drops repeated points (closer than 1e-6 of the path's extent).  Returns
+ * the number of points left. */
+int curve_path_dedup(struct curve_path *p);
+/* Polyline -> npts-1 cubics (thesis §5.1): at an inner anchor the tangent is
+ * the normalised sum of the unit vectors of the two segments, handle length
+ * 0.5 · min(adjacent segment lengths) · Ω on both sides (C1); the end
+ * handles are the neighbouring handles projected onto the end segments.
+ * out must hold npts-1 cubics. */
+void curve_path_cubics(const struct curve_path *p, struct cubic3 *out);
+/* XZ inflection of a planar cubic in (0,1) (Eq. 5.11: 3(b×a)t² + 3(c×a)t +
+ * (c×b) = 0), the root nearest 0.5, or -1 when none. */
+float cubic_xz_inflection(const struct cubic3 *c);
+/* de Casteljau split at t. */
+void cubic_split(const struct cubic3 *c, float t, struct cubic3 *left, struct cubic3 *right);
+/* Sub-cubic A,B,C,D -> quadratic A,E,D (thesis §5.2): E.xz = intersection of
+ * the lines A->B and D->C; E.y = (B.y + C.y)/2.  Degenerate cases: a straight
+ * sub-curve (all points within 1e-5 of the chord) gives the chord's midpoint;
+ * zero-length handles take the next control point as direction; parallel
+ * lines, an intersection behind an anchor or farther than 4 chords away fall
+ * back to the least-squares degree reduction (3(B+C) - (A+D))/4.
+ * Returns 0 for the intersection, 1 for straight, 2 for the fallback. */
+int cubic_to_quad(const struct cubic3 *c, struct quad3 *q);
+
+/* The GPU layout (thesis Fig. 6.1): control points stored sequentially as
+ * vec4 (x, y, z, inclination I = tan α); consecutive quadratics of one path
+ * share their anchors, so quadratic k is ctrl[first[k] .. first[k]+2].
+ * prm[first[k]] = (w/2, λ, kind, path) for that quadratic. */
+struct curve_quads {
+	float (*ctrl)[4];
+	float (*prm)[4];
+	int nctrl;
+	int *first;    /* per quadratic: index of its first control point */
+	int *path;     /* per quadratic: its path */
+	float (*box)[4]; /* per quadratic: exact XZ bounds (xmin, zmin, xmax, zmax), unpadded */
+	int nquads;
+};
+/* Runs the whole curve pipeline.  0, or -1 with err (out of memory, or a
+ * path with fewer than two distinct points). */
+int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, size_t errlen);
+void curve_quads_free(struct curve_quads *q);
+/* Quadratic k's control points (x, y, z, I). */
+void curve_quads_get(const struct curve_quads *q, int k, float out[3][4]);
+/* Signed XZ curvature (C' x C'') / |C'|^3 of a quadratic at t. */
+float quad_xz_curvature(const float p0[3], const float p1[3], const float p2[3], float t);
+
+/* ---- spatial hash (thesis ch. 6) ---------------------------------------- */
+
+/* Uniform dim x dim grid over the minimal rectangle around the padded boxes
+ * of all quadratics; each quadratic is listed in every cell its exact XZ box,
+ * padded by w/2 + λ (+ a small epsilon against rounding), overlaps.
+ *   pivot[cell] = (start, count) into index[] (cell = cx + cy * dim)
+ *   index[start .. start+count-1] = first control point of each quadratic
+ * index[] is followed by a list of every quadratic (the no-hash baseline):
+ * index[all_offset + k] = first[k]. */
+struct curve_hash {
+	int dim;
+	float origin[2];   /* x, z of the grid's corner */
+	float size[2];     /* extent in x, z */
+	float cell[2];     /* size / dim */
+	int32_t *pivot;    /* 2 * dim * dim */
+	int32_t *index;
+	int nindex;        /* entries in cells */
+	int all_offset;    /* == nindex */
+	int nall;          /* == number of quadratics */
+	int max_per_cell;
+};
+int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen);
+void curve_hash_free(struct curve_hash *h);
+/* Cell of (x, z), or -1 outside the grid (same arithmetic as the shader). */
+int curve_hash_cell(const struct curve_hash *h, float x, float z);
+/* Padded XZ box of quadratic k (xmin, zmin, xmax, zmax), as inserted. */
+void curve_hash_padded_box(const struct curve_quads *q, int k, float box[4]);
+
+/* ---- edits -------------------------------------------------------------- */
+
+/* World-space XZ region (xmin, zmin, xmax, zmax) changed between two curve
+ * sets: the union of the padded boxes (w/2 + λ around the polyline's
+ * convex hull of control points) of every path that was removed, added or
+ * modified.  Paths are matched by position in the set.  Returns false
+ * (and an empty box) when nothing changed. */
+bool curves_affected_bounds(const struct curve_set *old_set, const struct curve_set *new_set, float out_aabb[4]);
+/* Padded XZ box of a whole path (its control polygon after the cubic
+ * construction plus w/2 + λ). */
+void curve_path_padded_box(const struct curve_path *p, float box[4]);
+
+/* ---- input files (curves_io.c) -------------------------------------------- */
+
+/* GeoJSON (FeatureCollection / Feature / LineString / MultiLineString with
+ * [x, y, z] positions, z = up -> world (x, z_up, -y)) or CSV (header line,
+ * columns path,x,y,z[,kind,width,falloff,inclination,smoothing], y up).
+ * The format is chosen by the extension (.geojson/.json, .csv).  Errors
+ * name file:line and the feature.  0 or -1 with err. */
+int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen);
+int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
+			 size_t errlen);
+int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,407 @@
+/* isoterra — GL side of the terrain edits: the curve hash in SSBOs
+ * (bindings 8..11), the heightmap as an R32F texture (unit 3), the
+ * displacement-map bake and the shader test hook. */
+#include "edits.h"
+#include "gpu.h"
+#include "log.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BIND_PIVOT 8
+#define BIND_INDEX 9
+#define BIND_CTRL 10
+#define BIND_PRM 11
+#define BIND_AUX_IN 12
+#define BIND_AUX_OUT 13
+#define HM_UNIT 3
+
+static struct {
+	bool ready;
+	GLuint buf[4];           /* pivot, index, ctrl, prm */
+	GLsizeiptr cap[4];       /* explicit capacities (bytes) */
+	unsigned curves_gen;
+	GLuint hm_tex;
+	unsigned hm_gen;
+	bool hm_ready;
+	GLuint p_bake[8], p_test;     /* bake: [iterative | dense << 1 | heightmap << 2] */
+	GLuint b_bake, b_zero, b_tiles, b_in, b_out;
+	GLsizeiptr bake_cap, zero_cap, tiles_cap, in_cap, out_cap;
+} G;
+
+void edits_gl_release(void)
+{
+	if (G.ready)
+		glDeleteBuffers(4, G.buf);
+	if (G.hm_tex)
+		glDeleteTextures(1, &G.hm_tex);
+	for (int i = 0; i < 8; i++)
+		if (G.p_bake[i])
+			glDeleteProgram(G.p_bake[i]);
+	if (G.p_test)
+		glDeleteProgram(G.p_test);
+	GLuint bufs[5] = { G.b_bake, G.b_zero, G.b_tiles, G.b_in, G.b_out };
+	for (int i = 0; i < 5; i++)
+		if (bufs[i])
+			glDeleteBuffers(1, &bufs[i]);
+	memset(&G, 0, sizeof(G));
+}
+
+/* (Re)allocates buffer b to hold size bytes (at least 16) and uploads data. */
+static int upload(GLuint b, GLsizeiptr *cap, const void *data, GLsizeiptr size, const char *what)
+{
+	GLint max_ssbo = 0;
+	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_ssbo);
+	GLsizeiptr want = size > 16 ? size : 16;
+	if (max_ssbo > 0 && want > max_ssbo) {
+		log_error("%s: %lld bytes exceed the GL storage block limit (%d)", what, (long long)want, max_ssbo);
+		return -1;
+	}
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+	if (want > *cap || want < *cap / 4) {
+		glBufferData(GL_SHADER_STORAGE_BUFFER, want, NULL, GL_STATIC_DRAW);
+		*cap = want;
+	}
+	if (size > 0 && data)
+		glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, size, data);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	return gpu_check(what);
+}
+
+static int upload_curves(const struct edits *e)
+{
+	if (!G.ready) {
+		glGenBuffers(4, G.buf);
+		memset(G.cap, 0, sizeof(G.cap));
+		G.ready = true;
+		G.curves_gen = e->curves_gen - 1;
+	}
+	if (G.curves_gen == e->curves_gen)
+		return 0;
+	const struct curve_hash *h = &e->hash;
+	const struct curve_quads *q = &e->quads;
+	bool any = q->nquads > 0 && h->pivot;
+	GLsizeiptr npiv = any ? (GLsizeiptr)h->dim * h->dim * 8 : 0;
+	GLsizeiptr nidx = any ? (GLsizeiptr)(h->nindex + h->nall) * 4 : 0;
+	GLsizeiptr nctl = any ? (GLsizeiptr)q->nctrl * 16 : 0;
+	if (upload(G.buf[0], &G.cap[0], any ? h->pivot : NULL, npiv, "curve pivot table") < 0 ||
+	    upload(G.buf[1], &G.cap[1], any ? h->index : NULL, nidx, "curve index table") < 0 ||
+	    upload(G.buf[2], &G.cap[2], any ? q->ctrl : NULL, nctl, "curve control points") < 0 ||
+	    upload(G.buf[3], &G.cap[3], any ? q->prm : NULL, nctl, "curve parameters") < 0)
+		return -1;
+	G.curves_gen = e->curves_gen;
+	return 0;
+}
+
+static int upload_heightmap(const struct edits *e)
+{
+	if (G.hm_ready && G.hm_gen == e->hm_gen)
+		return 0;
+	if (G.hm_tex)
+		glDeleteTextures(1, &G.hm_tex);
+	glGenTextures(1, &G.hm_tex);
+	GLint prev = 0;
+	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
+	glActiveTexture(GL_TEXTURE0 + HM_UNIT);
+	glBindTexture(GL_TEXTURE_2D, G.hm_tex);
+	int w = e->hm.w ? e->hm.w : 1, hh = e->hm.w ? e->hm.h : 1;
+	GLint max_tex = 0;
+	glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
+	if (max_tex > 0 && (w > max_tex || hh > max_tex)) {
+		log_error("heightmap of %dx%d samples exceeds the GL texture limit (%d)", w, hh, max_tex);
+		glActiveTexture((GLenum)prev);
+		return -1;
+	}
+	static const float zero = 0.0f;
+	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+	glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, hh);
+	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, hh, GL_RED, GL_FLOAT, e->hm.w ? (const void *)e->hm.v : &zero);
+	/* R32F is not filterable in ES: texelFetch only, and NEAREST keeps the
+	 * texture complete */
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	glActiveTexture((GLenum)prev);
+	if (gpu_check("heightmap texture") < 0)
+		return -1;
+	G.hm_gen = e->hm_gen;
+	G.hm_ready = true;
+	return 0;
+}
+
+static void set_uniforms(GLuint prog, const struct edits *e)
+{
+	const struct curve_hash *h = &e->hash;
+	bool any = e->quads.nquads > 0 && h->pivot;
+	GLint l;
+	if ((l = glGetUniformLocation(prog, "u_curve_count")) >= 0)
+		glProgramUniform1i(prog, l, any ? e->quads.nquads : 0);
+	if ((l = glGetUniformLocation(prog, "u_curve_all_offset")) >= 0)
+		glProgramUniform1i(prog, l, any ? h->all_offset : 0);
+	if ((l = glGetUniformLocation(prog, "u_curve_hash_dim")) >= 0)
+		glProgramUniform2i(prog, l, any ? h->dim : 1, any ? h->dim : 1);
+	if ((l = glGetUniformLocation(prog, "u_curve_hash_origin")) >= 0)
+		glProgramUniform2f(prog, l, h->origin[0], h->origin[1]);
+	if ((l = glGetUniformLocation(prog, "u_curve_hash_size")) >= 0)
+		glProgramUniform2f(prog, l, h->size[0], h->size[1]);
+	if ((l = glGetUniformLocation(prog, "u_curve_hash_cell")) >= 0)
+		glProgramUniform2f(prog, l, any ? h->cell[0] : 1.0f, any ? h->cell[1] : 1.0f);
+	if ((l = glGetUniformLocation(prog, "u_heightmap_size")) >= 0)
+		glProgramUniform2i(prog, l, e->hm.w, e->hm.h);
+}
+
+int edits_gl_bind(GLuint prog, const struct params *p)
+{
+	char err[512];
+	if (edits_load(p, err, sizeof(err)) < 0) {
+		log_error("%s", err);
+		return -1;
+	}
+	const struct edits *e = edits_get();
+	if (upload_curves(e) < 0 || upload_heightmap(e) < 0)
+		return -1;
+	for (int i = 0; i < 4; i++)
+		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_PIVOT + i, G.buf[i]);
+	GLint prev = 0;
+	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
+	glActiveTexture(GL_TEXTURE0 + HM_UNIT);
+	glBindTexture(GL_TEXTURE_2D, G.hm_tex);
+	glActiveTexture((GLenum)prev);
+	set_uniforms(prog, e);
+	return gpu_check("curve/heightmap bind");
+}
+
+static int ensure(GLuint *b, GLsizeiptr *cap, GLsizeiptr size)
+{
+	if (!*b)
+		glGenBuffers(1, b);
+	if (size <= *cap)
+		return 0;
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, *b);
+	glBufferData(GL_SHADER_STORAGE_BUFFER, size, NULL, GL_DYNAMIC_COPY);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	if (gpu_check("curve scratch buffer") < 0)
+		return -1;
+	*cap = size;
+	return 0;
+}
+
+static int read_back(GLuint b, GLsizeiptr size, void *out)
+{
+	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+	void *m = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, size, GL_MAP_READ_BIT);
+	if (!m) {
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+		gpu_check("map curve buffer");
+		return -1;
+	}
+	memcpy(out, m, (size_t)size);
+	GLboolean ok = glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	return ok ? 0 : -1;
+}
+
+/* The 8x8 tiles of the map that some quadratic can reach, as (tx | ty <<
+ * 16): a tile inside a quadratic's padded box is taken when its centre is
+ * within w/2 + λ + the tile's half diagonal + one texel (+ a rounding
+ * margin) of the curve (CPU closed form, carve_ref_closest).  A texel no
+ * curve reaches has Θ = 0 everywhere, so the zeroed map is already right
+ * there.  Returns the count or -1. */
+static int bake_tiles(const struct curve_quads *q, const struct bake_opts *o, uint32_t **out)
+{
+	int tx = (o->res[0] + 7) / 8, tz = (o->res[1] + 7) / 8;
+	uint8_t *mark = calloc((size_t)tx * (size_t)tz, 1);
+	if (!mark)
+		return -1;
+	float tw = o->size[0] / (float)o->res[0], th = o->size[1] / (float)o->res[1];
+	int n = 0;
+	for (int k = 0; k < q->nquads; k++) {
+		float box[4];
+		curve_hash_padded_box(q, k, box);
+		if (box[2] < o->origin[0] || box[0] > o->origin[0] + o->size[0] || box[3] < o->origin[1] ||
+		    box[1] > o->origin[1] + o->size[1])
+			continue;
+		float i0f = floorf((box[0] - o->origin[0]) / tw) - 1, i1f = ceilf((box[2] - o->origin[0]) / tw) + 1;
+		float j0f = floorf((box[1] - o->origin[1]) / th) - 1, j1f = ceilf((box[3] - o->origin[1]) / th) + 1;
+		int i0 = i0f < 0 ? 0 : (int)i0f, j0 = j0f < 0 ? 0 : (int)j0f;
+		int i1 = i1f > (float)o->res[0] ? o->res[0] : (int)i1f;
+		int j1 = j1f > (float)o->res[1] ? o->res[1] : (int)j1f;
+		float c[3][4];
+		curve_quads_get(q, k, c);
+		float span = fmaxf(fmaxf(fabsf(box[0]), fabsf(box[2])), fmaxf(fabsf(box[1]), fabsf(box[3])));
+		float reach = q->prm[q->first[k]][0] + q->prm[q->first[k]][1] + 4.0f * hypotf(tw, th) + 1e-4f * span;
+		for (int j = j0 / 8; j1 > j0 && j <= (j1 - 1) / 8; j++)
+			for (int i = i0 / 8; i1 > i0 && i <= (i1 - 1) / 8; i++) {
+				if (mark[(size_t)j * (size_t)tx + (size_t)i])
+					continue;
+				float ctr[2] = { o->origin[0] + ((float)i * 8.0f + 4.0f) * tw,
+						 o->origin[1] + ((float)j * 8.0f + 4.0f) * th };
+				float cl[4];
+				carve_ref_closest(c, ctr, cl);
+				if (fabsf(cl[0]) > reach + hypotf(tw, th))
+					continue;
+				mark[(size_t)j * (size_t)tx + (size_t)i] = 1;
+				n++;
+			}
+	}
+	*out = malloc(sizeof(uint32_t) * (size_t)(n ? n : 1));
+	if (!*out) {
+		free(mark);
+		return -1;
+	}
+	int k = 0;
+	for (int j = 0; j < tz; j++)
+		for (int i = 0; i < tx; i++)
+			if (mark[(size_t)j * (size_t)tx + (size_t)i])
+				(*out)[k++] = (uint32_t)i | ((uint32_t)j << 16);
+	free(mark);
+	return n;
+}
+
+int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen)
+{
+	if (o->res[0] < 1 || o->res[1] < 1 || o->res[0] > 16384 || o->res[1] > 16384) {
+		snprintf(err, errlen, "bake resolution %dx%d out of range", o->res[0], o->res[1]);
+		return -1;
+	}
+	char lerr[512];
+	if (edits_load(p, lerr, sizeof(lerr)) < 0) {
+		snprintf(err, errlen, "%s", lerr);
+		return -1;
+	}
+	const struct edits *e = edits_get();
+	bool dense = o->dense || o->iterative, hm = e->hm.w > 0;
+	int variant = (o->iterative ? 1 : 0) | (dense ? 2 : 0) | (hm ? 4 : 0);
+	GLuint *prog = &G.p_bake[variant];
+	if (!*prog) {
+		char defs[128];
+		snprintf(defs, sizeof(defs), "%s%s%s", o->iterative ? "#define CURVE_ITERATIVE 1\n" : "",
+			 dense ? "#define BAKE_DENSE 1\n" : "", hm ? "#define BAKE_HEIGHTMAP 1\n" : "");
+		*prog = gpu_compute_program("curve_bake.comp", defs, err, errlen);
+		if (!*prog)
+			return -1;
+	}
+	GLsizeiptr bytes = (GLsizeiptr)o->res[0] * o->res[1] * 4;
+	GLint max_ssbo = 0;
+	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_ssbo);
+	if (max_ssbo > 0 && bytes > max_ssbo) {
+		snprintf(err, errlen, "a %dx%d displacement map exceeds the GL storage block limit", o->res[0], o->res[1]);
+		return -1;
+	}
+	if (ensure(&G.b_bake, &G.bake_cap, bytes) < 0) {
+		snprintf(err, errlen, "cannot allocate the displacement map");
+		return -1;
+	}
+	if (edits_gl_bind(*prog, p) < 0) {
+		snprintf(err, errlen, "curves/heightmap could not be bound (see the log)");
+		return -1;
+	}
+	gpu_set_param_uniforms(*prog, p);
+	glProgramUniform2i(*prog, glGetUniformLocation(*prog, "u_bake_res"), o->res[0], o->res[1]);
+	glProgramUniform2f(*prog, glGetUniformLocation(*prog, "u_bake_origin"), o->origin[0], o->origin[1]);
+	glProgramUniform2f(*prog, glGetUniformLocation(*prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
+			   o->size[1] / (float)o->res[1]);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G.b_bake);
+	glUseProgram(*prog);
+	if (dense) {
+		glDispatchCompute((GLuint)(o->res[0] + 7) / 8, (GLuint)(o->res[1] + 7) / 8, 1);
+	} else {
+		/* zero the map (GPU copy from a zero buffer), then the tiles */
+		if (G.zero_cap < bytes) {
+			void *z = calloc(1, (size_t)bytes);
+			if (!z) {
+				snprintf(err, errlen, "out of memory");
+				glUseProgram(0);
+				return -1;
+			}
+			if (!G.b_zero)
+				glGenBuffers(1, &G.b_zero);
+			glBindBuffer(GL_COPY_READ_BUFFER, G.b_zero);
+			glBufferData(GL_COPY_READ_BUFFER, bytes, z, GL_STATIC_DRAW);
+			glBindBuffer(GL_COPY_READ_BUFFER, 0);
+			free(z);
+			G.zero_cap = bytes;
+		}
+		glBindBuffer(GL_COPY_READ_BUFFER, G.b_zero);
+		glBindBuffer(GL_COPY_WRITE_BUFFER, G.b_bake);
+		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+		glBindBuffer(GL_COPY_READ_BUFFER, 0);
+		glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+		uint32_t *tiles = NULL;
+		int nt = bake_tiles(&e->quads, o, &tiles);
+		if (nt < 0) {
+			snprintf(err, errlen, "out of memory");
+			glUseProgram(0);
+			return -1;
+		}
+		if (nt > 0) {
+			if (ensure(&G.b_tiles, &G.tiles_cap, (GLsizeiptr)nt * 4) < 0) {
+				free(tiles);
+				snprintf(err, errlen, "cannot allocate the tile list");
+				glUseProgram(0);
+				return -1;
+			}
+			glBindBuffer(GL_SHADER_STORAGE_BUFFER, G.b_tiles);
+			glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)nt * 4, tiles);
+			glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+			int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
+			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_ntiles"), nt);
+			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_groups_x"), gx);
+			glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G.b_tiles);
+			glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+			glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
+		}
+		free(tiles);
+	}
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	glUseProgram(0);
+	if (gpu_check("curve bake") < 0) {
+		snprintf(err, errlen, "the displacement-map bake failed (GL error)");
+		return -1;
+	}
+	if (out && read_back(G.b_bake, bytes, out) < 0) {
+		snprintf(err, errlen, "reading the displacement map back failed");
+		return -1;
+	}
+	return 0;
+}
+
+int curves_gpu_test(const struct params *p, int mode, const float *in, int n, float *out, char *err, size_t errlen)
+{
+	if (!G.p_test) {
+		G.p_test = gpu_compute_program("curve_test.comp", NULL, err, errlen);
+		if (!G.p_test)
+			return -1;
+	}
+	if (n <= 0)
+		return 0;
+	GLsizeiptr in_bytes = (GLsizeiptr)n * (mode == 0 ? 64 : 16), out_bytes = (GLsizeiptr)n * 16;
+	if (ensure(&G.b_in, &G.in_cap, in_bytes) < 0 || ensure(&G.b_out, &G.out_cap, out_bytes) < 0) {
+		snprintf(err, errlen, "cannot allocate test buffers");
+		return -1;
+	}
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, G.b_in);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, in_bytes, in);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	if (edits_gl_bind(G.p_test, p) < 0) {
+		snprintf(err, errlen, "curves/heightmap could not be bound (see the log)");
+		return -1;
+	}
+	gpu_set_param_uniforms(G.p_test, p);
+	glProgramUniform1i(G.p_test, glGetUniformLocation(G.p_test, "u_test_mode"), mode);
+	glProgramUniform1i(G.p_test, glGetUniformLocation(G.p_test, "u_test_n"), n);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G.b_in);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G.b_out);
+	glUseProgram(G.p_test);
+	glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
+	glUseProgram(0);
+	if (gpu_check("curve test") < 0 || read_back(G.b_out, out_bytes, out) < 0) {
+		snprintf(err, errlen, "curve test dispatch failed");
+		return -1;
+	}
+	return 0;
+}

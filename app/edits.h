@@ -1,0 +1,117 @@
+/* isoterra — terrain edits: the curves (roads, rivers, railways) and the
+ * heightmap that the density function uses, their CPU data (loaded from
+ * the files named by the curves / heightmap parameters, or set through the
+ * API), the GL resources (curves_gl.c) and the CPU mirror of the shader
+ * code (carve_ref.c).  See docs/CURVES.md.
+ *
+ * One process-wide state: every pipeline (and the streaming world's blocks)
+ * carve the same curves.  The GL objects belong to the current context;
+ * pipeline_destroy() releases them (edits_gl_release) and the next bind
+ * uploads again. */
+#ifndef ISOTERRA_EDITS_H
+#define ISOTERRA_EDITS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <GLES3/gl31.h>
+
+#include "curves.h"
+#include "noise.h"
+#include "params.h"
+
+/* ---- heightmap (heightmap.c) ---------------------------------------------- */
+
+struct heightmap {
+	int w, h;
+	float *v; /* w*h samples 0..65535 as floats, x fastest, row z = 0 first */
+};
+/* 16-bit (or 8-bit, scaled) grayscale PNG, or GeoTIFF (.tif/.tiff) through
+ * GDAL when built with it (band 1, valid range mapped onto 0..65535,
+ * no-data at the minimum; refused with a message otherwise).  0 or -1
+ * with err. */
+int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen);
+void heightmap_free(struct heightmap *hm);
+/* Writes a 16-bit grayscale PNG atomically (temp file + rename). */
+int heightmap_write_png16(const char *path, const uint16_t *v, int w, int h, char *err, size_t errlen);
+
+/* ---- the edit state (edits.c) ---------------------------------------------- */
+
+struct edits {
+	struct curve_set curves;   /* the current curves (input form) */
+	struct curve_quads quads;  /* after the curve pipeline */
+	struct curve_hash hash;    /* over quads */
+	bool curves_from_file;
+	struct heightmap hm;       /* w == 0: none */
+	unsigned curves_gen, hm_gen; /* bumped on every change (GPU re-upload) */
+};
+
+/* The current state (never NULL; empty until something is loaded). */
+const struct edits *edits_get(void);
+/* Brings the state in line with p: loads the curves file (p->curves) and
+ * the heightmap (p->heightmap) when their names, sizes or modification
+ * times changed, rebuilds the hash when p->curve_hash_dim changed; an empty
+ * name drops what was loaded from a file.  field=heightmap needs a
+ * heightmap.  0, or -1 with one clear message (file:line, feature). */
+int edits_load(const struct params *p, char *err, size_t errlen);
+/* Replaces the curves (an editor, the streaming world): runs the curve
+ * pipeline and rebuilds the hash.  0 or -1 with err. */
+int edits_set_curves(const struct curve_set *s, int hash_dim, char *err, size_t errlen);
+/* The world-space XZ region (xmin, zmin, xmax, zmax) whose terrain changed
+ * since the last call (union of curves_affected_bounds of every curve
+ * change; a heightmap change reports the whole plane as +-FLT_MAX).
+ * Returns false when nothing changed; clears the record. */
+bool edits_take_changes(float aabb[4]);
+/* Drops everything (CPU data; GL objects are released separately). */
+void edits_clear(void);
+
+/* ---- GL (curves_gl.c) ------------------------------------------------------- */
+
+/* edits_load(p), uploads what changed, binds SSBOs 8..11 and the heightmap
+ * (texture unit 3) and sets the curve/heightmap uniforms of prog (which
+ * includes shaders/carve.glsl or curves.glsl).  Logs and returns -1 on
+ * error. */
+int edits_gl_bind(GLuint prog, const struct params *p);
+/* Deletes the GL objects (the context must be current). */
+void edits_gl_release(void);
+
+/* The curves' 2D displacement map (shaders/curve_bake.comp): res[0] x
+ * res[1] texels over [origin, origin + size) in XZ, x fastest; each texel
+ * Θ_closest · (h - H) at its centre, H the heightmap (bilinear) or 0.
+ * By default only the 8x8 tiles that overlap a quadratic's padded box run
+ * (the map is zeroed first); dense: every texel; iterative: the baseline
+ * (32 line segments per curve, every curve, no hash).  The map stays in an SSBO (binding 12, explicit capacity);
+ * out != NULL gets a copy.  0 or -1 with err. */
+struct bake_opts {
+	int res[2];
+	float origin[2], size[2];
+	bool iterative; /* the baseline (implies dense) */
+	bool dense;     /* every texel (the thesis's dispatch) instead of the
+			   8x8 tiles over the padded boxes */
+};
+int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen);
+
+/* Test hook: runs shaders/curve_test.comp (mode 0: closest point on given
+ * quadratics, 1: curve_eval + carve_density at points, 2: heightmap
+ * height) on n inputs; see the shader.  in has 16 floats per item in mode
+ * 0, else 4; out 4 per item. */
+int curves_gpu_test(const struct params *p, int mode, const float *in, int n, float *out, char *err, size_t errlen);
+
+/* ---- CPU mirror of curves.glsl / heightmap.glsl / carve.glsl (carve_ref.c) -- */
+
+float carve_ref_closest_t(const float p0[2], const float p1[2], const float p2[2], const float pos[2]);
+/* (signed distance, t, height, inclination) of a quadratic given as 3
+ * control points (x, y, z, I). */
+void carve_ref_closest(const float c[3][4], const float pos[2], float out[4]);
+/* (height, Θ closest, |d| closest, Σ Θ) at (x, z); iterative: the
+ * baseline over every curve with 32 segments. */
+void carve_ref_eval(const struct edits *e, const struct params *p, float x, float z, bool iterative, float out[4]);
+float carve_ref_density(const struct edits *e, const struct params *p, float x, float y, float z, float d);
+float carve_ref_theta(float d, float hw, float lam);
+/* Heightmap height (detail: the fractal interpolation). */
+float heightmap_ref_height(const struct edits *e, const struct params *p, const struct noise_set *ns, float x,
+			   float z, bool detail);
+/* CPU displacement map, as curves_bake(). */
+void carve_ref_bake(const struct edits *e, const struct params *p, const struct bake_opts *o, float *out);
+
+#endif

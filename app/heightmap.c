@@ -1,0 +1,227 @@
+/* isoterra — heightmap files: 16-bit grayscale PNG in and out. */
+#include "edits.h"
+#include "image.h"
+
+#include <errno.h>
+#include <png.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#define HEIGHTMAP_MAX_SIDE 16384
+
+#ifdef ISOTERRA_HAVE_GDAL
+#include <cpl_error.h>
+#include <gdal.h>
+#include <math.h>
+
+/* GeoTIFF (any raster GDAL opens) through GDAL: band 1 as floats, the
+ * band's valid range [min, max] mapped onto 0..65535 (so heightmap_base /
+ * heightmap_height place it as they place a PNG), no-data samples at min. */
+static int load_gdal(const char *path, struct heightmap *hm, char *err, size_t errlen)
+{
+	static int registered;
+	if (!registered) {
+		GDALAllRegister();
+		registered = 1;
+	}
+	CPLPushErrorHandler(CPLQuietErrorHandler);
+	CPLErrorReset();
+	GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, NULL, NULL, NULL);
+	if (!ds) {
+		const char *m = CPLGetLastErrorMsg();
+		snprintf(err, errlen, "heightmap '%s': GDAL cannot read it as a GeoTIFF: %s", path,
+			 m && m[0] ? m : "unknown error");
+		CPLPopErrorHandler();
+		return -1;
+	}
+	int rc = -1;
+	float *v = NULL;
+	int w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+	if (GDALGetRasterCount(ds) < 1) {
+		snprintf(err, errlen, "heightmap '%s': the GeoTIFF has no raster band", path);
+		goto out;
+	}
+	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) {
+		snprintf(err, errlen, "heightmap '%s' is %dx%d; 2x2 to %dx%d samples are supported", path, w, h,
+			 HEIGHTMAP_MAX_SIDE, HEIGHTMAP_MAX_SIDE);
+		goto out;
+	}
+	GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+	v = malloc(sizeof(float) * (size_t)w * (size_t)h);
+	if (!band || !v) {
+		snprintf(err, errlen, "heightmap '%s': %s", path, v ? "no band 1" : "out of memory");
+		goto out;
+	}
+	CPLErrorReset();
+	if (GDALRasterIO(band, GF_Read, 0, 0, w, h, v, w, h, GDT_Float32, 0, 0) != CE_None) {
+		const char *m = CPLGetLastErrorMsg();
+		snprintf(err, errlen, "heightmap '%s': GDAL cannot read the samples: %s", path,
+			 m && m[0] ? m : "read error");
+		goto out;
+	}
+	int has_nodata = 0;
+	double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+	size_t n = (size_t)w * (size_t)h;
+	float lo = INFINITY, hi = -INFINITY;
+	for (size_t i = 0; i < n; i++) {
+		if (!isfinite(v[i]) || (has_nodata && (double)v[i] == (double)(float)nodata))
+			continue;
+		lo = v[i] < lo ? v[i] : lo;
+		hi = v[i] > hi ? v[i] : hi;
+	}
+	if (!(lo <= hi)) {
+		snprintf(err, errlen, "heightmap '%s': every sample is no-data", path);
+		goto out;
+	}
+	float k = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
+	for (size_t i = 0; i < n; i++) {
+		bool valid = isfinite(v[i]) && !(has_nodata && (double)v[i] == (double)(float)nodata);
+		v[i] = valid ? (v[i] - lo) * k : 0.0f;
+	}
+	hm->v = v;
+	hm->w = w;
+	hm->h = h;
+	v = NULL;
+	rc = 0;
+out:
+	free(v);
+	GDALClose(ds);
+	CPLPopErrorHandler();
+	return rc;
+}
+#endif
+
+int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen)
+{
+	memset(hm, 0, sizeof(*hm));
+	const char *dot = strrchr(path, '.');
+	if (dot && (!strcasecmp(dot, ".tif") || !strcasecmp(dot, ".tiff"))) {
+#ifdef ISOTERRA_HAVE_GDAL
+		if (access(path, R_OK) != 0) {
+			snprintf(err, errlen, "cannot open heightmap file '%s' (GeoTIFF, read through GDAL)", path);
+			return -1;
+		}
+		return load_gdal(path, hm, err, errlen);
+#else
+		snprintf(err, errlen, "heightmap '%s': GeoTIFF needs GDAL, which this build does not use; convert it to a "
+			 "16-bit grayscale PNG (gdal_translate -ot UInt16 -of PNG)", path);
+		return -1;
+#endif
+	}
+	if (!dot || strcasecmp(dot, ".png")) {
+		snprintf(err, errlen, "heightmap '%s': unknown format (a 16-bit grayscale .png is needed)", path);
+		return -1;
+	}
+	uint16_t *s = NULL;
+	int w = 0, h = 0;
+	if (image_read_png_gray16(path, &s, &w, &h, err, errlen) < 0)
+		return -1;
+	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) {
+		snprintf(err, errlen, "heightmap '%s' is %dx%d; 2x2 to %dx%d samples are supported", path, w, h,
+			 HEIGHTMAP_MAX_SIDE, HEIGHTMAP_MAX_SIDE);
+		free(s);
+		return -1;
+	}
+	hm->v = malloc(sizeof(float) * (size_t)w * (size_t)h);
+	if (!hm->v) {
+		free(s);
+		snprintf(err, errlen, "out of memory for heightmap '%s'", path);
+		return -1;
+	}
+	for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+		hm->v[i] = (float)s[i];
+	free(s);
+	hm->w = w;
+	hm->h = h;
+	return 0;
+}
+
+void heightmap_free(struct heightmap *hm)
+{
+	free(hm->v);
+	memset(hm, 0, sizeof(*hm));
+}
+
+struct png_err {
+	char msg[200];
+};
+
+static void on_error(png_structp png, png_const_charp msg)
+{
+	struct png_err *e = png_get_error_ptr(png);
+	snprintf(e->msg, sizeof(e->msg), "%s", msg);
+	png_longjmp(png, 1);
+}
+
+static void on_warning(png_structp png, png_const_charp msg)
+{
+	(void)png;
+	(void)msg;
+}
+
+int heightmap_write_png16(const char *path, const uint16_t *v, int w, int h, char *err, size_t errlen)
+{
+	char tmp[4096];
+	if (snprintf(tmp, sizeof(tmp), "%s.XXXXXX.tmp", path) >= (int)sizeof(tmp)) {
+		snprintf(err, errlen, "file name too long: '%s'", path);
+		return -1;
+	}
+	int fd = mkstemps(tmp, 4);
+	if (fd < 0) {
+		snprintf(err, errlen, "cannot create '%s': %s", tmp, strerror(errno));
+		return -1;
+	}
+	FILE *f = fdopen(fd, "wb");
+	if (!f) {
+		close(fd);
+		unlink(tmp);
+		snprintf(err, errlen, "cannot write '%s': %s", tmp, strerror(errno));
+		return -1;
+	}
+	struct png_err pe = { "" };
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &pe, on_error, on_warning);
+	png_infop info = png ? png_create_info_struct(png) : NULL;
+	uint8_t *volatile row = malloc((size_t)w * 2);
+	if (!png || !info || !row) {
+		png_destroy_write_struct(&png, &info);
+		free(row);
+		fclose(f);
+		unlink(tmp);
+		snprintf(err, errlen, "out of memory writing '%s'", path);
+		return -1;
+	}
+	if (setjmp(png_jmpbuf(png))) {
+		png_destroy_write_struct(&png, &info);
+		free(row);
+		fclose(f);
+		unlink(tmp);
+		snprintf(err, errlen, "cannot write '%s': %s", path, pe.msg);
+		return -1;
+	}
+	png_init_io(png, f);
+	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+		     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_write_info(png, info);
+	for (int y = 0; y < h; y++) {
+		for (int x = 0; x < w; x++) {
+			uint16_t s = v[(size_t)y * (size_t)w + (size_t)x];
+			row[2 * x] = (uint8_t)(s >> 8); /* PNG is big-endian */
+			row[2 * x + 1] = (uint8_t)(s & 0xff);
+		}
+		png_write_row(png, row);
+	}
+	png_write_end(png, NULL);
+	png_destroy_write_struct(&png, &info);
+	free(row);
+	int bad = fflush(f) != 0 || fsync(fileno(f)) != 0;
+	bad |= fclose(f) != 0;
+	if (bad || rename(tmp, path) != 0) {
+		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
+		unlink(tmp);
+		return -1;
+	}
+	return 0;
+}

@@ -1,0 +1,23 @@
+// isoterra — terrain editing in the density function: the curves' cut and
+// fill (Nascimento 2020, for a volume instead of a displacement map) and
+// the heightmap base terrain.  Mirrored in app/carve_ref.c.
+//
+// Inside a curve's profile the density is pulled toward that of a flat
+// ground at the curve's (blended, inclined) height h:
+//   d' = d + Θ · curve_strength · ((h - y) - d)
+// so at Θ = 1 the surface is exactly at h: a road cuts through a mountain
+// (rock above h removed) and crosses a valley on an embankment (rock below
+// h added); the falloff λ gives the side slopes; a river below the surface
+// carves a canyon.
+
+#include "curves.glsl"
+#include "heightmap.glsl"
+
+float carve_density(vec3 ws, float d)
+{
+	if (u_curve_count == 0)
+		return d;
+	vec4 e = curve_eval(ws.xz);
+	float k = e.y * u_curve_strength;
+	return d + k * ((e.x - ws.y) - d);
+}

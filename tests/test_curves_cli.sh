@@ -1,0 +1,119 @@
+#!/bin/sh
+# isoterra — curves and heightmaps end to end: good GeoJSON / CSV / PNG
+# files render; malformed ones give one clear message naming the file, the
+# line and the feature, a non-zero exit, and no output file.
+BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+SMALL="--size 64x48 --grid 16 --out out.png"
+
+# expect_fail "regex of the message" args...
+expect_fail() {
+	pat=$1
+	shift
+	rm -f out.png
+	"$BIN" "$@" >"$T/out" 2>"$T/err"
+	rc=$?
+	if [ $rc -eq 0 ]; then
+		bad "isoterra $* exited 0"
+		return
+	fi
+	if ! grep -Eq "$pat" "$T/err"; then
+		bad "isoterra $*: message does not match '$pat': $(cat "$T/err")"
+		return
+	fi
+	lines=$(grep -c . "$T/err")
+	if [ "$lines" -gt 2 ]; then
+		bad "isoterra $*: $lines lines of messages, want one clear line: $(cat "$T/err")"
+		return
+	fi
+	if [ -e out.png ]; then
+		bad "isoterra $*: failed but wrote out.png"
+		return
+	fi
+	ok
+}
+
+expect_ok() {
+	rm -f out.png
+	if "$BIN" "$@" >"$T/out" 2>"$T/err" && [ -s out.png ]; then
+		ok
+	else
+		bad "isoterra $*: $(cat "$T/err")"
+	fi
+}
+
+cd "$T" || exit 1
+
+# ---- good files ---------------------------------------------------------------
+cat >road.geojson <<'J'
+{ "type": "FeatureCollection", "features": [
+  { "type": "Feature", "properties": { "kind": "road", "width": 4, "falloff": 3, "smoothing": 0.5 },
+    "geometry": { "type": "LineString", "coordinates": [[-14, 9, 0], [0, -1, 1], [14, -9, 0]] } },
+  { "type": "Feature", "properties": { "kind": "river", "width": 3, "falloff": 4 },
+    "geometry": { "type": "MultiLineString", "coordinates": [[[-14, -12, -4], [14, 12, -5]]] } }
+] }
+J
+cat >roads.csv <<'C'
+path,x,y,z,kind,width,falloff,inclination,smoothing
+r1,-14,0,-9,road,4,3,20,0.5
+r1,0,1,0,,,,,
+r1,14,0,9,,,,,
+C
+# a 6x5 16-bit grayscale PNG
+echo 'iVBORw0KGgoAAAANSUhEUgAAAAYAAAAFEAAAAAATox55AAAATElEQVR4nAFBAL7/AAAAIyhGUGl4jKCvyAATiDawWdh9AKAow1AAJxBKOG1gkIizsNbYADqYXcCA6KQQxzjqYABOIHFIlHC3mNrA/egngBxszlxjvgAAAABJRU5ErkJggg==' | base64 -d >hm.png
+expect_ok $SMALL --curves road.geojson
+expect_ok $SMALL --curves roads.csv --curve-hash-dim 4
+expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --heightmap-detail 1 --curves road.geojson
+printf 'field = heightmap\nheightmap = hm.png\ncurves = roads.csv\nheightmap_scale = 6\n' >edit.conf
+expect_ok $SMALL --config edit.conf
+
+# ---- malformed GeoJSON ------------------------------------------------------------
+printf '{ "type": "FeatureCollection", "features": [\n  { "type": "Feature",\n' >trunc.geojson
+expect_fail "trunc.geojson:3: invalid JSON" $SMALL --curves trunc.geojson
+cat >twod.geojson <<'J'
+{ "type": "FeatureCollection", "features": [
+  { "type": "Feature", "geometry": { "type": "LineString", "coordinates": [[0, 0, 0], [1, 1, 1]] } },
+  { "type": "Feature", "geometry": { "type": "LineString",
+    "coordinates": [[0, 0], [5, 5]] } }
+] }
+J
+expect_fail "twod.geojson:4: feature 2: position 1 has 2 coordinates" $SMALL --curves twod.geojson
+cat >poly.geojson <<'J'
+{ "type": "Feature", "geometry": { "type": "Polygon", "coordinates": [] } }
+J
+expect_fail "poly.geojson:1: feature 1: geometry type \"Polygon\" is not supported" $SMALL --curves poly.geojson
+cat >width.geojson <<'J'
+{ "type": "Feature",
+  "properties": { "width": "wide" },
+  "geometry": { "type": "LineString", "coordinates": [[0, 0, 0], [1, 1, 1]] } }
+J
+expect_fail "width.geojson:2: feature 1: \"width\" must be a number" $SMALL --curves width.geojson
+expect_fail "cannot open curves file" $SMALL --curves missing.geojson
+expect_fail "unknown format" $SMALL --curves roads.kml
+
+# ---- malformed CSV ------------------------------------------------------------------
+printf 'path,x,y,z\na,0,0,0\na,1,oops,1\n' >bad.csv
+expect_fail "bad.csv:3: y 'oops' is not a number" $SMALL --curves bad.csv
+printf 'path,x,y,z,kind\na,0,0,0,canal\na,1,1,1,canal\n' >kind.csv
+expect_fail "kind.csv:2: kind 'canal'" $SMALL --curves kind.csv
+printf 'x,y,z\n0,0,0\n' >nohead.csv
+expect_fail "nohead.csv:1: the header has no 'path' column" $SMALL --curves nohead.csv
+
+# ---- malformed heightmaps -----------------------------------------------------------
+echo "not a png" >text.png
+expect_fail "text.png" $SMALL --field heightmap --heightmap text.png
+head -c 60 hm.png >trunc.png
+expect_fail "trunc.png" $SMALL --field heightmap --heightmap trunc.png
+"$BIN" --size 16x16 --grid 4 --out rgb.png >/dev/null 2>&1 || bad "could not make an RGB PNG"
+expect_fail "rgb.png.*grayscale" $SMALL --field heightmap --heightmap rgb.png
+expect_fail "GDAL" $SMALL --field heightmap --heightmap dem.tif
+expect_fail "field=heightmap needs a heightmap" $SMALL --field heightmap
+expect_fail "cannot open.*nothere.png" $SMALL --field heightmap --heightmap nothere.png
+
+echo "curves_cli: $pass passed, $fail failed"
+[ $fail -eq 0 ]
