@@ -1,5 +1,6 @@
 /* isoterra — command line over the parameter table. */
 #include "cli.h"
+#include "platform.h"
 
 #include <stdbool.h>
 #include <stdio.h>
@@ -48,6 +49,16 @@ static int next_opt(int argc, char **argv, int *i, struct opt *o, char *err, siz
 	memset(o, 0, sizeof(*o));
 	if (!strcmp(arg, "-h")) {
 		o->kind = OPT_HELP;
+		return 0;
+	}
+	if (!strcmp(arg, "-D")) { /* kmscube's -D: the DRM card */
+		if (*i >= argc) {
+			snprintf(err, errlen, "option '-D' needs a value");
+			return -1;
+		}
+		o->kind = OPT_PARAM;
+		o->pi = params_find("drm_device");
+		o->value = argv[(*i)++];
 		return 0;
 	}
 	if (arg[0] != '-' || !strcmp(arg, "-") || !strcmp(arg, "--")) {
@@ -182,7 +193,11 @@ void cli_print_help(const char *argv0)
 	       "  --export-mesh FILE.ply write the last frame's mesh as binary PLY\n"
 	       "  --preset NAME          start from a preset (see --list-presets)\n"
 	       "  --config FILE          'name = value' lines, applied after the preset\n"
-	       "  --platform NAME        EGL platform: auto|device|surfaceless\n"
+	       "  --platform NAME        auto|gbm|wayland|x11|device|surfaceless (built: %s)\n"
+	       "  --fullscreen           wayland/x11 fullscreen; --hide-cursor (wayland/x11)\n"
+	       "  -D, --drm-device CARD  gbm: /dev/dri/cardN; --mode WxH[@Hz] the display mode\n"
+	       "  --count 0              display platforms: run until closed / SIGINT / SIGTERM\n"
+	       "  --fps-report SECONDS   print the frame rate every SECONDS (and on SIGUSR1)\n"
 	       "  --shader-dir DIR       load shaders from DIR instead of the built-in copies\n"
 	       "  --set NAME=VALUE       set any parameter below\n"
 	       "  --help, --version, --list-presets\n"
@@ -191,7 +206,7 @@ void cli_print_help(const char *argv0)
 	       "booleans also --name / --no-name.  --preset and --config apply first, then\n"
 	       "the other options in order, so explicit options win.\n"
 	       "\n"
-	       "Application:\n", prog);
+	       "Application:\n", prog, platform_backend_names());
 	params_print_help(stdout, P_APP);
 	printf("\nTerrain (shader uniforms):\n");
 	params_print_help(stdout, P_SHADER);

@@ -274,3 +274,20 @@ int renderer_read(struct renderer *r, struct image *img)
 	free(tmp);
 	return 0;
 }
+
+/* ---- display platforms: the frame to the window (issue 4) ---------------- */
+int renderer_blit_to_default(struct renderer *r, int w, int h)
+{
+	if (r->samples) {
+		glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
+		glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo);
+		glBlitFramebuffer(0, 0, r->w, r->h, 0, 0, r->w, r->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+	}
+	/* both are bottom-up: no flip */
+	glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+	glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+	glBlitFramebuffer(0, 0, r->w, r->h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
+	                  w == r->w && h == r->h ? GL_NEAREST : GL_LINEAR);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	return gpu_check("blit to the window");
+}

@@ -47,6 +47,10 @@ void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h);
 /* Resolves and reads the last frame (top row first).  0 or -1. */
 int renderer_read(struct renderer *r, struct image *img);
 
+/* Resolves the last frame and blits it to the default framebuffer (the
+ * window surface), scaled to w x h.  0 or -1. */
+int renderer_blit_to_default(struct renderer *r, int w, int h);
+
 /* Renders p->count frames with the current context and returns the last
  * one (tests, tools).  0 or -1 with err. */
 int render_to_image(const struct params *p, struct image *img, char *err, size_t errlen);

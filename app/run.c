@@ -6,6 +6,7 @@
 #include "log.h"
 #include "ply.h"
 #include "platform.h"
+#include "display.h" /* issue 4: display platforms */
 
 #include <math.h>
 #include <signal.h>
@@ -144,7 +145,43 @@ static int sink_close(struct frame_sink *fs)
 	return 0;
 }
 
-static int run_volume(struct params *p, struct renderer *r, struct frame_sink *fs, int w, int h, struct hal *hal)
+/* Where a finished frame goes: the sink and, on a display platform
+ * (issue 4), the window or the KMS scanout.  On a resize the renderer is
+ * re-created at the new size (w, h follow). */
+struct frame_out {
+	struct frame_sink *fs;
+	struct platform *plat;
+	struct display_loop *disp;
+	struct renderer *r;
+	int w, h;
+	int frames; /* frames finished */
+	struct hal *hal; /* issue 5: knobs, keys, OSD, V4L2 output */
+};
+
+static bool frame_more(const struct params *p, int f)
+{
+	return (p->count == 0 || f < p->count) && !quit_requested;
+}
+
+/* 0: go on, 1: stop (window closed, SIGINT/SIGTERM), -1: error (logged) */
+static int frame_done(struct frame_out *o, int f)
+{
+	if (sink_write(o->fs, o->r, f) < 0)
+		return -1;
+	o->frames = f + 1;
+	if (o->plat->headless)
+		return 0;
+	return display_frame(o->disp, o->plat, &o->r, &o->w, &o->h);
+}
+
+static const char *frame_dest(const struct frame_out *o, const struct params *p)
+{
+	if (o->fs->y4m || o->fs->per_frame || o->frames == p->count)
+		return p->out;
+	return p->count == 0 ? "(display only: no image)" : "(stopped before the last frame: no image)";
+}
+
+static int run_volume(struct params *p, struct frame_out *o)
 {
 	char err[512] = "";
 	struct grid g;
@@ -158,17 +195,22 @@ static int run_volume(struct params *p, struct renderer *r, struct frame_sink *f
 	struct pipeline_draw d;
 	struct camera cam;
 	float t0 = p->time;
-	for (int f = 0; f < p->count && !quit_requested; f++) {
-		if (hal_poll(hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
-			fs->count = p->count = f + 1;
-		float t = hal_time(hal, (float)f / p->fps);
+	for (int f = 0; frame_more(p, f); f++) {
+		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
+			o->fs->count = p->count = f + 1;
+		float t = hal_time(o->hal, (float)f / p->fps);
 		p->time = t0 + t;
 		if (pipeline_run(pl, p) < 0)
 			goto out;
 		pipeline_draw_info(pl, &d);
-		camera_orbit(&cam, p, &g, t, (float)w / (float)h);
-		if (renderer_draw(r, &d, &cam, p) < 0 || hal_frame(hal, r, p) < 0 || sink_write(fs, r, f) < 0)
+		camera_orbit(&cam, p, &g, t, (float)o->w / (float)o->h);
+		if (renderer_draw(o->r, &d, &cam, p) < 0 || hal_frame(o->hal, o->r, p) < 0)
 			goto out;
+		int q = frame_done(o, f);
+		if (q < 0)
+			goto out;
+		if (q > 0)
+			break;
 	}
 	struct extract_stats st;
 	if (pipeline_read_stats(pl, &st) == 0) {
@@ -177,8 +219,8 @@ static int run_volume(struct params *p, struct renderer *r, struct frame_sink *f
 				 "output clamped (raise --max-triangles / --max-vertices)",
 				 (unsigned long long)st.triangles_needed, (unsigned long long)st.vertices_needed,
 				 st.triangle_capacity, st.vertex_capacity);
-		log_info("%d frame(s) %dx%d, grid %d^3: %u triangles, %u vertices -> %s", p->count, w, h, p->grid,
-			 st.triangles, st.vertices, p->out);
+		log_info("%d frame(s) %dx%d, grid %d^3: %u triangles, %u vertices -> %s", o->frames, o->w, o->h,
+			 p->grid, st.triangles, st.vertices, frame_dest(o, p));
 	}
 	if (p->export_mesh[0]) {
 		struct mesh m;
@@ -199,7 +241,7 @@ out:
 	return rc;
 }
 
-static int run_world(struct params *p, struct renderer *r, struct frame_sink *fs, int w, int h, struct hal *hal)
+static int run_world(struct params *p, struct frame_out *o)
 {
 	char err[512] = "";
 	if (p->export_mesh[0])
@@ -219,26 +261,31 @@ static int run_world(struct params *p, struct renderer *r, struct frame_sink *fs
 	struct camera cam;
 	float t0 = p->time;
 	float far = p->view_distance * 1.2f;
-	for (int f = 0; f < p->count && !quit_requested; f++) {
-		if (hal_poll(hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
-			fs->count = p->count = f + 1;
+	for (int f = 0; frame_more(p, f); f++) {
+		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
+			o->fs->count = p->count = f + 1;
 		double t = (double)f / p->fps;
-		t -= (double)((float)t - hal_time(hal, (float)t)); /* paused time */
+		t -= (double)((float)t - hal_time(o->hal, (float)t)); /* paused time */
 		p->time = t0; /* the world does not scroll: the camera moves */
 		autopilot_advance(&ap, t);
-		autopilot_camera(&ap, &cam, p->fov, (float)w / (float)h, far);
+		autopilot_camera(&ap, &cam, p->fov, (float)o->w / (float)o->h, far);
 		/* offline: every frame is complete and reproducible */
 		int urc = f == 0 ? world_fill(wd, p, &cam, t) : world_update(wd, p, &cam, t, true);
-		if (urc < 0 || world_draw(wd, r, &cam, p, t) < 0 || hal_frame(hal, r, p) < 0 || sink_write(fs, r, f) < 0)
+		if (urc < 0 || world_draw(wd, o->r, &cam, p, t) < 0 || hal_frame(o->hal, o->r, p) < 0)
 			goto out;
+		int q = frame_done(o, f);
+		if (q < 0)
+			goto out;
+		if (q > 0)
+			break;
 	}
 	struct world_stats st;
 	world_get_stats(wd, &st);
 	log_info("%d frame(s) %dx%d, world: %llu blocks generated (%llu empty, never regenerated), %d drawn, "
 		 "%llu evicted%s -> %s",
-		 p->count, w, h, (unsigned long long)st.generated, (unsigned long long)st.empty_found, st.drawn,
+		 o->frames, o->w, o->h, (unsigned long long)st.generated, (unsigned long long)st.empty_found, st.drawn,
 		 (unsigned long long)st.evicted, st.overflowed ? ", some blocks over capacity (raise --block-tris)" : "",
-		 p->out);
+		 frame_dest(o, p));
 	rc = 0;
 out:
 	autopilot_free(&ap);
@@ -265,7 +312,9 @@ int run_headless(const struct params *p_in)
 		log_error("--out '%s': only one %%d (or %%0Nd) is allowed in the file name", p.out);
 		return 2;
 	}
-	struct platform_options po = { .name = p.platform, .width = w, .height = h, .debug = p.verbose };
+	struct platform_options po = { .name = p.platform, .width = w, .height = h, .debug = p.verbose,
+		.fullscreen = p.fullscreen, .hide_cursor = p.hide_cursor, .drm_device = p.drm_device,
+		.mode = p.mode, .kms_legacy = p.kms_legacy };
 	struct platform *plat = platform_open(&po, err, sizeof(err));
 	if (!plat) {
 		log_error("%s", err);
@@ -274,6 +323,18 @@ int run_headless(const struct params *p_in)
 	int rc = 1;
 	struct renderer *r = NULL;
 	struct hal *hal = NULL; /* issue 5: knobs, keys, OSD, V4L2 output */
+	/* issue 4: display platforms render at the window's / mode's size */
+	struct display_loop disp;
+	display_begin(&disp, plat, &p);
+	if (plat->headless && p.count == 0) {
+		log_error("--count 0 (until closed) needs a display platform (gbm, wayland, x11), not '%s'",
+			  plat->backend->name);
+		goto out;
+	}
+	if (!plat->headless) {
+		w = plat->width;
+		h = plat->height;
+	}
 	struct gpu_caps caps;
 	if (gpu_init(&caps, p.verbose, err, sizeof(err)) < 0) {
 		log_error("%s", err);
@@ -293,7 +354,9 @@ int run_headless(const struct params *p_in)
 	}
 	if (sink_open(&fs, &p, w, h) < 0)
 		goto out;
-	rc = p.scene == 1 ? run_world(&p, r, &fs, w, h, hal) : run_volume(&p, r, &fs, w, h, hal);
+	struct frame_out o = { .fs = &fs, .plat = plat, .disp = &disp, .r = r, .w = w, .h = h, .hal = hal };
+	rc = p.scene == 1 ? run_world(&p, &o) : run_volume(&p, &o);
+	r = o.r; /* a resize may have replaced it */
 	if (sink_close(&fs) < 0)
 		rc = 1;
 	if (quit_requested && rc == 0)
@@ -302,6 +365,7 @@ out:
 	hal_close(hal);
 	renderer_destroy(r);
 	platform_close(plat);
+	display_end(&disp);
 	return rc;
 }
 

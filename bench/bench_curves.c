@@ -7,7 +7,7 @@
  *   B  the same 3 paths concentrated in the bottom-right 512² corner
  *   C  one path across the whole terrain, 198 quadratics
  * Each dataset: the closed-form closest point through the 16² spatial hash
- * ("analytic+hash", median of repeated bakes) against the iterative
+ * ("analytic+hash", fastest of repeated bakes) against the iterative
  * baseline (every curve as 32 line segments, no hash) in the same run, and
  * the ratio.  Then dataset C with other hash sizes.
  *

@@ -295,6 +295,126 @@ int egl_common_make_context(struct platform *p, const struct platform_options *o
 	return check_gl_version(p, err, errlen);
 }
 
+/* ---- window surfaces (display backends) --------------------------------- */
+
+#define MAX_CONFIGS 256
+
+static int choose_window_config(struct platform *p, EGLint renderable, EGLint visual,
+                                char *err, size_t errlen)
+{
+	const EGLint attribs[] = {
+		EGL_RENDERABLE_TYPE, renderable,
+		EGL_SURFACE_TYPE, EGL_WINDOW_BIT,
+		EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
+		EGL_NONE,
+	};
+	EGLConfig configs[MAX_CONFIGS];
+	EGLint n = 0;
+	last_error_clear();
+	if (!eglChooseConfig(p->dpy, attribs, configs, MAX_CONFIGS, &n)) {
+		egl_fail(err, errlen, "eglChooseConfig");
+		return -1;
+	}
+	/* With a visual: that one.  Otherwise 8-bit RGB without alpha (the
+	 * first configs are the deepest, e.g. 10-bit XRGB2101010, which some
+	 * compositors show wrongly), then 8-bit RGB with alpha, then any. */
+	int pick = -1, pick_alpha = -1;
+	for (EGLint i = 0; i < n && pick < 0; i++) {
+		EGLint id = 0, r = 0, g = 0, b = 0, alpha = 0;
+		if (!eglGetConfigAttrib(p->dpy, configs[i], EGL_NATIVE_VISUAL_ID, &id) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_RED_SIZE, &r) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_GREEN_SIZE, &g) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_BLUE_SIZE, &b) ||
+		    !eglGetConfigAttrib(p->dpy, configs[i], EGL_ALPHA_SIZE, &alpha)) {
+			egl_fail(err, errlen, "eglGetConfigAttrib");
+			return -1;
+		}
+		bool rgb8 = r == 8 && g == 8 && b == 8;
+		if (visual ? id == visual : rgb8 && alpha == 0)
+			pick = (int)i;
+		else if (!visual && rgb8 && pick_alpha < 0)
+			pick_alpha = (int)i;
+	}
+	if (pick < 0 && !visual)
+		pick = pick_alpha >= 0 ? pick_alpha : n > 0 ? 0 : -1;
+	if (pick < 0) {
+		if (visual)
+			snprintf(err, errlen, "no EGLConfig for OpenGL ES 3 windows matches native visual 0x%x "
+			         "(%d window configs)", (unsigned)visual, (int)n);
+		else
+			snprintf(err, errlen, "no EGLConfig supports OpenGL ES 3 windows on this display");
+		return -1;
+	}
+	p->config = configs[pick];
+	EGLint id = 0, alpha = 0;
+	eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, &id);
+	eglGetConfigAttrib(p->dpy, p->config, EGL_ALPHA_SIZE, &alpha);
+	log_debug("EGL window config %d of %d: native visual 0x%x, alpha %d", pick, (int)n, (unsigned)id, (int)alpha);
+	return 0;
+}
+
+int egl_common_make_window_context(struct platform *p, const struct platform_options *opt,
+                                   EGLint visual, void *native_window, char *err, size_t errlen)
+{
+	EGLint major = 1, minor = 0;
+	const char *ver = eglQueryString(p->dpy, EGL_VERSION);
+	const char *exts = eglQueryString(p->dpy, EGL_EXTENSIONS);
+	if (!ver || sscanf(ver, "%d.%d", &major, &minor) != 2 || !exts) {
+		egl_fail(err, errlen, "eglQueryString");
+		return -1;
+	}
+	bool egl15 = major > 1 || (major == 1 && minor >= 5);
+	bool khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
+	if (!p->config) {
+		last_error_clear();
+		if (!eglBindAPI(EGL_OPENGL_ES_API)) {
+			egl_fail(err, errlen, "eglBindAPI(EGL_OPENGL_ES_API)");
+			return -1;
+		}
+		EGLint renderable = egl15 || khr_cc ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_ES2_BIT;
+		if (choose_window_config(p, renderable, visual, err, errlen) < 0)
+			return -1;
+	}
+	if (!native_window)
+		return 0;
+
+	last_error_clear();
+	p->ctx = create_context(p, egl15, khr_cc, opt->debug);
+	if (p->ctx == EGL_NO_CONTEXT && opt->debug) {
+		log_warn("cannot create a debug GLES context (%s); continuing without",
+		         egl_common_error_name(eglGetError()));
+		last_error_clear();
+		p->ctx = create_context(p, egl15, khr_cc, false);
+	}
+	if (p->ctx == EGL_NO_CONTEXT) {
+		egl_fail(err, errlen, "cannot create an OpenGL ES 3.1 context: eglCreateContext");
+		return -1;
+	}
+	PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC create_surface =
+		(PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC)eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT");
+	if (!create_surface) {
+		snprintf(err, errlen, "eglCreatePlatformWindowSurfaceEXT not found in this EGL");
+		return -1;
+	}
+	last_error_clear();
+	p->surface = create_surface(p->dpy, p->config, native_window, NULL);
+	if (p->surface == EGL_NO_SURFACE) {
+		egl_fail(err, errlen, "eglCreatePlatformWindowSurfaceEXT");
+		return -1;
+	}
+	last_error_clear();
+	if (!eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
+		egl_fail(err, errlen, "eglMakeCurrent");
+		return -1;
+	}
+	/* vsync where the window system has it (a no-op on GBM: the backend
+	 * waits for page flips itself) */
+	if (!eglSwapInterval(p->dpy, 1))
+		log_debug("eglSwapInterval(1): %s", egl_common_error_name(eglGetError()));
+	p->headless = false;
+	return check_gl_version(p, err, errlen);
+}
+
 void egl_common_release(struct platform *p)
 {
 	if (p->dpy == EGL_NO_DISPLAY)

@@ -7,9 +7,18 @@
 
 #include "log.h"
 
-/* Windowed backends (gbm, wayland, x11) go here behind their meson options;
- * "auto" only ever picks the headless ones below. */
+/* Display backends behind their meson options (-Dgbm, -Dwayland, -Dx11),
+ * then the headless ones. */
 static const struct platform_backend *const backends[] = {
+#ifdef ISOTERRA_HAVE_GBM
+	&platform_backend_gbm,
+#endif
+#ifdef ISOTERRA_HAVE_WAYLAND
+	&platform_backend_wayland,
+#endif
+#ifdef ISOTERRA_HAVE_X11
+	&platform_backend_x11,
+#endif
 	&platform_backend_device,
 	&platform_backend_surfaceless,
 };
@@ -52,10 +61,38 @@ static int try_backend(struct platform *p, const struct platform_backend *b,
 	return 0;
 }
 
-/* auto: a device that is a real GPU, else surfaceless, else any EGL device
- * (Mesa's software device). */
+static const struct platform_backend *find_backend(const char *name)
+{
+	for (size_t i = 0; i < NBACKENDS; i++)
+		if (strcmp(backends[i]->name, name) == 0)
+			return backends[i];
+	return NULL;
+}
+
+static bool env_set(const char *name)
+{
+	const char *v = getenv(name);
+	return v && v[0];
+}
+
+/* auto: what the environment offers — a Wayland compositor (WAYLAND_DISPLAY),
+ * an X server (DISPLAY), a DRM card with a connected output — else headless:
+ * a device that is a real GPU, else surfaceless, else any EGL device (Mesa's
+ * software device).  A display backend that fails is reported and skipped. */
 static int open_auto(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
 {
+	static const struct {
+		const char *backend, *env;
+	} displays[] = { { "wayland", "WAYLAND_DISPLAY" }, { "x11", "DISPLAY" }, { "gbm", NULL } };
+	for (size_t i = 0; i < sizeof(displays) / sizeof(displays[0]); i++) {
+		const struct platform_backend *b = find_backend(displays[i].backend);
+		if (!b || (displays[i].env && !env_set(displays[i].env)) || !b->probe())
+			continue;
+		char why[256];
+		if (try_backend(p, b, opt, why, sizeof(why)) == 0)
+			return 0;
+		log_warn("platform auto: %s: %s; trying the next platform", b->name, why);
+	}
 	char e_dev[256] = "no EGL device is a GPU", e_sl[256] = "EGL_MESA_platform_surfaceless not supported by this EGL";
 	bool tried_device = false;
 	if (platform_backend_device.probe()) {
@@ -89,9 +126,7 @@ struct platform *platform_open(const struct platform_options *opt, char *err, si
 	const char *name = opt->name && opt->name[0] ? opt->name : "auto";
 	const struct platform_backend *b = NULL;
 	if (strcmp(name, "auto") != 0) {
-		for (size_t i = 0; i < NBACKENDS; i++)
-			if (strcmp(backends[i]->name, name) == 0)
-				b = backends[i];
+		b = find_backend(name);
 		if (!b) {
 			snprintf(err, errlen, "unknown platform '%s' (compiled in: %s)", name, platform_backend_names());
 			return NULL;
@@ -126,5 +161,13 @@ void platform_close(struct platform *p)
 
 int platform_present(struct platform *p)
 {
-	return p->backend->present(p);
+	int rc = p->backend->present(p);
+	if (rc == 0)
+		p->presented++;
+	return rc;
+}
+
+int platform_dispatch(struct platform *p)
+{
+	return p->backend->dispatch ? p->backend->dispatch(p) : 0;
 }

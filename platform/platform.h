@@ -17,9 +17,15 @@
 struct platform;
 
 struct platform_options {
-	const char *name;   /* "auto", "device", "surfaceless" (later gbm, wayland, x11) */
+	const char *name;   /* "auto", "gbm", "wayland", "x11", "device", "surfaceless" */
 	int width, height;  /* requested surface size (windowed backends) */
 	bool debug;         /* create a debug context, route KHR_debug to the log */
+	/* display backends (gbm, wayland, x11) */
+	bool fullscreen;         /* wayland/x11: fullscreen window (gbm: always) */
+	bool hide_cursor;        /* x11: no pointer over the window (gbm: always hidden) */
+	const char *drm_device;  /* gbm: "/dev/dri/cardN"; NULL or "" = first card with a connected output */
+	const char *mode;        /* gbm: "WxH" or "WxH@Hz"; NULL or "" = the connector's preferred mode */
+	bool kms_legacy;         /* gbm: legacy SetCrtc/PageFlip even where atomic works */
 };
 
 struct platform_backend {
@@ -32,6 +38,10 @@ struct platform_backend {
 	void (*close)(struct platform *p);
 	/* Show the frame drawn into the default framebuffer; no-op headless. */
 	int (*present)(struct platform *p);
+	/* Handle pending window-system events without blocking (configure /
+	 * resize -> p->width/height, close); NULL for headless backends.
+	 * Returns 1 when the window was closed, 0 to go on, -1 on error. */
+	int (*dispatch)(struct platform *p);
 };
 
 struct platform {
@@ -42,7 +52,10 @@ struct platform {
 	EGLSurface surface;   /* EGL_NO_SURFACE when headless (or a 1x1 pbuffer
 	                         when the EGL lacks EGL_KHR_surfaceless_context) */
 	bool headless;        /* true: render into an FBO, no window */
-	int width, height;    /* surface size when not headless */
+	int width, height;    /* surface size when not headless (updated on resize) */
+	unsigned long presented;  /* frames handed to the display (present calls that succeeded) */
+	unsigned long shown;      /* frames the display confirmed: page-flip events (gbm),
+	                             frame callbacks (wayland); = presented on x11 */
 	char device_desc[128];/* e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" / DRM node */
 	void *priv;           /* backend state */
 };
@@ -53,6 +66,9 @@ struct platform {
 struct platform *platform_open(const struct platform_options *opt, char *err, size_t errlen);
 void platform_close(struct platform *p);
 int platform_present(struct platform *p);
+/* Window-system events (see platform_backend.dispatch): 1 closed, 0 go on,
+ * -1 error.  Always 0 for headless backends. */
+int platform_dispatch(struct platform *p);
 /* Names of the backends compiled in, space-separated. */
 const char *platform_backend_names(void);
 
@@ -60,6 +76,15 @@ const char *platform_backend_names(void);
 
 extern const struct platform_backend platform_backend_device;
 extern const struct platform_backend platform_backend_surfaceless;
+#ifdef ISOTERRA_HAVE_GBM
+extern const struct platform_backend platform_backend_gbm;
+#endif
+#ifdef ISOTERRA_HAVE_WAYLAND
+extern const struct platform_backend platform_backend_wayland;
+#endif
+#ifdef ISOTERRA_HAVE_X11
+extern const struct platform_backend platform_backend_x11;
+#endif
 
 /* egl_common.c */
 /* True when the space-separated extension list contains ext (whole token). */
@@ -78,6 +103,14 @@ int egl_common_open_display(struct platform *p, EGLenum platform, void *native,
  * GL_VERSION >= OpenGL ES 3.1 and fill p->device_desc. */
 int egl_common_make_context(struct platform *p, const struct platform_options *opt,
                             EGLint surface_type, char *err, size_t errlen);
+/* Display backends: on p->dpy choose a window config (native visual id
+ * `visual` when non-zero, else preferring one without alpha), create the
+ * GLES 3.1 context, the window surface for `native_window` (as
+ * eglCreatePlatformWindowSurfaceEXT wants it) and make both current; swap
+ * interval 1.  A NULL native_window stops after the config is chosen (the
+ * caller reads p->config to create its window, then calls again). */
+int egl_common_make_window_context(struct platform *p, const struct platform_options *opt,
+                                   EGLint visual, void *native_window, char *err, size_t errlen);
 /* Releases whatever egl_common_* created (safe on partial state). */
 void egl_common_release(struct platform *p);
 /* enable: route EGL_KHR_debug messages to log_* (verbose: also warnings and

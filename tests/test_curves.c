@@ -18,7 +18,11 @@
  * displacement bake vs the CPU bake (and the iterative baseline close to
  * the analytic one), and the real pipeline: a road's centre line after
  * carving lies at the curve height +- one voxel in the extracted mesh, where
- * the uncarved terrain was both above (cut) and below (fill) the road. */
+ * the uncarved terrain was both above (cut) and below (fill) the road.
+ * The streaming world: a road added, raised and removed re-generates
+ * exactly the known blocks whose samples the CPU carve reaches (none
+ * missed, none outside the path's padded box, under half the view).
+ * GeoTIFF through GDAL when the build has it. */
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"

@@ -19,3 +19,12 @@ $SUDO apt-get install -y -q --no-install-recommends \
 # GeoTIFF heightmaps (optional: the build finds GDAL through pkg-config and
 # works without it; with it the GeoTIFF test runs)
 $SUDO apt-get install -y -q --no-install-recommends libgdal-dev
+# the display backends (meson options -Dgbm/-Dwayland/-Dx11, auto)
+$SUDO apt-get install -y -q --no-install-recommends \
+	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev
+# the display tests: X11 in Xvfb, Wayland in Weston, KMS in a real kernel
+# under QEMU (tests/display, tests/vm)
+$SUDO apt-get install -y -q --no-install-recommends \
+	xvfb x11-apps weston \
+	qemu-system-x86 busybox-static linux-image-amd64 kmod cpio python3 \
+	kmscube glmark2-es2-drm

@@ -1,0 +1,142 @@
+/* isoterra — display benchmark: what showing a frame costs on a display
+ * platform (gbm, wayland, x11) over rendering it offscreen.
+ *
+ * One static terrain frame (the mesh is extracted once) is drawn N times:
+ *  1. baseline: renderer_draw + glFinish (the headless frame);
+ *  2. + blit: the frame blitted to the window's back buffer, glFinish;
+ *  3. + present: blit, eglSwapBuffers and the backend's events (page flip,
+ *     frame callback, X events): what the display loop does per frame.
+ * The three steps alternate in rounds of --frames frames (so a load change
+ * on a shared machine hits all three alike); the median round is reported.
+ * Ratios are to the baseline of the same run; the machine is printed.
+ * usage: bench_display [--platform NAME] [--size WxH] [--frames N]
+ *                      [--rounds N] [--grid N] */
+#include "app.h"
+#include "bench.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum step { DRAW, BLIT, PRESENT };
+
+static double run(struct platform *plat, struct renderer *r, const struct pipeline_draw *d, const struct camera *c,
+		  const struct params *p, enum step s, int frames)
+{
+	double t0 = bench_now_ms();
+	for (int f = 0; f < frames; f++) {
+		if (renderer_draw(r, d, c, p) < 0)
+			return -1;
+		if (s >= BLIT && renderer_blit_to_default(r, plat->width, plat->height) < 0)
+			return -1;
+		if (s == PRESENT) {
+			if (platform_present(plat) < 0 || platform_dispatch(plat) < 0)
+				return -1;
+		} else {
+			glFinish();
+		}
+	}
+	if (s == PRESENT)
+		glFinish();
+	return (bench_now_ms() - t0) / frames;
+}
+
+int main(int argc, char **argv)
+{
+	const char *plat_name = "auto", *size = "640x480";
+	int frames = 3, rounds = 15, grid = 64;
+	for (int i = 1; i < argc; i++) {
+		if (!strcmp(argv[i], "--platform") && i + 1 < argc)
+			plat_name = argv[++i];
+		else if (!strcmp(argv[i], "--size") && i + 1 < argc)
+			size = argv[++i];
+		else if (!strcmp(argv[i], "--frames") && i + 1 < argc)
+			frames = atoi(argv[++i]);
+		else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
+			rounds = atoi(argv[++i]);
+		else if (!strcmp(argv[i], "--grid") && i + 1 < argc)
+			grid = atoi(argv[++i]);
+		else {
+			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--rounds N] [--grid N]\n",
+				argv[0]);
+			return 2;
+		}
+	}
+	int w, h;
+	if (cli_parse_size(size, &w, &h) < 0 || frames < 1 || rounds < 1 || rounds > 1000 || grid < 2) {
+		fprintf(stderr, "bench_display: bad --size, --frames, --rounds or --grid\n");
+		return 2;
+	}
+	log_set_level(LOG_WARN);
+	char err[512];
+	struct platform_options po = { .name = plat_name, .width = w, .height = h };
+	struct platform *plat = platform_open(&po, err, sizeof(err));
+	if (!plat) {
+		fprintf(stderr, "bench_display: %s\n", err);
+		return 1;
+	}
+	struct gpu_caps caps;
+	if (gpu_init(&caps, false, err, sizeof(err)) < 0) {
+		fprintf(stderr, "bench_display: %s\n", err);
+		platform_close(plat);
+		return 1;
+	}
+	bench_print_machine(&caps);
+	if (plat->headless) {
+		printf("platform %s is headless: nothing to present (run under X11, Wayland or on a KMS console)\n",
+		       plat->backend->name);
+		platform_close(plat);
+		return 1;
+	}
+	w = plat->width;
+	h = plat->height;
+	printf("platform %s (%s), %dx%d, grid %d^3, %d rounds of %d frames per step\n", plat->backend->name,
+	       plat->device_desc, w, h, grid, rounds, frames);
+	struct params p;
+	params_defaults(&p);
+	p.grid = grid;
+	p.cam_spin = 0;
+	struct grid g;
+	grid_from_params(&g, &p);
+	int rc = 1;
+	struct renderer *r = NULL;
+	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	if (!pl || !(r = renderer_create(w, h, err, sizeof(err))) || pipeline_run(pl, &p) < 0) {
+		fprintf(stderr, "bench_display: %s\n", err);
+		goto out;
+	}
+	struct pipeline_draw d;
+	struct camera cam;
+	pipeline_draw_info(pl, &d);
+	camera_orbit(&cam, &p, &g, 0.0f, (float)w / (float)h);
+	/* warm-up: shader compilation, first swap */
+	if (run(plat, r, &d, &cam, &p, PRESENT, 3) < 0)
+		goto fail;
+	static const char *names[] = { "draw (headless frame)", "draw + blit to window", "draw + blit + present" };
+	double ms[3], *t = malloc(sizeof(double) * 3 * (size_t)rounds);
+	if (!t)
+		goto fail;
+	for (int k = 0; k < rounds; k++)
+		for (int s = DRAW; s <= PRESENT; s++)
+			if ((t[s * rounds + k] = run(plat, r, &d, &cam, &p, (enum step)s, frames)) < 0) {
+				free(t);
+				goto fail;
+			}
+	for (int s = DRAW; s <= PRESENT; s++) {
+		qsort(t + s * rounds, (size_t)rounds, sizeof(double), bench_cmp_double);
+		ms[s] = t[s * rounds + rounds / 2];
+	}
+	free(t);
+	for (int s = DRAW; s <= PRESENT; s++)
+		printf("  %-24s %8.2f ms/frame  %7.1f fps  ratio %.3f\n", names[s], ms[s], 1e3 / ms[s], ms[s] / ms[DRAW]);
+	printf("  presented %lu, shown %lu\n", plat->presented, plat->shown);
+	rc = 0;
+	goto out;
+fail:
+	fprintf(stderr, "bench_display: a frame failed (see the log)\n");
+out:
+	renderer_destroy(r);
+	pipeline_destroy(pl);
+	platform_close(plat);
+	return rc;
+}

@@ -1,0 +1,666 @@
+/* isoterra — GBM/KMS display backend (kiosks, no window system).
+ *
+ * Opens a DRM card (given, or the first with a connected output), picks the
+ * connector, mode and CRTC, renders through a gbm_surface with EGL's GBM
+ * platform and scans the buffers out: atomic modesetting (TEST_ONLY first,
+ * then a real commit; page flips with DRM_MODE_PAGE_FLIP_EVENT) with a
+ * legacy drmModeSetCrtc/drmModePageFlip fallback.  present() waits for the
+ * flip event (vsync).  close() puts back the CRTC that was there before
+ * (the console, usually).  Structure after kmscube (drm-common, drm-atomic,
+ * drm-legacy). */
+#include "platform.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <gbm.h>
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+#include "log.h"
+
+#define MAX_CARDS 16
+#define FLIP_TIMEOUT_MS 5000
+
+struct gbm_props {
+	uint32_t conn_crtc_id;
+	uint32_t crtc_mode_id, crtc_active;
+	uint32_t fb_id, crtc_id, src_x, src_y, src_w, src_h, crtc_x, crtc_y, crtc_w, crtc_h;
+};
+
+struct gbm_state {
+	int fd;
+	char path[64];
+	struct gbm_device *gbm;
+	struct gbm_surface *surf;
+	struct gbm_bo *front;      /* on screen */
+	uint32_t conn_id, crtc_id, plane_id;
+	int crtc_index;
+	char conn_name[32];
+	drmModeModeInfo mode;
+	drmModeCrtc *saved;        /* the CRTC as we found it, put back on close */
+	bool atomic, modeset_done, flip_pending, restore_done;
+	uint32_t mode_blob;
+	struct gbm_props props;
+	struct platform *p;
+};
+
+struct gbm_fb {
+	int fd;
+	uint32_t fb_id;
+};
+
+static const char *conn_type_name(uint32_t type)
+{
+	switch (type) {
+	case DRM_MODE_CONNECTOR_VGA: return "VGA";
+	case DRM_MODE_CONNECTOR_DVII: return "DVI-I";
+	case DRM_MODE_CONNECTOR_DVID: return "DVI-D";
+	case DRM_MODE_CONNECTOR_DVIA: return "DVI-A";
+	case DRM_MODE_CONNECTOR_Composite: return "Composite";
+	case DRM_MODE_CONNECTOR_LVDS: return "LVDS";
+	case DRM_MODE_CONNECTOR_Component: return "Component";
+	case DRM_MODE_CONNECTOR_DisplayPort: return "DP";
+	case DRM_MODE_CONNECTOR_HDMIA: return "HDMI-A";
+	case DRM_MODE_CONNECTOR_HDMIB: return "HDMI-B";
+	case DRM_MODE_CONNECTOR_TV: return "TV";
+	case DRM_MODE_CONNECTOR_eDP: return "eDP";
+	case DRM_MODE_CONNECTOR_VIRTUAL: return "Virtual";
+	case DRM_MODE_CONNECTOR_DSI: return "DSI";
+	case DRM_MODE_CONNECTOR_DPI: return "DPI";
+	default: return "Unknown";
+	}
+}
+
+/* The first connected connector with modes, or NULL. */
+static drmModeConnector *find_connector(int fd, drmModeRes *res)
+{
+	for (int i = 0; i < res->count_connectors; i++) {
+		drmModeConnector *c = drmModeGetConnector(fd, res->connectors[i]);
+		if (!c)
+			continue;
+		if (c->connection == DRM_MODE_CONNECTED && c->count_modes > 0)
+			return c;
+		drmModeFreeConnector(c);
+	}
+	return NULL;
+}
+
+/* 1: the card has KMS and a connected output, 0: no connected output,
+ * -1: not a KMS device (or cannot be opened). */
+static int card_state(const char *path, int *fd_out)
+{
+	int fd = open(path, O_RDWR | O_CLOEXEC);
+	if (fd < 0)
+		return -1;
+	drmModeRes *res = drmModeGetResources(fd);
+	if (!res) {
+		close(fd);
+		return -1;
+	}
+	drmModeConnector *c = find_connector(fd, res);
+	int rc = c ? 1 : 0;
+	drmModeFreeConnector(c);
+	drmModeFreeResources(res);
+	if (fd_out && rc == 1)
+		*fd_out = fd;
+	else
+		close(fd);
+	return rc;
+}
+
+static bool gbm_probe(void)
+{
+	char path[64];
+	for (int i = 0; i < MAX_CARDS; i++) {
+		snprintf(path, sizeof(path), "%s/card%d", DRM_DIR_NAME, i);
+		if (card_state(path, NULL) == 1)
+			return true;
+	}
+	return false;
+}
+
+static int open_card(struct gbm_state *g, const char *want, char *err, size_t errlen)
+{
+	if (want && want[0]) {
+		snprintf(g->path, sizeof(g->path), "%s", want);
+		int fd = open(want, O_RDWR | O_CLOEXEC);
+		if (fd < 0) {
+			snprintf(err, errlen, "cannot open %s: %s", want, strerror(errno));
+			return -1;
+		}
+		close(fd);
+		int st = card_state(want, &g->fd);
+		if (st < 0) {
+			snprintf(err, errlen, "%s is not a KMS display device (drmModeGetResources failed)", want);
+			return -1;
+		}
+		if (st == 0) {
+			snprintf(err, errlen, "no connected display on %s", want);
+			return -1;
+		}
+		return 0;
+	}
+	char first_kms[64] = "";
+	for (int i = 0; i < MAX_CARDS; i++) {
+		char path[64];
+		snprintf(path, sizeof(path), "%s/card%d", DRM_DIR_NAME, i);
+		int st = card_state(path, &g->fd);
+		if (st == 1) {
+			snprintf(g->path, sizeof(g->path), "%s", path);
+			return 0;
+		}
+		if (st == 0 && !first_kms[0])
+			snprintf(first_kms, sizeof(first_kms), "%s", path);
+	}
+	if (first_kms[0])
+		snprintf(err, errlen, "no connected display on %s", first_kms);
+	else
+		snprintf(err, errlen, "no DRM card with KMS in %s (give one with --drm-device)", DRM_DIR_NAME);
+	return -1;
+}
+
+/* "WxH" or "WxH@Hz" -> w, h, hz (0 = any).  0 or -1. */
+static int parse_mode(const char *s, int *w, int *h, int *hz)
+{
+	char tail = 0;
+	*hz = 0;
+	if (sscanf(s, "%dx%d%c", w, h, &tail) == 2)
+		return *w > 0 && *h > 0 ? 0 : -1;
+	if (sscanf(s, "%dx%d@%d%c", w, h, hz, &tail) == 3)
+		return *w > 0 && *h > 0 && *hz > 0 ? 0 : -1;
+	return -1;
+}
+
+static int choose_mode(struct gbm_state *g, drmModeConnector *c, const char *want, char *err, size_t errlen)
+{
+	if (want && want[0]) {
+		int w, h, hz;
+		if (parse_mode(want, &w, &h, &hz) < 0) {
+			snprintf(err, errlen, "--mode '%s' is not WxH or WxH@Hz", want);
+			return -1;
+		}
+		for (int i = 0; i < c->count_modes; i++) {
+			const drmModeModeInfo *m = &c->modes[i];
+			if (m->hdisplay == w && m->vdisplay == h && (!hz || (int)m->vrefresh == hz)) {
+				g->mode = *m;
+				return 0;
+			}
+		}
+		char list[256] = "";
+		size_t len = 0;
+		for (int i = 0; i < c->count_modes && len + 24 < sizeof(list); i++) {
+			int n = snprintf(list + len, sizeof(list) - len, "%s%dx%d@%u", i ? " " : "",
+			                 c->modes[i].hdisplay, c->modes[i].vdisplay, c->modes[i].vrefresh);
+			if (n > 0)
+				len += (size_t)n;
+		}
+		snprintf(err, errlen, "mode %s not offered by %s on %s (modes: %s)", want, g->conn_name, g->path, list);
+		return -1;
+	}
+	g->mode = c->modes[0];
+	for (int i = 0; i < c->count_modes; i++)
+		if (c->modes[i].type & DRM_MODE_TYPE_PREFERRED) {
+			g->mode = c->modes[i];
+			break;
+		}
+	return 0;
+}
+
+static int choose_crtc(struct gbm_state *g, drmModeRes *res, drmModeConnector *c, char *err, size_t errlen)
+{
+	g->crtc_id = 0;
+	if (c->encoder_id) {
+		drmModeEncoder *e = drmModeGetEncoder(g->fd, c->encoder_id);
+		if (e) {
+			g->crtc_id = e->crtc_id;
+			drmModeFreeEncoder(e);
+		}
+	}
+	for (int i = 0; i < c->count_encoders && !g->crtc_id; i++) {
+		drmModeEncoder *e = drmModeGetEncoder(g->fd, c->encoders[i]);
+		if (!e)
+			continue;
+		for (int k = 0; k < res->count_crtcs; k++)
+			if (e->possible_crtcs & (1u << k)) {
+				g->crtc_id = res->crtcs[k];
+				break;
+			}
+		drmModeFreeEncoder(e);
+	}
+	if (!g->crtc_id) {
+		snprintf(err, errlen, "no CRTC can drive %s on %s", g->conn_name, g->path);
+		return -1;
+	}
+	g->crtc_index = -1;
+	for (int k = 0; k < res->count_crtcs; k++)
+		if (res->crtcs[k] == g->crtc_id)
+			g->crtc_index = k;
+	if (g->crtc_index < 0) {
+		snprintf(err, errlen, "CRTC %u is not in the card's list", g->crtc_id);
+		return -1;
+	}
+	return 0;
+}
+
+/* ---- atomic -------------------------------------------------------------- */
+
+static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name, uint64_t *value)
+{
+	drmModeObjectProperties *props = drmModeObjectGetProperties(fd, obj, type);
+	uint32_t id = 0;
+	if (!props)
+		return 0;
+	for (uint32_t i = 0; i < props->count_props && !id; i++) {
+		drmModePropertyRes *pr = drmModeGetProperty(fd, props->props[i]);
+		if (!pr)
+			continue;
+		if (strcmp(pr->name, name) == 0) {
+			id = pr->prop_id;
+			if (value)
+				*value = props->prop_values[i];
+		}
+		drmModeFreeProperty(pr);
+	}
+	drmModeFreeObjectProperties(props);
+	return id;
+}
+
+static uint32_t find_primary_plane(struct gbm_state *g)
+{
+	drmModePlaneRes *pr = drmModeGetPlaneResources(g->fd);
+	uint32_t found = 0;
+	if (!pr)
+		return 0;
+	for (uint32_t i = 0; i < pr->count_planes && !found; i++) {
+		drmModePlane *pl = drmModeGetPlane(g->fd, pr->planes[i]);
+		if (!pl)
+			continue;
+		uint64_t type = 0;
+		if ((pl->possible_crtcs & (1u << g->crtc_index)) &&
+		    prop_id(g->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type", &type) &&
+		    type == DRM_PLANE_TYPE_PRIMARY)
+			found = pl->plane_id;
+		drmModeFreePlane(pl);
+	}
+	drmModeFreePlaneResources(pr);
+	return found;
+}
+
+/* Atomic client cap, primary plane, property ids.  false: use legacy. */
+static bool atomic_init(struct gbm_state *g)
+{
+	if (drmSetClientCap(g->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
+	    drmSetClientCap(g->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
+		log_debug("gbm: no atomic modesetting on %s (%s); legacy", g->path, strerror(errno));
+		return false;
+	}
+	g->plane_id = find_primary_plane(g);
+	if (!g->plane_id) {
+		log_debug("gbm: no primary plane for CRTC %u; legacy", g->crtc_id);
+		return false;
+	}
+	struct gbm_props *pp = &g->props;
+	struct {
+		uint32_t *id;
+		uint32_t obj, type;
+		const char *name;
+	} want[] = {
+		{ &pp->conn_crtc_id, g->conn_id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID" },
+		{ &pp->crtc_mode_id, g->crtc_id, DRM_MODE_OBJECT_CRTC, "MODE_ID" },
+		{ &pp->crtc_active, g->crtc_id, DRM_MODE_OBJECT_CRTC, "ACTIVE" },
+		{ &pp->fb_id, g->plane_id, DRM_MODE_OBJECT_PLANE, "FB_ID" },
+		{ &pp->crtc_id, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_ID" },
+		{ &pp->src_x, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_X" },
+		{ &pp->src_y, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_Y" },
+		{ &pp->src_w, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_W" },
+		{ &pp->src_h, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_H" },
+		{ &pp->crtc_x, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_X" },
+		{ &pp->crtc_y, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_Y" },
+		{ &pp->crtc_w, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_W" },
+		{ &pp->crtc_h, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_H" },
+	};
+	for (size_t i = 0; i < sizeof(want) / sizeof(want[0]); i++) {
+		*want[i].id = prop_id(g->fd, want[i].obj, want[i].type, want[i].name, NULL);
+		if (!*want[i].id) {
+			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
+			return false;
+		}
+	}
+	if (drmModeCreatePropertyBlob(g->fd, &g->mode, sizeof(g->mode), &g->mode_blob) != 0) {
+		log_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
+		return false;
+	}
+	return true;
+}
+
+/* Every property the frame needs; modeset adds the connector and CRTC. */
+static int atomic_commit(struct gbm_state *g, uint32_t fb, bool modeset, uint32_t flags)
+{
+	drmModeAtomicReq *req = drmModeAtomicAlloc();
+	if (!req) {
+		errno = ENOMEM;
+		return -1;
+	}
+	const struct gbm_props *pp = &g->props;
+	uint32_t w = g->mode.hdisplay, h = g->mode.vdisplay;
+	int ok = 1;
+	if (modeset) {
+		ok &= drmModeAtomicAddProperty(req, g->conn_id, pp->conn_crtc_id, g->crtc_id) > 0;
+		ok &= drmModeAtomicAddProperty(req, g->crtc_id, pp->crtc_mode_id, g->mode_blob) > 0;
+		ok &= drmModeAtomicAddProperty(req, g->crtc_id, pp->crtc_active, 1) > 0;
+		flags |= DRM_MODE_ATOMIC_ALLOW_MODESET;
+	}
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->fb_id, fb) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_id, g->crtc_id) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_x, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_y, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_h, (uint64_t)h << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_x, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_y, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_w, w) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_h, h) > 0;
+	int rc;
+	if (!ok) {
+		errno = ENOMEM;
+		rc = -1;
+	} else {
+		rc = drmModeAtomicCommit(g->fd, req, flags, g);
+	}
+	drmModeAtomicFree(req);
+	return rc;
+}
+
+/* ---- framebuffers -------------------------------------------------------- */
+
+static void fb_destroy(struct gbm_bo *bo, void *data)
+{
+	(void)bo;
+	struct gbm_fb *fb = data;
+	if (fb->fb_id && drmModeRmFB(fb->fd, fb->fb_id) != 0)
+		log_warn("gbm: drmModeRmFB(%u): %s", fb->fb_id, strerror(errno));
+	free(fb);
+}
+
+/* The KMS framebuffer of a bo, created once and cached on the bo. */
+static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
+{
+	struct gbm_fb *fb = gbm_bo_get_user_data(bo);
+	if (fb)
+		return fb->fb_id;
+	fb = calloc(1, sizeof(*fb));
+	if (!fb) {
+		log_error("gbm: out of memory");
+		return 0;
+	}
+	fb->fd = g->fd;
+	uint32_t w = gbm_bo_get_width(bo), h = gbm_bo_get_height(bo), format = gbm_bo_get_format(bo);
+	uint32_t handles[4] = { 0 }, strides[4] = { 0 }, offsets[4] = { 0 };
+	int planes = gbm_bo_get_plane_count(bo);
+	for (int i = 0; i < planes && i < 4; i++) {
+		handles[i] = gbm_bo_get_handle_for_plane(bo, i).u32;
+		strides[i] = gbm_bo_get_stride_for_plane(bo, i);
+		offsets[i] = gbm_bo_get_offset(bo, i);
+	}
+	if (drmModeAddFB2(g->fd, w, h, format, handles, strides, offsets, &fb->fb_id, 0) != 0) {
+		int e = errno;
+		if (drmModeAddFB(g->fd, w, h, 24, 32, strides[0], handles[0], &fb->fb_id) != 0) {
+			log_error("gbm: cannot create a %ux%u framebuffer: drmModeAddFB2: %s, drmModeAddFB: %s",
+			          w, h, strerror(e), strerror(errno));
+			free(fb);
+			return 0;
+		}
+	}
+	gbm_bo_set_user_data(bo, fb, fb_destroy);
+	return fb->fb_id;
+}
+
+/* ---- page flips ---------------------------------------------------------- */
+
+static void flip_handler(int fd, unsigned frame, unsigned sec, unsigned usec, void *data)
+{
+	(void)fd;
+	(void)frame;
+	(void)sec;
+	(void)usec;
+	struct gbm_state *g = data;
+	g->flip_pending = false;
+	g->p->shown++;
+}
+
+static int wait_flip(struct gbm_state *g)
+{
+	drmEventContext ev = {
+		.version = 2,
+		.page_flip_handler = flip_handler,
+	};
+	while (g->flip_pending) {
+		struct pollfd pfd = { .fd = g->fd, .events = POLLIN };
+		int n = poll(&pfd, 1, FLIP_TIMEOUT_MS);
+		if (n < 0) {
+			if (errno == EINTR)
+				continue; /* a signal: the flip still completes */
+			log_error("gbm: poll on %s: %s", g->path, strerror(errno));
+			return -1;
+		}
+		if (n == 0) {
+			log_error("gbm: no page-flip event from %s within %d ms", g->path, FLIP_TIMEOUT_MS);
+			return -1;
+		}
+		if (drmHandleEvent(g->fd, &ev) != 0) {
+			log_error("gbm: drmHandleEvent: %s", strerror(errno));
+			return -1;
+		}
+	}
+	return 0;
+}
+
+static void hide_cursor(struct gbm_state *g)
+{
+	if (drmModeSetCursor(g->fd, g->crtc_id, 0, 0, 0) != 0)
+		log_debug("gbm: hiding the cursor: %s", strerror(errno));
+}
+
+static int modeset(struct gbm_state *g, uint32_t fb)
+{
+	if (g->atomic) {
+		if (atomic_commit(g, fb, true, DRM_MODE_ATOMIC_TEST_ONLY) != 0) {
+			log_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
+			g->atomic = false;
+		} else if (atomic_commit(g, fb, true, 0) != 0) {
+			log_error("gbm: atomic modeset %ux%u on %s: %s", g->mode.hdisplay, g->mode.vdisplay, g->path,
+			          strerror(errno));
+			return -1;
+		}
+	}
+	if (!g->atomic && drmModeSetCrtc(g->fd, g->crtc_id, fb, 0, 0, &g->conn_id, 1, &g->mode) != 0) {
+		log_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->mode.hdisplay, g->mode.vdisplay, g->path,
+		          strerror(errno));
+		return -1;
+	}
+	hide_cursor(g);
+	log_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->path, g->conn_name, g->mode.hdisplay,
+	         g->mode.vdisplay, g->mode.vrefresh, g->atomic ? "atomic" : "legacy");
+	g->modeset_done = true;
+	g->p->shown++;
+	return 0;
+}
+
+static int gbm_present(struct platform *p)
+{
+	struct gbm_state *g = p->priv;
+	if (!eglSwapBuffers(p->dpy, p->surface)) {
+		log_error("gbm: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		return -1;
+	}
+	struct gbm_bo *bo = gbm_surface_lock_front_buffer(g->surf);
+	if (!bo) {
+		log_error("gbm: gbm_surface_lock_front_buffer failed");
+		return -1;
+	}
+	uint32_t fb = bo_fb(g, bo);
+	int rc = fb ? 0 : -1;
+	if (rc == 0 && !g->modeset_done) {
+		rc = modeset(g, fb);
+	} else if (rc == 0) {
+		g->flip_pending = true;
+		if (g->atomic)
+			rc = atomic_commit(g, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK);
+		else
+			rc = drmModePageFlip(g->fd, g->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, g);
+		if (rc != 0) {
+			g->flip_pending = false;
+			log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->path,
+			          strerror(errno));
+		} else {
+			rc = wait_flip(g);
+		}
+	}
+	if (rc != 0) {
+		gbm_surface_release_buffer(g->surf, bo);
+		return -1;
+	}
+	if (g->front)
+		gbm_surface_release_buffer(g->surf, g->front);
+	g->front = bo;
+	return 0;
+}
+
+/* Put back the CRTC we found (the console's framebuffer and mode), or turn
+ * the CRTC off when it was off. */
+static void restore_crtc(struct gbm_state *g)
+{
+	if (g->restore_done || !g->modeset_done)
+		return;
+	g->restore_done = true;
+	if (g->flip_pending)
+		(void)wait_flip(g);
+	drmModeCrtc *s = g->saved;
+	int rc;
+	if (s && s->mode_valid && s->buffer_id)
+		rc = drmModeSetCrtc(g->fd, s->crtc_id, s->buffer_id, s->x, s->y, &g->conn_id, 1, &s->mode);
+	else
+		rc = drmModeSetCrtc(g->fd, g->crtc_id, 0, 0, 0, NULL, 0, NULL);
+	if (rc != 0)
+		log_warn("gbm: restoring CRTC %u on %s: %s", g->crtc_id, g->path, strerror(errno));
+	else
+		log_debug("gbm: CRTC %u restored (fb %u)", g->crtc_id, s ? s->buffer_id : 0);
+}
+
+static void gbm_close(struct platform *p)
+{
+	struct gbm_state *g = p->priv;
+	if (g)
+		restore_crtc(g);
+	egl_common_release(p);
+	if (!g)
+		return;
+	if (g->front)
+		gbm_surface_release_buffer(g->surf, g->front);
+	if (g->surf)
+		gbm_surface_destroy(g->surf); /* frees the bos: fb_destroy removes the FBs */
+	if (g->gbm)
+		gbm_device_destroy(g->gbm);
+	if (g->mode_blob && drmModeDestroyPropertyBlob(g->fd, g->mode_blob) != 0)
+		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+	if (g->saved)
+		drmModeFreeCrtc(g->saved);
+	if (g->fd >= 0)
+		close(g->fd);
+	free(g);
+	p->priv = NULL;
+}
+
+static int gbm_open(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
+{
+	const char *cexts = egl_common_client_exts();
+	if (!egl_common_has_ext(cexts, "EGL_KHR_platform_gbm") && !egl_common_has_ext(cexts, "EGL_MESA_platform_gbm")) {
+		snprintf(err, errlen, "EGL_KHR_platform_gbm not supported by this EGL");
+		return -1;
+	}
+	struct gbm_state *g = calloc(1, sizeof(*g));
+	if (!g) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	g->fd = -1;
+	g->p = p;
+	p->priv = g;
+	drmModeRes *res = NULL;
+	drmModeConnector *conn = NULL;
+	if (open_card(g, opt->drm_device, err, errlen) < 0)
+		goto fail;
+	res = drmModeGetResources(g->fd);
+	conn = res ? find_connector(g->fd, res) : NULL;
+	if (!res || !conn) {
+		snprintf(err, errlen, "no connected display on %s", g->path);
+		goto fail;
+	}
+	g->conn_id = conn->connector_id;
+	snprintf(g->conn_name, sizeof(g->conn_name), "%s-%u", conn_type_name(conn->connector_type),
+	         conn->connector_type_id);
+	if (choose_mode(g, conn, opt->mode, err, errlen) < 0 || choose_crtc(g, res, conn, err, errlen) < 0)
+		goto fail;
+	if (!drmIsMaster(g->fd) && drmSetMaster(g->fd) != 0) {
+		snprintf(err, errlen, "%s: cannot become DRM master (%s): another program (a compositor, "
+		         "an X server) drives the display", g->path, strerror(errno));
+		goto fail;
+	}
+	g->saved = drmModeGetCrtc(g->fd, g->crtc_id);
+	if (!g->saved)
+		log_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->crtc_id, strerror(errno));
+	g->atomic = !opt->kms_legacy && atomic_init(g);
+
+	g->gbm = gbm_create_device(g->fd);
+	if (!g->gbm) {
+		snprintf(err, errlen, "gbm_create_device(%s) failed", g->path);
+		goto fail;
+	}
+	p->width = g->mode.hdisplay;
+	p->height = g->mode.vdisplay;
+	g->surf = gbm_surface_create(g->gbm, (uint32_t)p->width, (uint32_t)p->height, GBM_FORMAT_XRGB8888,
+	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+	if (!g->surf) {
+		snprintf(err, errlen, "gbm_surface_create %dx%d XRGB8888 on %s failed", p->width, p->height, g->path);
+		goto fail;
+	}
+	if (egl_common_open_display(p, EGL_PLATFORM_GBM_KHR, g->gbm, err, errlen) < 0 ||
+	    egl_common_make_window_context(p, opt, GBM_FORMAT_XRGB8888, NULL, err, errlen) < 0 ||
+	    egl_common_make_window_context(p, opt, GBM_FORMAT_XRGB8888, g->surf, err, errlen) < 0)
+		goto fail;
+	size_t len = strlen(p->device_desc);
+	if (len + strlen(g->path) + 4 < sizeof(p->device_desc))
+		snprintf(p->device_desc + len, sizeof(p->device_desc) - len, " (%s)", g->path);
+	log_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->path, g->conn_name, g->mode.hdisplay,
+	          g->mode.vdisplay, g->mode.vrefresh, g->crtc_id, g->atomic ? "atomic" : "legacy");
+	drmModeFreeConnector(conn);
+	drmModeFreeResources(res);
+	return 0;
+fail:
+	drmModeFreeConnector(conn);
+	drmModeFreeResources(res);
+	gbm_close(p);
+	return -1;
+}
+
+static int gbm_dispatch(struct platform *p)
+{
+	(void)p;
+	return 0;
+}
+
+const struct platform_backend platform_backend_gbm = {
+	.name = "gbm",
+	.probe = gbm_probe,
+	.open = gbm_open,
+	.close = gbm_close,
+	.present = gbm_present,
+	.dispatch = gbm_dispatch,
+};

@@ -1,0 +1,277 @@
+/* isoterra — X11 display backend: an xcb window (through Xlib's display
+ * for EGL_KHR_platform_x11, which is what Mesa 22 offers), WM_DELETE_WINDOW
+ * closes, ConfigureNotify resizes, _NET_WM_STATE_FULLSCREEN (and, with no
+ * window manager, a window the size of the screen), optional hidden cursor. */
+#include "platform.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <X11/Xlib.h>
+#include <X11/Xlib-xcb.h>
+#include <xcb/xcb.h>
+
+#include "log.h"
+
+struct x11_state {
+	Display *xdpy;
+	xcb_connection_t *conn;
+	xcb_screen_t *screen;
+	xcb_window_t win;
+	Window native; /* what eglCreatePlatformWindowSurfaceEXT gets a pointer to */
+	xcb_colormap_t cmap;
+	xcb_cursor_t cursor;
+	xcb_atom_t wm_protocols, wm_delete;
+	bool mapped;
+};
+
+static bool x11_probe(void)
+{
+	const char *c = egl_common_client_exts();
+	return egl_common_has_ext(c, "EGL_KHR_platform_x11") || egl_common_has_ext(c, "EGL_EXT_platform_x11");
+}
+
+static xcb_atom_t intern(xcb_connection_t *c, const char *name)
+{
+	xcb_intern_atom_reply_t *r =
+		xcb_intern_atom_reply(c, xcb_intern_atom(c, 0, (uint16_t)strlen(name), name), NULL);
+	xcb_atom_t a = r ? r->atom : XCB_ATOM_NONE;
+	free(r);
+	return a;
+}
+
+static uint8_t visual_depth(const xcb_screen_t *s, xcb_visualid_t v)
+{
+	for (xcb_depth_iterator_t d = xcb_screen_allowed_depths_iterator(s); d.rem; xcb_depth_next(&d))
+		for (xcb_visualtype_iterator_t vi = xcb_depth_visuals_iterator(d.data); vi.rem; xcb_visualtype_next(&vi))
+			if (vi.data->visual_id == v)
+				return d.data->depth;
+	return 0;
+}
+
+/* Handles one event; 1 when the window was asked to close. */
+static int handle_event(struct platform *p, struct x11_state *x, xcb_generic_event_t *ev)
+{
+	switch (ev->response_type & 0x7f) {
+	case XCB_CONFIGURE_NOTIFY: {
+		xcb_configure_notify_event_t *c = (xcb_configure_notify_event_t *)ev;
+		if (c->window == x->win && c->width > 0 && c->height > 0 &&
+		    (c->width != p->width || c->height != p->height)) {
+			log_debug("x11: window resized to %ux%u", c->width, c->height);
+			p->width = c->width;
+			p->height = c->height;
+		}
+		break;
+	}
+	case XCB_MAP_NOTIFY:
+		x->mapped = true;
+		break;
+	case XCB_CLIENT_MESSAGE: {
+		xcb_client_message_event_t *m = (xcb_client_message_event_t *)ev;
+		if (m->window == x->win && m->type == x->wm_protocols && m->format == 32 &&
+		    m->data.data32[0] == x->wm_delete) {
+			log_info("x11: window closed");
+			return 1;
+		}
+		break;
+	}
+	default:
+		break;
+	}
+	return 0;
+}
+
+static int x11_dispatch(struct platform *p)
+{
+	struct x11_state *x = p->priv;
+	int quit = 0;
+	xcb_generic_event_t *ev;
+	while ((ev = xcb_poll_for_event(x->conn)) != NULL) {
+		quit |= handle_event(p, x, ev);
+		free(ev);
+	}
+	if (xcb_connection_has_error(x->conn)) {
+		log_error("x11: connection to the X server lost");
+		return -1;
+	}
+	return quit;
+}
+
+static void x11_close(struct platform *p)
+{
+	struct x11_state *x = p->priv;
+	egl_common_release(p);
+	if (!x)
+		return;
+	if (x->conn) {
+		if (x->win)
+			xcb_destroy_window(x->conn, x->win);
+		if (x->cursor)
+			xcb_free_cursor(x->conn, x->cursor);
+		if (x->cmap)
+			xcb_free_colormap(x->conn, x->cmap);
+		xcb_flush(x->conn);
+	}
+	if (x->xdpy)
+		XCloseDisplay(x->xdpy);
+	free(x);
+	p->priv = NULL;
+}
+
+static xcb_cursor_t blank_cursor(xcb_connection_t *c, xcb_window_t root)
+{
+	xcb_pixmap_t pix = xcb_generate_id(c);
+	xcb_cursor_t cur = xcb_generate_id(c);
+	xcb_create_pixmap(c, 1, pix, root, 1, 1);
+	xcb_create_cursor(c, cur, pix, pix, 0, 0, 0, 0, 0, 0, 0, 0);
+	xcb_free_pixmap(c, pix);
+	return cur;
+}
+
+static int x11_open(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
+{
+	if (!x11_probe()) {
+		snprintf(err, errlen, "EGL_KHR_platform_x11 not supported by this EGL");
+		return -1;
+	}
+	struct x11_state *x = calloc(1, sizeof(*x));
+	if (!x) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	p->priv = x;
+	const char *name = getenv("DISPLAY");
+	x->xdpy = XOpenDisplay(NULL);
+	if (!x->xdpy) {
+		snprintf(err, errlen, "cannot connect to the X server '%s'", name && name[0] ? name : "(DISPLAY unset)");
+		goto fail;
+	}
+	x->conn = XGetXCBConnection(x->xdpy);
+	if (!x->conn || xcb_connection_has_error(x->conn)) {
+		snprintf(err, errlen, "no xcb connection to the X server '%s'", name ? name : "");
+		goto fail;
+	}
+	XSetEventQueueOwner(x->xdpy, XCBOwnsEventQueue);
+	int screen_no = DefaultScreen(x->xdpy);
+	xcb_screen_iterator_t si = xcb_setup_roots_iterator(xcb_get_setup(x->conn));
+	for (int i = 0; i < screen_no && si.rem; i++)
+		xcb_screen_next(&si);
+	if (!si.rem) {
+		snprintf(err, errlen, "X server '%s' has no screen %d", name ? name : "", screen_no);
+		goto fail;
+	}
+	x->screen = si.data;
+
+	if (egl_common_open_display(p, EGL_PLATFORM_X11_KHR, x->xdpy, err, errlen) < 0 ||
+	    egl_common_make_window_context(p, opt, 0, NULL, err, errlen) < 0)
+		goto fail;
+	EGLint vid = 0;
+	if (!eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, &vid) || vid == 0) {
+		snprintf(err, errlen, "the EGLConfig has no X visual");
+		goto fail;
+	}
+	uint8_t depth = visual_depth(x->screen, (xcb_visualid_t)vid);
+	if (!depth) {
+		snprintf(err, errlen, "X visual 0x%x of the EGLConfig is not on the screen", (unsigned)vid);
+		goto fail;
+	}
+
+	int w = opt->width, h = opt->height, px = 0, py = 0;
+	if (opt->fullscreen) {
+		/* the window manager maximises it; without one, this size is it */
+		w = x->screen->width_in_pixels;
+		h = x->screen->height_in_pixels;
+	}
+	x->cmap = xcb_generate_id(x->conn);
+	xcb_create_colormap(x->conn, XCB_COLORMAP_ALLOC_NONE, x->cmap, x->screen->root, (xcb_visualid_t)vid);
+	if (opt->hide_cursor)
+		x->cursor = blank_cursor(x->conn, x->screen->root);
+	uint32_t mask = XCB_CW_BACK_PIXEL | XCB_CW_BORDER_PIXEL | XCB_CW_EVENT_MASK | XCB_CW_COLORMAP;
+	uint32_t values[5] = { 0, 0, XCB_EVENT_MASK_STRUCTURE_NOTIFY | XCB_EVENT_MASK_EXPOSURE, x->cmap, 0 };
+	if (x->cursor) {
+		mask |= XCB_CW_CURSOR;
+		values[4] = x->cursor;
+	}
+	x->win = xcb_generate_id(x->conn);
+	xcb_void_cookie_t ck = xcb_create_window_checked(x->conn, depth, x->win, x->screen->root, (int16_t)px,
+	                                                 (int16_t)py, (uint16_t)w, (uint16_t)h, 0,
+	                                                 XCB_WINDOW_CLASS_INPUT_OUTPUT, (xcb_visualid_t)vid, mask, values);
+	xcb_generic_error_t *xe = xcb_request_check(x->conn, ck);
+	if (xe) {
+		snprintf(err, errlen, "xcb_create_window %dx%d failed: X error %u", w, h, xe->error_code);
+		free(xe);
+		x->win = 0;
+		goto fail;
+	}
+	static const char title[] = "isoterra";
+	static const char wm_class[] = "isoterra\0isoterra";
+	xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, XCB_ATOM_WM_NAME, XCB_ATOM_STRING, 8,
+	                    sizeof(title) - 1, title);
+	xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, XCB_ATOM_WM_CLASS, XCB_ATOM_STRING, 8,
+	                    sizeof(wm_class), wm_class);
+	x->wm_protocols = intern(x->conn, "WM_PROTOCOLS");
+	x->wm_delete = intern(x->conn, "WM_DELETE_WINDOW");
+	if (!x->wm_protocols || !x->wm_delete) {
+		snprintf(err, errlen, "cannot intern WM_PROTOCOLS / WM_DELETE_WINDOW");
+		goto fail;
+	}
+	xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, x->wm_protocols, XCB_ATOM_ATOM, 32, 1,
+	                    &x->wm_delete);
+	if (opt->fullscreen) {
+		xcb_atom_t state = intern(x->conn, "_NET_WM_STATE");
+		xcb_atom_t full = intern(x->conn, "_NET_WM_STATE_FULLSCREEN");
+		if (state && full)
+			xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, state, XCB_ATOM_ATOM, 32, 1, &full);
+	}
+	xcb_map_window(x->conn, x->win);
+	if (xcb_flush(x->conn) <= 0) {
+		snprintf(err, errlen, "x11: flushing the requests failed");
+		goto fail;
+	}
+	p->width = w;
+	p->height = h;
+	/* Wait until the window is on screen: a first frame drawn before that
+	 * would be lost (and --count 1 would show nothing). */
+	while (!x->mapped) {
+		xcb_generic_event_t *ev = xcb_wait_for_event(x->conn);
+		if (!ev) {
+			snprintf(err, errlen, "x11: connection lost while mapping the window");
+			goto fail;
+		}
+		int q = handle_event(p, x, ev);
+		free(ev);
+		if (q) {
+			snprintf(err, errlen, "x11: window closed before it was shown");
+			goto fail;
+		}
+	}
+	x->native = (Window)x->win;
+	if (egl_common_make_window_context(p, opt, vid, &x->native, err, errlen) < 0)
+		goto fail;
+	log_debug("x11: window 0x%x %dx%d, visual 0x%x depth %u%s", (unsigned)x->win, p->width, p->height,
+	          (unsigned)vid, depth, opt->fullscreen ? ", fullscreen" : "");
+	return 0;
+fail:
+	x11_close(p);
+	return -1;
+}
+
+static int x11_present(struct platform *p)
+{
+	if (!eglSwapBuffers(p->dpy, p->surface)) {
+		log_error("x11: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		return -1;
+	}
+	p->shown++;
+	return 0;
+}
+
+const struct platform_backend platform_backend_x11 = {
+	.name = "x11",
+	.probe = x11_probe,
+	.open = x11_open,
+	.close = x11_close,
+	.present = x11_present,
+	.dispatch = x11_dispatch,
+};

@@ -1,0 +1,114 @@
+#!/bin/sh
+# isoterra — X11 backend in Xvfb: the window's content (xwd) matches the
+# headless render of the same frame; resize (ConfigureNotify) re-renders at
+# the new size; WM_DELETE_WINDOW and SIGTERM end the app cleanly (exit 0);
+# --fullscreen fills the screen; --count N exits by itself; a missing X
+# server is one clear error.
+. "$(dirname "$0")/lib.sh"
+need Xvfb xwd "${X11POKE:-x11poke}"
+T=$(mktemp -d)
+XPID=
+APID=
+cleanup() {
+	[ -n "$APID" ] && kill -KILL "$APID" 2>/dev/null
+	[ -n "$XPID" ] && kill -TERM "$XPID" 2>/dev/null
+	[ "${ISOTERRA_KEEP:-0}" = 1 ] || rm -rf "$T"
+}
+trap cleanup EXIT
+# static frames: the camera does not orbit, the field does not scroll
+ARGS="--grid 24 --cam-spin 0 --seed 7"
+SCREEN=400x300
+
+# Xvfb picks a free display number itself (-displayfd): no clash with
+# other X servers on the machine.
+Xvfb -displayfd 3 -nolisten tcp -screen 0 ${SCREEN}x24 3>"$T/display" >"$T/xvfb.log" 2>&1 &
+XPID=$!
+wait_for "$T/display" '^[0-9]+$' 20 "$XPID" || { bad "Xvfb did not start: $(cat "$T/xvfb.log")"; echo "$pass passed, $fail failed"; exit 1; }
+DISPLAY=:$(cat "$T/display")
+export DISPLAY
+unset WAYLAND_DISPLAY
+echo "Xvfb on $DISPLAY"
+
+t0=$(date +%s)
+# 1. a 240x160 window, kept running; grab it, resize it, close it
+"$BIN" --platform x11 --size 240x160 $ARGS --count 0 --fps-report 0.2 --hide-cursor >"$T/app1.log" 2>&1 &
+APID=$!
+if wait_frames "$T/app1.log" 3 60 "$APID"; then
+	ok "x11: window presents frames ($(presented "$T/app1.log") so far)"
+	xwd -display "$DISPLAY" -name isoterra -out "$T/win.xwd" 2>"$T/xwd.log" || bad "xwd: $(cat "$T/xwd.log")"
+	headless "$T/ref240.png" 240x160 $ARGS && compare "x11 window 240x160 vs headless" "$T/win.xwd" "$T/ref240.png"
+	# the comparison can fail: another seed must not match
+	headless "$T/other.png" 240x160 --grid 24 --cam-spin 0 --seed 8 &&
+		if "$IMGCMP" "$T/win.xwd" "$T/other.png" >"$T/neg.txt" 2>&1; then
+			bad "negative control: a different terrain matched: $(cat "$T/neg.txt")"
+		else
+			ok "negative control (seed 8) differs: $(cat "$T/neg.txt")"
+		fi
+	# resize: the app follows ConfigureNotify with a new render target
+	n0=$(presented "$T/app1.log")
+	"$X11POKE" resize isoterra 320 200 || bad "x11poke resize failed"
+	if wait_for "$T/app1.log" '320x200 x11' 30 "$APID" && wait_frames "$T/app1.log" $((n0 + 6)) 30 "$APID"; then
+		xwd -display "$DISPLAY" -name isoterra -out "$T/win320.xwd" 2>"$T/xwd.log" || bad "xwd: $(cat "$T/xwd.log")"
+		headless "$T/ref320.png" 320x200 $ARGS && compare "x11 window resized to 320x200 vs headless" "$T/win320.xwd" "$T/ref320.png"
+	else
+		bad "x11: no frames at 320x200 after the resize: $(tail -3 "$T/app1.log")"
+	fi
+	# close button
+	"$X11POKE" close isoterra || bad "x11poke close failed"
+	if wait_for "$T/app1.log" 'x11: window closed' 20 "$APID"; then
+		wait "$APID"
+		rc=$?
+		APID=
+		[ $rc -eq 0 ] && ok "WM_DELETE_WINDOW: exit 0" || bad "WM_DELETE_WINDOW: exit $rc: $(tail -3 "$T/app1.log")"
+		grep -Eq 'x11: [0-9]+ frames presented' "$T/app1.log" && ok "final frame count logged" || bad "no final frame count: $(tail -3 "$T/app1.log")"
+	else
+		bad "x11: WM_DELETE_WINDOW did not close the app: $(tail -3 "$T/app1.log")"
+	fi
+else
+	bad "x11: no frames presented: $(cat "$T/app1.log")"
+fi
+[ -n "$APID" ] && { kill -KILL "$APID" 2>/dev/null; wait "$APID" 2>/dev/null; APID=; }
+
+# 2. --fullscreen with no window manager: the window is the whole screen;
+#    SIGTERM ends it cleanly; SIGUSR1 prints the frame rate
+"$BIN" --platform x11 --fullscreen $ARGS --count 0 >"$T/app2.log" 2>&1 &
+APID=$!
+sleep 0.5
+n=0
+while [ $n -lt 300 ] && ! grep -q 'fps' "$T/app2.log"; do kill -USR1 "$APID" 2>/dev/null; sleep 0.2; n=$((n + 1)); done
+if grep -Eq 'fps [0-9.]+ .*[0-9]+ presented' "$T/app2.log"; then
+	ok "SIGUSR1: $(grep -m1 fps "$T/app2.log")"
+	wait_frames "$T/app2.log" 2 30 "$APID" || true
+	xwd -display "$DISPLAY" -name isoterra -out "$T/full.xwd" 2>"$T/xwd.log" || bad "xwd: $(cat "$T/xwd.log")"
+	headless "$T/ref400.png" $SCREEN $ARGS && compare "x11 --fullscreen ($SCREEN) vs headless" "$T/full.xwd" "$T/ref400.png"
+else
+	bad "SIGUSR1 gave no frame rate line: $(cat "$T/app2.log")"
+fi
+stop "$APID"
+APID=
+[ "$RC" = 0 ] && ok "SIGTERM: exit 0" || bad "SIGTERM: exit $RC: $(tail -3 "$T/app2.log")"
+grep -q 'Terminated: stopping' "$T/app2.log" && ok "SIGTERM noticed by the loop" || bad "SIGTERM not logged: $(tail -3 "$T/app2.log")"
+
+# 3. --count N: exits by itself after N frames, writes --out like headless
+if "$BIN" --platform x11 --size 160x120 $ARGS --count 3 --out "$T/app3.png" >"$T/app3.log" 2>&1; then
+	grep -q 'x11: 3 frames presented, 3 shown' "$T/app3.log" && ok "--count 3: 3 frames presented" || bad "--count 3: $(cat "$T/app3.log")"
+	headless "$T/ref160.png" 160x120 $ARGS --count 3 && compare "--out of an x11 run vs headless (frame 3)" "$T/app3.png" "$T/ref160.png" --max-mean 0 --max-frac 0
+else
+	bad "--count 3 run failed: $(cat "$T/app3.log")"
+fi
+
+# 4. auto picks x11 when DISPLAY is set
+"$BIN" --platform auto --size 96x64 --grid 8 --count 1 --out "$T/auto.png" --verbose >"$T/auto.log" 2>&1
+grep -q "platform x11" "$T/auto.log" && ok "auto with DISPLAY -> x11" || bad "auto did not pick x11: $(grep -i platform "$T/auto.log" | head -3)"
+
+# 5. no X server: one clear error, non-zero exit
+DISPLAY=:4097 "$BIN" --platform x11 --size 96x64 --grid 8 >"$T/nox.log" 2>&1
+rc=$?
+if [ $rc -ne 0 ] && grep -q "cannot connect to the X server ':4097'" "$T/nox.log" && [ "$(grep -c . "$T/nox.log")" -le 2 ]; then
+	ok "no X server: exit $rc, '$(cat "$T/nox.log")'"
+else
+	bad "no X server: exit $rc, $(cat "$T/nox.log")"
+fi
+echo "x11 display test: $(($(date +%s) - t0)) s"
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,299 @@
+/* isoterra — test helper: compare two images (PNG, XWD from xwd, binary PPM
+ * from QEMU's screendump) with app/image.c's image_compare, or convert one
+ * to PNG.
+ *
+ *   imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--diff OUT.png]
+ *       prints "imgcmp: WxH mean_abs .. rmse .. psnr .. max .. frac_over(T) .."
+ *       exit 0 within tolerance, 1 over it, 2 on bad input (sizes differ,
+ *       unreadable file).  Defaults: T 24, M 1.0, F 0.005.
+ *   imgcmp --to-png IN OUT.png
+ *   imgcmp --info IN          prints "WxH mean R G B" (for diagnostics) */
+#include <errno.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image.h"
+
+static int read_file(const char *path, uint8_t **data, size_t *len, char *err, size_t errlen)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f) {
+		snprintf(err, errlen, "cannot open %s: %s", path, strerror(errno));
+		return -1;
+	}
+	size_t cap = 1 << 20, n = 0;
+	uint8_t *buf = malloc(cap);
+	while (buf) {
+		size_t got = fread(buf + n, 1, cap - n, f);
+		n += got;
+		if (n < cap)
+			break;
+		uint8_t *nb = realloc(buf, cap * 2);
+		if (!nb) {
+			free(buf);
+			buf = NULL;
+			break;
+		}
+		buf = nb;
+		cap *= 2;
+	}
+	int bad = ferror(f);
+	fclose(f);
+	if (!buf || bad) {
+		free(buf);
+		snprintf(err, errlen, "cannot read %s", path);
+		return -1;
+	}
+	*data = buf;
+	*len = n;
+	return 0;
+}
+
+static uint32_t be32(const uint8_t *p)
+{
+	return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+static int mask_shift(uint32_t m)
+{
+	int s = 0;
+	if (!m)
+		return 0;
+	while (!(m & 1)) {
+		m >>= 1;
+		s++;
+	}
+	return s;
+}
+
+static uint8_t channel(uint32_t px, uint32_t mask)
+{
+	if (!mask)
+		return 0;
+	uint32_t v = (px & mask) >> mask_shift(mask);
+	uint32_t max = mask >> mask_shift(mask);
+	return (uint8_t)(v * 255u / max);
+}
+
+/* X Window Dump (XWDFileHeader, version 7), ZPixmap, 24/32 bits per pixel. */
+static int read_xwd(struct image *img, const uint8_t *d, size_t n, const char *path, char *err, size_t errlen)
+{
+	if (n < 100) {
+		snprintf(err, errlen, "%s: too short for an XWD header", path);
+		return -1;
+	}
+	uint32_t h[25];
+	for (int i = 0; i < 25; i++)
+		h[i] = be32(d + 4 * i);
+	uint32_t header_size = h[0], version = h[1], format = h[2], width = h[4], height = h[5];
+	uint32_t byte_order = h[7], bpp = h[11], bpl = h[12], rmask = h[14], gmask = h[15], bmask = h[16];
+	uint32_t ncolors = h[19];
+	if (version != 7 || format != 2 || (bpp != 24 && bpp != 32) || !width || !height || width > 16384 ||
+	    height > 16384) {
+		snprintf(err, errlen, "%s: unsupported XWD (version %u, format %u, %u bpp, %ux%u)", path, version,
+		         format, bpp, width, height);
+		return -1;
+	}
+	size_t off = (size_t)header_size + (size_t)ncolors * 12;
+	if (off > n || (size_t)bpl * height > n - off || bpl < width * (bpp / 8)) {
+		snprintf(err, errlen, "%s: truncated XWD (%zu bytes)", path, n);
+		return -1;
+	}
+	img->width = (int)width;
+	img->height = (int)height;
+	img->rgba = malloc((size_t)width * height * 4);
+	if (!img->rgba) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	for (uint32_t y = 0; y < height; y++)
+		for (uint32_t x = 0; x < width; x++) {
+			const uint8_t *s = d + off + (size_t)y * bpl + (size_t)x * (bpp / 8);
+			uint32_t px;
+			if (bpp == 32)
+				px = byte_order ? be32(s) : (uint32_t)s[0] | (uint32_t)s[1] << 8 | (uint32_t)s[2] << 16 | (uint32_t)s[3] << 24;
+			else
+				px = byte_order ? ((uint32_t)s[0] << 16 | (uint32_t)s[1] << 8 | s[2])
+				                : ((uint32_t)s[0] | (uint32_t)s[1] << 8 | (uint32_t)s[2] << 16);
+			uint8_t *o = img->rgba + ((size_t)y * width + x) * 4;
+			o[0] = channel(px, rmask);
+			o[1] = channel(px, gmask);
+			o[2] = channel(px, bmask);
+			o[3] = 255;
+		}
+	return 0;
+}
+
+static const uint8_t *ppm_token(const uint8_t *p, const uint8_t *end, long *v)
+{
+	for (;;) {
+		while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r'))
+			p++;
+		if (p < end && *p == '#') {
+			while (p < end && *p != '\n')
+				p++;
+			continue;
+		}
+		break;
+	}
+	if (p >= end || *p < '0' || *p > '9')
+		return NULL;
+	*v = 0;
+	while (p < end && *p >= '0' && *p <= '9' && *v < 100000)
+		*v = *v * 10 + (*p++ - '0');
+	return p;
+}
+
+static int read_ppm(struct image *img, const uint8_t *d, size_t n, const char *path, char *err, size_t errlen)
+{
+	const uint8_t *p = d + 2, *end = d + n;
+	long w = 0, h = 0, max = 0;
+	if (!(p = ppm_token(p, end, &w)) || !(p = ppm_token(p, end, &h)) || !(p = ppm_token(p, end, &max)) ||
+	    p >= end || w <= 0 || h <= 0 || w > 16384 || h > 16384 || max != 255) {
+		snprintf(err, errlen, "%s: unsupported PPM header (want P6, maxval 255)", path);
+		return -1;
+	}
+	p++; /* one whitespace byte */
+	if ((size_t)(end - p) < (size_t)w * (size_t)h * 3) {
+		snprintf(err, errlen, "%s: truncated PPM", path);
+		return -1;
+	}
+	img->width = (int)w;
+	img->height = (int)h;
+	img->rgba = malloc((size_t)w * (size_t)h * 4);
+	if (!img->rgba) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+		img->rgba[4 * i + 0] = p[3 * i + 0];
+		img->rgba[4 * i + 1] = p[3 * i + 1];
+		img->rgba[4 * i + 2] = p[3 * i + 2];
+		img->rgba[4 * i + 3] = 255;
+	}
+	return 0;
+}
+
+static int load(struct image *img, const char *path, char *err, size_t errlen)
+{
+	memset(img, 0, sizeof(*img));
+	uint8_t *d;
+	size_t n;
+	if (read_file(path, &d, &n, err, errlen) < 0)
+		return -1;
+	int rc;
+	if (n >= 8 && memcmp(d, "\x89PNG\r\n\x1a\n", 8) == 0)
+		rc = image_read_png(img, path, err, errlen);
+	else if (n >= 2 && d[0] == 'P' && d[1] == '6')
+		rc = read_ppm(img, d, n, path, err, errlen);
+	else if (n >= 8 && be32(d + 4) == 7)
+		rc = read_xwd(img, d, n, path, err, errlen);
+	else {
+		snprintf(err, errlen, "%s: not a PNG, binary PPM or XWD file", path);
+		rc = -1;
+	}
+	free(d);
+	if (rc == 0) /* compare colour only */
+		for (size_t i = 0; i < (size_t)img->width * img->height; i++)
+			img->rgba[4 * i + 3] = 255;
+	return rc;
+}
+
+static int usage(void)
+{
+	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--diff OUT.png]\n"
+	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN\n");
+	return 2;
+}
+
+int main(int argc, char **argv)
+{
+	char err[512];
+	struct image a, b;
+	if (argc == 4 && strcmp(argv[1], "--to-png") == 0) {
+		if (load(&a, argv[2], err, sizeof(err)) < 0 || image_write_png(&a, argv[3], err, sizeof(err)) < 0) {
+			fprintf(stderr, "imgcmp: %s\n", err);
+			image_free(&a);
+			return 2;
+		}
+		image_free(&a);
+		return 0;
+	}
+	if (argc == 3 && strcmp(argv[1], "--info") == 0) {
+		if (load(&a, argv[2], err, sizeof(err)) < 0) {
+			fprintf(stderr, "imgcmp: %s\n", err);
+			return 2;
+		}
+		double s[3] = { 0, 0, 0 };
+		size_t np = (size_t)a.width * a.height;
+		for (size_t i = 0; i < np; i++)
+			for (int c = 0; c < 3; c++)
+				s[c] += a.rgba[4 * i + c];
+		printf("%dx%d mean %.1f %.1f %.1f\n", a.width, a.height, s[0] / np, s[1] / np, s[2] / np);
+		image_free(&a);
+		return 0;
+	}
+	if (argc < 3 || argv[1][0] == '-' || argv[2][0] == '-')
+		return usage();
+	int threshold = 24;
+	double max_mean = 1.0, max_frac = 0.005;
+	const char *diff_path = NULL;
+	for (int i = 3; i < argc; i += 2) {
+		if (i + 1 >= argc)
+			return usage();
+		char *end;
+		errno = 0;
+		double v = strtod(argv[i + 1], &end);
+		bool num_ok = *end == 0 && errno == 0 && v >= 0;
+		if (strcmp(argv[i], "--threshold") == 0 && num_ok && v <= 255)
+			threshold = (int)v;
+		else if (strcmp(argv[i], "--max-mean") == 0 && num_ok)
+			max_mean = v;
+		else if (strcmp(argv[i], "--max-frac") == 0 && num_ok && v <= 1)
+			max_frac = v;
+		else if (strcmp(argv[i], "--diff") == 0)
+			diff_path = argv[i + 1];
+		else
+			return usage();
+	}
+	if (load(&a, argv[1], err, sizeof(err)) < 0) {
+		fprintf(stderr, "imgcmp: %s\n", err);
+		return 2;
+	}
+	if (load(&b, argv[2], err, sizeof(err)) < 0) {
+		fprintf(stderr, "imgcmp: %s\n", err);
+		image_free(&a);
+		return 2;
+	}
+	int rc = 2;
+	struct image_diff d;
+	if (a.width != b.width || a.height != b.height) {
+		fprintf(stderr, "imgcmp: sizes differ: %s is %dx%d, %s is %dx%d\n", argv[1], a.width, a.height, argv[2],
+		        b.width, b.height);
+	} else if (image_compare(&a, &b, threshold, &d) < 0) {
+		fprintf(stderr, "imgcmp: image_compare failed\n");
+	} else {
+		bool ok = d.mean_abs <= max_mean && d.frac_over <= max_frac;
+		printf("imgcmp: %dx%d mean_abs %.3f rmse %.3f psnr %.1f dB max %d frac_over(%d) %.5f -> %s "
+		       "(limits: mean %.3f, frac %.5f)\n",
+		       a.width, a.height, d.mean_abs, d.rmse, d.psnr, d.max_abs, threshold, d.frac_over,
+		       ok ? "MATCH" : "DIFFERENT", max_mean, max_frac);
+		rc = ok ? 0 : 1;
+		if (diff_path) {
+			struct image di = { a.width, a.height, malloc((size_t)a.width * a.height * 4) };
+			if (di.rgba) {
+				for (size_t i = 0; i < (size_t)a.width * a.height * 4; i++)
+					di.rgba[i] = (i & 3) == 3 ? 255 : (uint8_t)abs((int)a.rgba[i] - (int)b.rgba[i]);
+				if (image_write_png(&di, diff_path, err, sizeof(err)) < 0)
+					fprintf(stderr, "imgcmp: %s\n", err);
+				image_free(&di);
+			}
+		}
+	}
+	image_free(&a);
+	image_free(&b);
+	return rc;
+}

@@ -1,0 +1,107 @@
+#!/bin/sh
+# isoterra — runs inside the test VM (chroot of the host's root over 9p,
+# real Linux kernel, virtio-gpu KMS).  $1 is the results folder, shared with
+# the host; config.sh there says what to run.  Each "shot NAME" asks the
+# host for a QEMU screendump (req-NAME) and waits for it (ack-NAME).
+R=$1
+. "$R/config.sh"
+export HOME="$R" TMPDIR="$R" EGL_LOG_LEVEL=fatal
+# Mesa's shader cache lives in a host folder kept between runs (compiling
+# the shaders is most of the time in the guest); without one, no cache.
+if [ -n "${CACHE:-}" ]; then
+	export MESA_SHADER_CACHE_DIR="$CACHE"
+else
+	export MESA_SHADER_CACHE_DISABLE=true
+fi
+say() { echo "guest: $*"; }
+up() { cut -d' ' -f1 /proc/uptime; }
+shot() {
+	: >"$R/req-$1"
+	n=0
+	while [ ! -e "$R/ack-$1" ] && [ $n -lt 600 ]; do sleep 0.1; n=$((n + 1)); done
+	[ -e "$R/ack-$1" ] || say "no screendump $1 from the host"
+}
+# state NAME: the KMS state (debugfs) of card0
+state() { cat /sys/kernel/debug/dri/0/state >"$R/state-$1.txt" 2>&1; }
+# wait for a line matching $2 in file $1 (timeout $3 s) while pid $4 lives
+wait_line() {
+	n=0
+	while [ $n -lt $(($3 * 10)) ]; do
+		grep -Eq "$2" "$1" 2>/dev/null && return 0
+		kill -0 "$4" 2>/dev/null || { grep -Eq "$2" "$1" 2>/dev/null; return $?; }
+		sleep 0.1
+		n=$((n + 1))
+	done
+	return 1
+}
+
+n=0
+while [ ! -e /dev/dri/card0 ] && [ $n -lt 100 ]; do sleep 0.1; n=$((n + 1)); done
+[ -e /dev/dri/card0 ] || { say "no /dev/dri/card0"; ls -l /dev/dri; exit 1; }
+say "card0 at $(up) s; modes: $(cat /sys/class/drm/card0-*/modes 2>/dev/null | tr '\n' ' ')"
+state console
+shot console
+
+# 1. isoterra on KMS (atomic), kept running: screendump, then SIGTERM with
+#    a second open file on the card (fd 3, opened once isoterra is the DRM
+#    master), so the kernel's own last-close restore of the console cannot
+#    hide a missing restore in the app
+t=$(up)
+"$BIN" --platform gbm $ARGS --count 0 --fps-report 0.01 >"$R/app.log" 2>&1 &
+pid=$!
+if wait_line "$R/app.log" ' [2-9] presented|[0-9][0-9]+ presented' 400 $pid; then
+	say "isoterra (atomic): 2 frames after $(awk "BEGIN { print $(up) - $t }") s"
+	exec 3<>/dev/dri/card0
+	shot app
+	state app
+	kill -TERM $pid
+	wait $pid
+	echo $? >"$R/app.rc"
+	state after
+	shot after
+else
+	say "isoterra presented no frames"
+	kill -KILL $pid 2>/dev/null
+	wait $pid
+	echo "$?" >"$R/app.rc"
+	exec 3<>/dev/dri/card0
+fi
+
+# 2. legacy modesetting, --count 3: exits by itself and restores; with
+#    --platform auto (no DISPLAY, no WAYLAND_DISPLAY): auto must pick gbm
+t=$(up)
+timeout 300 "$BIN" --platform auto $ARGS --count 3 --kms-legacy --out "$R/legacy.png" >"$R/legacy.log" 2>&1
+echo $? >"$R/legacy.rc"
+state legacy
+say "isoterra (legacy, 3 frames) rc $(cat "$R/legacy.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+
+# 3. kmscube (a sanity peer) does not restore the CRTC: with fd 3 still
+#    open the console stays off -- the negative control of the checks above
+t=$(up)
+timeout 120 kmscube -D /dev/dri/card0 -c 4 >"$R/kmscube.log" 2>&1
+echo $? >"$R/kmscube.rc"
+state kmscube
+shot kmscube
+say "kmscube rc $(cat "$R/kmscube.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+exec 3>&-
+
+# 4. glmark2-es2-drm (a sanity peer), one short scene
+t=$(up)
+timeout 180 glmark2-es2-drm --winsys-options drm-device=/dev/dri/card0 -b clear:duration=0.5 >"$R/glmark2.log" 2>&1
+echo $? >"$R/glmark2.rc"
+say "glmark2-es2-drm rc $(cat "$R/glmark2.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+# 5. clear errors: a mode the connector does not offer; then the connector
+#    forced off (sysfs status): no connected display -> gbm fails with one
+#    line, auto falls back to headless
+"$BIN" --platform gbm --mode 123x45 $(echo "$ARGS" | sed 's/--mode [^ ]*//') >"$R/badmode.log" 2>&1
+echo $? >"$R/badmode.rc"
+st=$(ls -d /sys/class/drm/card0-*/status | head -1)
+echo off >"$st"
+"$BIN" --platform gbm $ARGS >"$R/nodisplay.log" 2>&1
+echo $? >"$R/nodisplay.rc"
+# (--count 0 makes a headless pick fail before any rendering, naming it)
+"$BIN" --platform auto $ARGS --count 0 >"$R/auto-off.log" 2>&1
+echo $? >"$R/auto-off.rc"
+echo detect >"$st"
+say "connector $st: $(cat "$st") again"
+: >"$R/done"

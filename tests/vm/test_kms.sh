@@ -1,0 +1,201 @@
+#!/bin/sh
+# isoterra — the GBM/KMS backend on a real Linux kernel: boots Debian's
+# kernel under QEMU (TCG) with a virtio-gpu display, runs isoterra
+# --platform gbm in a chroot of the host (9p) and checks:
+#   - it modesets (atomic) and flips frames; QEMU's screendump of the
+#     scanout matches the host's headless render of the same frame;
+#   - SIGTERM restores the console's CRTC: the screen and the KMS state
+#     (debugfs: the primary plane shows fbcon's framebuffer again) are those
+#     from before, although another file keeps the card open (so the
+#     kernel's last-close restore cannot do it for the app);
+#   - --platform auto picks gbm; legacy modesetting (--kms-legacy) with
+#     --count 3 exits by itself and restores too;
+#   - kmscube and glmark2-es2-drm run in the same guest (sanity peers);
+#     kmscube does not restore the CRTC: after it, with the card still held
+#     open, the console is off -- the negative control of the checks above;
+#   - clear errors: a mode not offered; the connector forced off (sysfs):
+#     "no connected display", and auto falls back to headless.
+# See tests/vm/README.md and ../shared/vm/RECIPE.md.
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/../display/lib.sh"
+need qemu-system-x86_64 cpio python3 kmscube glmark2-es2-drm
+BUILD=${ISOTERRA_BUILD:-$(dirname "$BIN")}
+# the kernel: the newest /boot/vmlinuz-* with its modules (never hard-coded)
+REL=
+for k in $(ls -v /boot/vmlinuz-* 2>/dev/null); do
+	r=${k#/boot/vmlinuz-}
+	[ -d "/lib/modules/$r/kernel" ] && REL=$r
+done
+[ -n "$REL" ] || need /boot/vmlinuz-with-modules-linux-image-amd64
+[ -r "/boot/vmlinuz-$REL" ] || { bad "/boot/vmlinuz-$REL is not readable"; echo "$pass passed, $fail failed"; exit 1; }
+bb=$(command -v busybox || echo /bin/busybox)
+if [ ! -x "$bb" ] || ldd "$bb" >/dev/null 2>&1; then
+	need busybox-static
+fi
+
+T=$(mktemp -d)
+QPID=
+cleanup() {
+	[ -n "$QPID" ] && kill -KILL "$QPID" 2>/dev/null
+	[ "${ISOTERRA_KEEP:-0}" = 1 ] || rm -rf "$T"
+}
+trap cleanup EXIT
+t0=$(date +%s)
+
+# initramfs, cached in the build folder per kernel release
+mkdir -p "$BUILD/vm"
+INITRD=$BUILD/vm/initramfs-$REL.cpio.gz
+if [ ! -s "$INITRD" ] || [ "$here/init" -nt "$INITRD" ] || [ "$here/mkinitramfs.sh" -nt "$INITRD" ]; then
+	sh "$here/mkinitramfs.sh" "$INITRD" "$REL" || { bad "mkinitramfs failed"; echo "$pass passed, $fail failed"; exit 1; }
+fi
+
+# tiny work in the guest: software rendering there is ~350x slower
+W=320
+H=240
+ARGS="--grid 16 --cam-spin 0 --seed 7 --mode ${W}x$H"
+cat >"$T/config.sh" <<CONF
+BIN='$BIN'
+ARGS='$ARGS'
+CONF
+# Mesa's shader cache for the guest, kept between runs (the guest's CPU
+# differs from the host's, so it has its own cache)
+CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/vm-mesa-$REL}
+mkdir -p "$CACHE" 2>/dev/null || CACHE=
+CACHE_ARGS=
+[ -n "$CACHE" ] && CACHE_ARGS="-virtfs local,path=$CACHE,mount_tag=cache,security_model=none,multidevs=remap"
+echo "kernel $REL, initramfs $INITRD, results in $T, shader cache ${CACHE:-none}"
+
+qemu-system-x86_64 -machine pc -cpu max -smp 2 -m 1536 -no-reboot \
+	-display none -vga none -serial "file:$T/serial.log" \
+	-monitor "unix:$T/mon.sock,server,nowait" \
+	-device virtio-gpu-pci,xres=$W,yres=$H \
+	-virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
+	-virtfs "local,path=$T,mount_tag=res,security_model=none,multidevs=remap" $CACHE_ARGS \
+	-kernel "/boot/vmlinuz-$REL" -initrd "$INITRD" \
+	-append "console=ttyS0 panic=-1 loglevel=3 consoleblank=0 vt.global_cursor_default=0 ISOTERRA_RES=$T ISOTERRA_GUEST=$here/guest.sh ISOTERRA_CACHE=$CACHE" \
+	>"$T/qemu.log" 2>&1 &
+QPID=$!
+
+# serve the guest's screendump requests until it powers off
+LIMIT=${ISOTERRA_VM_TIMEOUT:-720}
+while alive "$QPID"; do
+	for req in "$T"/req-*; do
+		[ -e "$req" ] || continue
+		name=${req##*/req-}
+		[ -e "$T/ack-$name" ] && continue
+		python3 "$here/hmp.py" "$T/mon.sock" "screendump $T/$name.ppm" >"$T/hmp-$name.log" 2>&1 ||
+			echo "screendump $name: $(cat "$T/hmp-$name.log")" >&2
+		: >"$T/ack-$name"
+		echo "screendump $name at $(($(date +%s) - t0)) s"
+	done
+	if [ $(($(date +%s) - t0)) -gt "$LIMIT" ]; then
+		bad "VM still running after $LIMIT s; killed. serial: $(tail -5 "$T/serial.log")"
+		kill -KILL "$QPID"
+		break
+	fi
+	sleep 0.2
+done
+wait "$QPID" 2>/dev/null
+QPID=
+echo "VM ran $(($(date +%s) - t0)) s"
+sed 's/^/  serial: /' "$T/serial.log" | grep -v '^  serial: $' | tail -20
+sed 's/^/  guest: /' "$T/guest.log" 2>/dev/null
+if [ ! -e "$T/done" ]; then
+	bad "the guest script did not finish (qemu: $(tail -3 "$T/qemu.log"))"
+fi
+
+# ---- checks ----------------------------------------------------------------
+rc=$(cat "$T/app.rc" 2>/dev/null)
+[ "$rc" = 0 ] && ok "isoterra --platform gbm: SIGTERM -> exit 0" || bad "isoterra exit '$rc': $(tail -5 "$T/app.log" 2>/dev/null)"
+grep -q "gbm: /dev/dri/card0 Virtual-1 ${W}x$H@[0-9]* (atomic modesetting)" "$T/app.log" 2>/dev/null &&
+	ok "atomic modeset: $(grep -m1 'modesetting' "$T/app.log")" || bad "no atomic modeset line: $(head -5 "$T/app.log" 2>/dev/null)"
+line=$(grep -oE 'gbm: [0-9]+ frames presented, [0-9]+ shown' "$T/app.log" 2>/dev/null)
+np=$(echo "$line" | awk '{print $2}')
+ns=$(echo "$line" | awk '{print $5}')
+[ -n "$np" ] && [ "$np" -ge 2 ] && [ "$ns" = "$np" ] && ok "page flips: $line" || bad "page flips: '$line' (want >= 2 presented, all shown)"
+
+if [ -s "$T/app.ppm" ]; then
+	headless "$T/ref.png" ${W}x$H $(echo "$ARGS" | sed 's/--mode [^ ]*//') &&
+		compare "KMS scanout (QEMU screendump) vs host headless render" "$T/app.ppm" "$T/ref.png" \
+			--threshold 32 --max-mean 2.0 --max-frac 0.01
+else
+	bad "no screendump of the app's frame"
+fi
+# the console came back: the screen and the plane's framebuffer
+if [ -s "$T/console.ppm" ] && [ -s "$T/after.ppm" ]; then
+	compare "console after SIGTERM == console before" "$T/after.ppm" "$T/console.ppm" --threshold 0 --max-mean 0 --max-frac 0
+	if "$IMGCMP" "$T/app.ppm" "$T/console.ppm" >"$T/neg.txt" 2>&1; then
+		bad "the app's frame looks like the console: $(cat "$T/neg.txt")"
+	else
+		ok "the app's frame differs from the console"
+	fi
+else
+	bad "console screendumps missing"
+fi
+fbowner() { # the 'allocated by' of the framebuffer on the primary plane
+	awk '/^plane\[/ { p = ($0 ~ /plane-0/) } p && /allocated by/ { print $NF; exit }' "$1" 2>/dev/null
+}
+c=$(fbowner "$T/state-console.txt")
+a=$(fbowner "$T/state-app.txt")
+f=$(fbowner "$T/state-after.txt")
+k=$(fbowner "$T/state-killed.txt")
+if [ -n "$c" ] && [ "$f" = "$c" ] && [ "$a" != "$c" ]; then
+	ok "KMS state: primary plane fb by '$c' before, '$a' while running, '$f' after SIGTERM"
+else
+	bad "KMS state: primary plane fb by '$c' before, '$a' while running, '$f' after SIGTERM (state files in $T)"
+fi
+# legacy modesetting, --count 3, chosen by --platform auto
+[ "$(cat "$T/legacy.rc" 2>/dev/null)" = 0 ] && ok "isoterra --platform auto --kms-legacy --count 3: exit 0" ||
+	bad "isoterra --kms-legacy exit '$(cat "$T/legacy.rc" 2>/dev/null)': $(tail -5 "$T/legacy.log" 2>/dev/null)"
+grep -q "gbm: /dev/dri/card0 Virtual-1 ${W}x$H@[0-9]* (legacy modesetting)" "$T/legacy.log" 2>/dev/null &&
+	ok "auto picked gbm (a card with a connected display), legacy modeset: $(grep -m1 'modesetting' "$T/legacy.log")" ||
+	bad "no legacy modeset line (auto did not pick gbm?): $(head -5 "$T/legacy.log" 2>/dev/null)"
+grep -q 'gbm: 3 frames presented, 3 shown' "$T/legacy.log" 2>/dev/null && ok "legacy page flips: 3 presented, 3 shown" ||
+	bad "legacy page flips: $(grep presented "$T/legacy.log" 2>/dev/null)"
+l=$(fbowner "$T/state-legacy.txt")
+[ -n "$c" ] && [ "$l" = "$c" ] && ok "after --count 3 (legacy) the console's fb is back ('$l')" || bad "after --count 3 (legacy): plane fb by '$l', want '$c'"
+# the 3rd frame (the animation clock moves: water, sky)
+[ -s "$T/legacy.png" ] && headless "$T/ref3.png" ${W}x$H $(echo "$ARGS" | sed 's/--mode [^ ]*//') --count 3 &&
+	compare "--out of the gbm run (frame 3) vs host headless" "$T/legacy.png" "$T/ref3.png" --threshold 32 --max-mean 2.0 --max-frac 0.01
+
+# sanity peers; kmscube is also the negative control of the restore checks
+[ "$(cat "$T/kmscube.rc" 2>/dev/null)" = 0 ] && grep -Eq "Rendered [1-9][0-9]* frames" "$T/kmscube.log" &&
+	ok "kmscube: $(grep -m1 -i 'Using display' "$T/kmscube.log" || head -1 "$T/kmscube.log")" ||
+	bad "kmscube rc $(cat "$T/kmscube.rc" 2>/dev/null): $(tail -5 "$T/kmscube.log" 2>/dev/null)"
+k=$(fbowner "$T/state-kmscube.txt")
+if [ -s "$T/kmscube.ppm" ] && [ -e "$T/state-kmscube.txt" ] && [ "$(cat "$T/kmscube.rc" 2>/dev/null)" = 0 ]; then
+	if [ "$k" != "$c" ] && ! "$IMGCMP" "$T/kmscube.ppm" "$T/console.ppm" --threshold 0 --max-mean 0 --max-frac 0 >/dev/null 2>&1; then
+		ok "negative control: after kmscube (no restore) the console is not back (plane fb '${k:-none}')"
+	else
+		bad "negative control: after kmscube the console is back ('$k') - the restore checks prove nothing"
+	fi
+else
+	bad "negative control (kmscube) did not run"
+fi
+[ "$(cat "$T/glmark2.rc" 2>/dev/null)" = 0 ] && grep -q "glmark2 Score" "$T/glmark2.log" &&
+	ok "glmark2-es2-drm: $(grep -m1 'glmark2 Score' "$T/glmark2.log" | tr -s ' ')" ||
+	bad "glmark2-es2-drm rc $(cat "$T/glmark2.rc" 2>/dev/null): $(tail -5 "$T/glmark2.log" 2>/dev/null)"
+
+# clear errors (no rendering involved)
+if [ "$(cat "$T/badmode.rc" 2>/dev/null)" != 0 ] && grep -q "mode 123x45 not offered by Virtual-1 on /dev/dri/card0" "$T/badmode.log" &&
+	[ "$(grep -c . "$T/badmode.log")" -le 2 ]; then
+	ok "--mode 123x45: exit $(cat "$T/badmode.rc"), one clear line"
+else
+	bad "--mode 123x45: exit $(cat "$T/badmode.rc" 2>/dev/null): $(cat "$T/badmode.log" 2>/dev/null)"
+fi
+if [ "$(cat "$T/nodisplay.rc" 2>/dev/null)" != 0 ] && grep -q "no connected display on /dev/dri/card0" "$T/nodisplay.log" &&
+	[ "$(grep -c . "$T/nodisplay.log")" -le 2 ]; then
+	ok "connector off: --platform gbm exit $(cat "$T/nodisplay.rc"): '$(cat "$T/nodisplay.log")'"
+else
+	bad "connector off: --platform gbm exit $(cat "$T/nodisplay.rc" 2>/dev/null): $(cat "$T/nodisplay.log" 2>/dev/null)"
+fi
+# auto with --count 0: a headless pick is refused by name before rendering
+if [ "$(cat "$T/auto-off.rc" 2>/dev/null)" != 0 ] &&
+	grep -Eq "needs a display platform \(gbm, wayland, x11\), not '(device|surfaceless)'" "$T/auto-off.log"; then
+	ok "connector off: auto -> headless ($(grep -oE "not '[a-z]+'" "$T/auto-off.log"))"
+else
+	bad "connector off: auto: rc $(cat "$T/auto-off.rc" 2>/dev/null): $(cat "$T/auto-off.log" 2>/dev/null)"
+fi
+echo "kms vm test: $(($(date +%s) - t0)) s"
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
