@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "world.h"
@@ -241,6 +242,13 @@ out:
 	return rc;
 }
 
+static double now_s(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
 static int run_world(struct params *p, struct frame_out *o)
 {
 	char err[512] = "";
@@ -261,16 +269,29 @@ static int run_world(struct params *p, struct frame_out *o)
 	struct camera cam;
 	float t0 = p->time;
 	float far = p->view_distance * 1.2f;
+	/* Offline (headless: PNG, Y4M, tests) every frame is complete and
+	 * reproducible: time is frame / fps and each frame waits for its
+	 * blocks.  On a display the world runs live: wall-clock time, and
+	 * blocks stream in under the generation budget. */
+	bool live = !o->plat->headless;
+	double start = now_s();
+	if (p->camera == 2)
+		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s)",
+			 p->keyboard == 1 ? "off!" : "terminal or evdev");
 	for (int f = 0; frame_more(p, f); f++) {
 		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
 			o->fs->count = p->count = f + 1;
-		double t = (double)f / p->fps;
+		double t = live ? now_s() - start : (double)f / p->fps;
 		t -= (double)((float)t - hal_time(o->hal, (float)t)); /* paused time */
 		p->time = t0; /* the world does not scroll: the camera moves */
+		if (p->camera == 2) { /* manual: the keys steer, rock still stops */
+			float move[3], turn[2];
+			hal_flight(o->hal, move, turn);
+			autopilot_steer(&ap, move, turn);
+		}
 		autopilot_advance(&ap, t);
 		autopilot_camera(&ap, &cam, p->fov, (float)o->w / (float)o->h, far);
-		/* offline: every frame is complete and reproducible */
-		int urc = f == 0 ? world_fill(wd, p, &cam, t) : world_update(wd, p, &cam, t, true);
+		int urc = f == 0 ? world_fill(wd, p, &cam, t) : world_update(wd, p, &cam, t, !live);
 		if (urc < 0 || world_draw(wd, o->r, &cam, p, t) < 0 || hal_frame(o->hal, o->r, p) < 0)
 			goto out;
 		int q = frame_done(o, f);

@@ -28,6 +28,8 @@ struct hal {
 	char osd_title[OSD_COLS + 1], osd_value[OSD_COLS + 1];
 	float osd_bar;
 	uint64_t osd_until, osd_fade;
+	float fly[5];          /* manual camera: held input */
+	uint64_t fly_until;    /* ... until this time (ns) */
 };
 
 uint64_t hal_now_ns(void)
@@ -173,6 +175,15 @@ static void apply_preset(struct hal *h, struct params *p)
 	show(h, p, "preset", presets[h->preset].name, -1);
 }
 
+void hal_flight(struct hal *h, float move[3], float turn[2])
+{
+	bool on = h && hal_now_ns() < h->fly_until;
+	for (int i = 0; i < 3; i++)
+		move[i] = on ? h->fly[i] : 0.0f;
+	for (int i = 0; i < 2; i++)
+		turn[i] = on ? h->fly[3 + i] : 0.0f;
+}
+
 int hal_poll(struct hal *h, struct params *p)
 {
 	if (!h)
@@ -181,6 +192,14 @@ int hal_poll(struct hal *h, struct params *p)
 	memset(&in, 0, sizeof(in));
 	hal_gpio_poll(h->gpio, hal_now_ns(), &in);
 	hal_keys_poll(h->keys, &in);
+	bool flying = false;
+	for (int i = 0; i < 5; i++)
+		flying |= in.fly[i] != 0;
+	if (flying) {
+		for (int i = 0; i < 5; i++)
+			h->fly[i] = in.fly[i] > 0 ? 1.0f : in.fly[i] < 0 ? -1.0f : 0.0f;
+		h->fly_until = hal_now_ns() + 150000000ull;
+	}
 	struct knobs *k = &h->knobs;
 	in.select += in.actions[HAL_NEXT] - in.actions[HAL_PREV];
 	if (in.select && k->count) {

@@ -32,6 +32,7 @@ struct hal_input {
 	int select;                    /* detents: choose the parameter */
 	int change;                    /* detents: change its value */
 	int actions[HAL_ACTION_COUNT]; /* counts */
+	int fly[5];                    /* key presses: forward, right, up, yaw right, pitch up (manual camera) */
 };
 
 struct hal;
@@ -42,6 +43,11 @@ void hal_close(struct hal *h);
 /* Reads the inputs without blocking and applies them to *p.  1 when the
  * user asked to quit (key q, a quit button), else 0 (SIGINT/SIGTERM: run.c). */
 int hal_poll(struct hal *h, struct params *p);
+/* Manual camera (camera=manual): the flight keys pressed since the last
+ * call, as held inputs (-1..1): i/k forward/back, j/l turn, u/o up/down,
+ * y/h pitch.  A terminal repeats a held key ~30 times a second, so a press
+ * holds for 0.15 s.  All zero when no key is pressed. */
+void hal_flight(struct hal *h, float move[3], float turn[2]);
 /* The animation clock: t while running, frozen while paused. */
 float hal_time(struct hal *h, float t);
 /* After the frame is drawn into the renderer's target: OSD, screenshot,

@@ -1,7 +1,8 @@
 /* isoterra — development keys: the terminal in raw mode (stdin a tty) or an
  * evdev keyboard, mapped to the same inputs as the knobs:
  *   left/right or [ ]   choose the parameter      up/down or - +   change it
- *   p pause   s screenshot   n next preset   r reset   q / Esc quit */
+ *   p pause   s screenshot   n next preset   r reset   q / Esc quit
+ *   manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch */
 #include "hal.h"
 #include "log.h"
 
@@ -64,6 +65,14 @@ void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc, struct hal_
 		case 'n': in->actions[HAL_PRESET]++; break;
 		case 'r': in->actions[HAL_RESET]++; break;
 		case 'q': case 3: in->actions[HAL_QUIT]++; break;
+		case 'i': in->fly[0]++; break;
+		case 'k': in->fly[0]--; break;
+		case 'l': in->fly[3]++; break;
+		case 'j': in->fly[3]--; break;
+		case 'u': in->fly[2]++; break;
+		case 'o': in->fly[2]--; break;
+		case 'y': in->fly[4]++; break;
+		case 'h': in->fly[4]--; break;
 		default: break;
 		}
 	}
@@ -152,6 +161,14 @@ static void evdev_key(int code, struct hal_input *in)
 	case KEY_N: in->actions[HAL_PRESET]++; break;
 	case KEY_R: in->actions[HAL_RESET]++; break;
 	case KEY_Q: case KEY_ESC: in->actions[HAL_QUIT]++; break;
+	case KEY_I: in->fly[0]++; break;
+	case KEY_K: in->fly[0]--; break;
+	case KEY_L: in->fly[3]++; break;
+	case KEY_J: in->fly[3]--; break;
+	case KEY_U: in->fly[2]++; break;
+	case KEY_O: in->fly[2]--; break;
+	case KEY_Y: in->fly[4]++; break;
+	case KEY_H: in->fly[4]--; break;
 	default: break;
 	}
 }

@@ -68,6 +68,12 @@ static void test_keys(void)
 	hal_keys_feed_tty((const unsigned char *)"[", 1, &esc, &in);
 	hal_keys_feed_tty((const unsigned char *)"D", 1, &esc, &in);
 	CHECK(in.select == -1 && in.actions[HAL_QUIT] == 0, "split arrow (%d)", in.select);
+	/* manual camera keys: forward twice, a turn each way, up, pitch down */
+	memset(&in, 0, sizeof(in));
+	hal_keys_feed_tty((const unsigned char *)"iijluh", 6, &esc, &in);
+	CHECK(in.fly[0] == 2 && in.fly[1] == 0 && in.fly[2] == 1 && in.fly[3] == 0 && in.fly[4] == -1 &&
+		      in.change == 0 && in.select == 0,
+	      "flight keys (%d %d %d %d %d)", in.fly[0], in.fly[1], in.fly[2], in.fly[3], in.fly[4]);
 }
 
 static void test_osd(void)
