@@ -24,7 +24,29 @@ static inline int bench_cmp_double(const void *a, const void *b)
 	return x < y ? -1 : x > y;
 }
 
-/* "machine: CPU model, N cores" and "GL: renderer | version". */
+/* This process's CPU time in ms (llvmpipe's threads included). */
+static inline double bench_cpu_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+/* The 1-minute load average (-1 when unknown): a shared machine's numbers
+ * are read with it. */
+static inline double bench_loadavg(void)
+{
+	double l = -1;
+	FILE *f = fopen("/proc/loadavg", "r");
+	if (f) {
+		if (fscanf(f, "%lf", &l) != 1)
+			l = -1;
+		fclose(f);
+	}
+	return l;
+}
+
+/* "machine: CPU model, N cores, load average L" and "GL: renderer | version". */
 static inline void bench_print_machine(const struct gpu_caps *caps)
 {
 	char cpu[256] = "unknown CPU";
@@ -42,7 +64,8 @@ static inline void bench_print_machine(const struct gpu_caps *caps)
 			}
 		fclose(f);
 	}
-	printf("machine: %s, %ld cores\n", cpu, sysconf(_SC_NPROCESSORS_ONLN));
+	printf("machine: %s, %ld cores, load average %.2f at the start\n", cpu, sysconf(_SC_NPROCESSORS_ONLN),
+	       bench_loadavg());
 	printf("GL: %s | %s\n", caps->renderer, caps->version);
 }
 

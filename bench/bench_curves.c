@@ -17,45 +17,15 @@
 #include "app.h"
 
 #include <math.h>
+#include "bench.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
-static double now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
-static double cpu_ms(void) /* this process's CPU time, llvmpipe's threads included */
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-	return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
 static double last_cpu; /* CPU ms of the fastest repetition of the last time_bake() */
-
-static double loadavg(void)
-{
-	double l = -1;
-	FILE *f = fopen("/proc/loadavg", "r");
-	if (f) {
-		if (fscanf(f, "%lf", &l) != 1)
-			l = -1;
-		fclose(f);
-	}
-	return l;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
 
 static uint32_t rng = 2020u;
 static float frand(void)
@@ -121,48 +91,26 @@ static double time_bake(const struct params *p, const struct bake_opts *o, int m
 		return -1;
 	}
 	glFinish();
-	double start = now_ms();
+	double start = bench_now_ms();
 	double best = 1e300;
 	last_cpu = 0;
-	while (n < 64 && (n < min_reps || now_ms() - start < budget)) {
-		double t0 = now_ms(), c0 = cpu_ms();
+	while (n < 64 && (n < min_reps || bench_now_ms() - start < budget)) {
+		double t0 = bench_now_ms(), c0 = bench_cpu_ms();
 		int rc = curves_bake(p, o, NULL, err, sizeof(err));
 		glFinish();
 		if (rc < 0) {
 			fprintf(stderr, "bench: %s\n", err);
 			return -1;
 		}
-		t[n] = now_ms() - t0;
+		t[n] = bench_now_ms() - t0;
 		if (t[n] < best) {
 			best = t[n];
-			last_cpu = cpu_ms() - c0;
+			last_cpu = bench_cpu_ms() - c0;
 		}
 		n++;
 	}
-	qsort(t, (size_t)n, sizeof(double), cmp_d);
+	qsort(t, (size_t)n, sizeof(double), bench_cmp_double);
 	return t[0];
-}
-
-static void machine(const struct gpu_caps *caps)
-{
-	char cpu[256] = "unknown CPU";
-	FILE *f = fopen("/proc/cpuinfo", "r");
-	if (f) {
-		char line[512];
-		while (fgets(line, sizeof(line), f))
-			if (!strncmp(line, "model name", 10)) {
-				char *c = strchr(line, ':');
-				if (c) {
-					snprintf(cpu, sizeof(cpu), "%s", c + 2);
-					cpu[strcspn(cpu, "\n")] = 0;
-				}
-				break;
-			}
-		fclose(f);
-	}
-	printf("machine: %s, %ld cores, load average %.2f at the start\n", cpu, sysconf(_SC_NPROCESSORS_ONLN),
-	       loadavg());
-	printf("GL: %s | %s\n", caps->renderer, caps->version);
 }
 
 int main(int argc, char **argv)
@@ -200,7 +148,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;
 	}
-	machine(&caps);
+	bench_print_machine(&caps);
 	printf("displacement map %dx%d over %gx%g world units, w = 15, lambda = 15, hash 16x16, iterative baseline: 32 "
 	       "line segments per curve, no hash\n\n",
 	       res, res, (double)TERRAIN, (double)TERRAIN);
@@ -226,12 +174,12 @@ int main(int argc, char **argv)
 	for (int d = 0; d < 3; d++) {
 		struct curve_set s;
 		dataset((char)('A' + d), &s);
-		double t0 = now_ms();
+		double t0 = bench_now_ms();
 		if (edits_set_curves(&s, 16, err, sizeof(err)) < 0) {
 			fprintf(stderr, "bench: %s\n", err);
 			return 1;
 		}
-		double build_ms = now_ms() - t0;
+		double build_ms = bench_now_ms() - t0;
 		const struct edits *e = edits_get();
 		o.iterative = false;
 		double ta = time_bake(&p, &o, 3, budget);
@@ -269,7 +217,7 @@ int main(int argc, char **argv)
 		}
 		curve_set_free(&s);
 	}
-	printf("\nload average %.2f at the end\n", loadavg());
+	printf("\nload average %.2f at the end\n", bench_loadavg());
 	edits_gl_release();
 	edits_clear();
 	platform_close(plat);

@@ -17,25 +17,14 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <linux/videodev2.h>
+#include "bench.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <time.h>
 #include <unistd.h>
-
-static double now_s(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + ts.tv_nsec / 1e9;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
 
 /* the first video output device, or "" */
 static void find_output(char *path, size_t len)
@@ -82,7 +71,7 @@ static double run(struct scene *s, struct v4l2_out *v, int n)
 	struct pipeline_draw d;
 	struct camera cam;
 	glFinish();
-	double t0 = now_s();
+	double t0 = (bench_now_ms() / 1e3);
 	for (int i = 0; i < n; i++, s->frame++) {
 		float t = (float)s->frame / 30.0f;
 		s->p.time = t;
@@ -101,7 +90,7 @@ static double run(struct scene *s, struct v4l2_out *v, int n)
 		}
 		glFinish(); /* the frame is done: as the headless app's loop ends a frame */
 	}
-	return n / (now_s() - t0);
+	return n / ((bench_now_ms() / 1e3) - t0);
 }
 
 int main(int argc, char **argv)
@@ -139,8 +128,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;
 	}
-	long cores = sysconf(_SC_NPROCESSORS_ONLN);
-	printf("machine: %ld cores; GL: %s | %s\n", cores, caps.renderer, caps.version);
+	bench_print_machine(&caps);
 	params_defaults(&s.p);
 	s.p.grid = 48; /* the terrain is extracted every frame, as in the app: a grid that leaves the frame rate to rendering */
 	grid_from_params(&s.g, &s.p);
@@ -202,9 +190,9 @@ int main(int argc, char **argv)
 			return 1;
 		}
 	}
-	qsort(a, rounds, sizeof(double), cmp_d);
-	qsort(b, rounds, sizeof(double), cmp_d);
-	qsort(c, rounds, sizeof(double), cmp_d);
+	qsort(a, rounds, sizeof(double), bench_cmp_double);
+	qsort(b, rounds, sizeof(double), bench_cmp_double);
+	qsort(c, rounds, sizeof(double), bench_cmp_double);
 	double ma = a[rounds / 2], mb = b[rounds / 2], mc = c[rounds / 2];
 	printf("%d rounds x %d frames, median fps:\n", rounds, n);
 	printf("  no video output          %7.1f fps\n", ma);
