@@ -1,8 +1,8 @@
 #!/bin/sh
 # isoterra — guest side of gpio_knobs.sh (runs in the VM, chrooted into the
-# host's file system; results in /tmp/res).
-. /tmp/res/env.sh
-R=/tmp/res
+# host's file system; results in /run/res).
+. /run/res/env.sh
+R=/run/res
 fails=0
 ok() { echo "ok $*"; }
 bad() { echo "FAIL $*"; fails=$((fails + 1)); }

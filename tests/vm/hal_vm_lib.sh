@@ -70,10 +70,10 @@ for m in $(cat /mods/order); do insmod /mods/$m || echo "HALVM: insmod $m failed
 script=$(sed -n 's/.*halvm_script=\([^ ]*\).*/\1/p' /proc/cmdline)
 if mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host; then
 	mount -o bind /proc /host/proc && mount -o bind /sys /host/sys && mount -o bind /dev /host/dev &&
-	mount -t tmpfs tmp /host/tmp && mkdir -p /host/tmp/res &&
-	mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 res /host/tmp/res &&
-	{ ! grep -q halvm_cache=1 /proc/cmdline || { mkdir -p /host/tmp/mesa-cache &&
-		mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 cache /host/tmp/mesa-cache; } ||
+	mount -t tmpfs run /host/run && mkdir -p /host/run/res &&
+	mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 res /host/run/res &&
+	{ ! grep -q halvm_cache=1 /proc/cmdline || { mkdir -p /host/run/mesa-cache &&
+		mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 cache /host/run/mesa-cache; } ||
 		echo "HALVM: cannot mount the shader cache"; } &&
 	chroot /host /bin/sh "$script"
 	echo "HALVM-EXIT $?"
@@ -105,16 +105,16 @@ halvm_env() {
 	cat >>"$1/env.sh" <<'ENV'
 export EGL_LOG_LEVEL=fatal
 save_cache() { :; }
-if mountpoint -q /tmp/mesa-cache 2>/dev/null; then
-	mkdir -p /tmp/mesa-local && cp -a /tmp/mesa-cache/. /tmp/mesa-local/ &&
-		export MESA_SHADER_CACHE_DIR=/tmp/mesa-local
-	save_cache() { cp -a /tmp/mesa-local/. /tmp/mesa-cache/ 2>/dev/null; }
+if mountpoint -q /run/mesa-cache 2>/dev/null; then
+	mkdir -p /run/mesa-local && cp -a /run/mesa-cache/. /run/mesa-local/ &&
+		export MESA_SHADER_CACHE_DIR=/run/mesa-local
+	save_cache() { cp -a /run/mesa-local/. /run/mesa-cache/ 2>/dev/null; }
 fi
 ENV
 }
 
 # halvm_boot RESULTS_DIR GUEST_SCRIPT TIMEOUT_S: boots, runs the script in
-# the chroot (it sees RESULTS_DIR as /tmp/res), console to RESULTS_DIR/console.log.
+# the chroot (it sees RESULTS_DIR as /run/res), console to RESULTS_DIR/console.log.
 halvm_boot() {
 	res=$1 script=$2 tmo=$3 extra=
 	shift 3
