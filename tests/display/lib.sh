@@ -63,6 +63,23 @@ wait_frames() {
 	return 1
 }
 
+# wait_size LOG WxH SECONDS PID: until a frame-rate report shows the window
+# at WxH (a fullscreen configure can arrive after the first frames, which
+# are then scaled to the output), then two more frames presented.
+wait_size() {
+	_n=0
+	while [ $_n -lt $(($3 * 10)) ]; do
+		if grep -q "shown, $2 " "$1" 2>/dev/null; then
+			wait_frames "$1" $(($(presented "$1") + 2)) "$3" "$4"
+			return
+		fi
+		alive "$4" || return 1
+		sleep 0.1
+		_n=$((_n + 1))
+	done
+	return 1
+}
+
 # stop PID [SECONDS]: SIGTERM, wait (20 s by default); sets RC to the exit
 # status, or "timeout" (then the app was killed).  Not in $(...): only the
 # parent shell can wait for the app.

@@ -44,6 +44,7 @@ t0=$(date +%s)
 APID=$!
 if wait_frames "$T/app1.log" 4 60 "$APID"; then
 	ok "wayland: frames presented ($(presented "$T/app1.log") so far)"
+	wait_size "$T/app1.log" ${OUT_W}x$OUT_H 60 "$APID" || bad "wayland: no frame at the output's size ${OUT_W}x$OUT_H"
 	mkdir "$T/shot"
 	(cd "$T/shot" && weston-screenshooter) >"$T/shot.log" 2>&1
 	shot=$(ls "$T"/shot/*.png 2>/dev/null | head -1)
