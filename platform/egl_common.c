@@ -209,6 +209,25 @@ static EGLContext create_context(struct platform *p, bool egl15, bool khr_cc, bo
 	return eglCreateContext(p->dpy, p->config, EGL_NO_CONTEXT, a);
 }
 
+/* The GLES 3.1 context, with debug output when asked (and without it when a
+ * debug context is refused).  0, or -1 with err. */
+static int make_context(struct platform *p, bool egl15, bool khr_cc, bool debug, char *err, size_t errlen)
+{
+	last_error_clear();
+	p->ctx = create_context(p, egl15, khr_cc, debug);
+	if (p->ctx == EGL_NO_CONTEXT && debug) {
+		log_warn("cannot create a debug GLES context (%s); continuing without",
+		         egl_common_error_name(eglGetError()));
+		last_error_clear();
+		p->ctx = create_context(p, egl15, khr_cc, false);
+	}
+	if (p->ctx == EGL_NO_CONTEXT) {
+		egl_fail(err, errlen, "cannot create an OpenGL ES 3.1 context: eglCreateContext");
+		return -1;
+	}
+	return 0;
+}
+
 static int check_gl_version(struct platform *p, char *err, size_t errlen)
 {
 	const char *ver = (const char *)glGetString(GL_VERSION);
@@ -263,18 +282,8 @@ int egl_common_make_context(struct platform *p, const struct platform_options *o
 	if (choose_config(p, renderable, surface_type, headless && !need_pbuffer && no_config, err, errlen) < 0)
 		return -1;
 
-	last_error_clear();
-	p->ctx = create_context(p, egl15, khr_cc, opt->debug);
-	if (p->ctx == EGL_NO_CONTEXT && opt->debug) {
-		log_warn("cannot create a debug GLES context (%s); continuing without",
-		         egl_common_error_name(eglGetError()));
-		last_error_clear();
-		p->ctx = create_context(p, egl15, khr_cc, false);
-	}
-	if (p->ctx == EGL_NO_CONTEXT) {
-		egl_fail(err, errlen, "cannot create an OpenGL ES 3.1 context: eglCreateContext");
+	if (make_context(p, egl15, khr_cc, opt->debug, err, errlen) < 0)
 		return -1;
-	}
 
 	if (need_pbuffer) {
 		const EGLint pb[] = { EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE };
@@ -378,18 +387,8 @@ int egl_common_make_window_context(struct platform *p, const struct platform_opt
 	if (!native_window)
 		return 0;
 
-	last_error_clear();
-	p->ctx = create_context(p, egl15, khr_cc, opt->debug);
-	if (p->ctx == EGL_NO_CONTEXT && opt->debug) {
-		log_warn("cannot create a debug GLES context (%s); continuing without",
-		         egl_common_error_name(eglGetError()));
-		last_error_clear();
-		p->ctx = create_context(p, egl15, khr_cc, false);
-	}
-	if (p->ctx == EGL_NO_CONTEXT) {
-		egl_fail(err, errlen, "cannot create an OpenGL ES 3.1 context: eglCreateContext");
+	if (make_context(p, egl15, khr_cc, opt->debug, err, errlen) < 0)
 		return -1;
-	}
 	PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC create_surface =
 		(PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC)eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT");
 	if (!create_surface) {
