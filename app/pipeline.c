@@ -13,6 +13,7 @@
  * mc_finish.comp and drawn with glDrawArraysIndirect. */
 #include "pipeline.h"
 #include "gpu.h"
+#include "clock.h"
 #include "log.h"
 #include "mc.h"
 #include "noise.h"
@@ -77,13 +78,6 @@ void grid_from_params(struct grid *g, const struct params *p)
 	g->origin[2] = p->vol_z - 0.5f * p->vol_size;
 }
 
-static double now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
 /* With profiling on, waits for the GPU and charges the time since the last
  * mark to pass `which`. */
 static void mark(struct pipeline *pl, int which, double *t)
@@ -91,7 +85,7 @@ static void mark(struct pipeline *pl, int which, double *t)
 	if (!pl->profile)
 		return;
 	glFinish();
-	double n = now_ms();
+	double n = clock_ms();
 	pl->pass_ms[which] += n - *t;
 	*t = n;
 }
@@ -424,7 +418,7 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 		log_error("%s", err);
 		return -1;
 	}
-	double t = now_ms();
+	double t = clock_ms();
 	bind_all(pl);
 	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
@@ -442,7 +436,7 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 
 static int run_hp(struct pipeline *pl, const struct params *p)
 {
-	double t = now_ms();
+	double t = clock_ms();
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->pad[1]);

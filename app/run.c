@@ -3,6 +3,7 @@
 #include "hal.h"
 #include "cli.h"
 #include "gpu.h"
+#include "clock.h"
 #include "log.h"
 #include "ply.h"
 #include "platform.h"
@@ -242,13 +243,6 @@ out:
 	return rc;
 }
 
-static double now_s(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
 static int run_world(struct params *p, struct frame_out *o)
 {
 	char err[512] = "";
@@ -274,14 +268,14 @@ static int run_world(struct params *p, struct frame_out *o)
 	 * blocks.  On a display the world runs live: wall-clock time, and
 	 * blocks stream in under the generation budget. */
 	bool live = !o->plat->headless;
-	double start = now_s();
+	double start = clock_ms() / 1e3;
 	if (p->camera == 2)
 		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s)",
 			 p->keyboard == 1 ? "off!" : "terminal or evdev");
 	for (int f = 0; frame_more(p, f); f++) {
 		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
 			o->fs->count = p->count = f + 1;
-		double t = live ? now_s() - start : (double)f / p->fps;
+		double t = live ? clock_ms() / 1e3 - start : (double)f / p->fps;
 		t -= (double)((float)t - hal_time(o->hal, (float)t)); /* paused time */
 		p->time = t0; /* the world does not scroll: the camera moves */
 		if (p->camera == 2) { /* manual: the keys steer, rock still stops */

@@ -21,6 +21,7 @@
 #include "world.h"
 #include "edits.h"
 #include "gpu.h"
+#include "clock.h"
 #include "log.h"
 #include "pipeline.h"
 
@@ -71,13 +72,6 @@ struct world {
 	int *want;
 	int nwant, want_cap;
 };
-
-static double now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
 
 static uint32_t hash_key(const int k[4])
 {
@@ -619,13 +613,13 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 		int slot = regen ? blk->slot : take_slot(w, blk->dist);
 		if (slot < 0)
 			break; /* pool full of nearer blocks */
-		double tb = now_ms();
+		double tb = clock_ms();
 		if (generate(w, p, b, slot, now) < 0)
 			return -1;
 		made++;
 		if (budgeted) {
 			glFlush();
-			w->credit_ms = fmax(w->credit_ms - (now_ms() - tb), -4.0 * p->gen_budget_ms);
+			w->credit_ms = fmax(w->credit_ms - (clock_ms() - tb), -4.0 * p->gen_budget_ms);
 		}
 	}
 	if (deterministic)

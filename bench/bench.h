@@ -1,4 +1,4 @@
-/* isoterra — what every benchmark shares: a monotonic clock, a comparator
+/* isoterra — what every benchmark shares (the clock is app/clock.h's): a comparator
  * for medians and percentiles, and the machine line printed at the top of
  * every report (numbers mean nothing without it). */
 #ifndef ISOTERRA_BENCH_H
@@ -9,14 +9,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "gpu.h"
-
-static inline double bench_now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
 
 static inline int bench_cmp_double(const void *a, const void *b)
 {

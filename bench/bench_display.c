@@ -23,7 +23,7 @@ enum step { DRAW, BLIT, PRESENT };
 static double run(struct platform *plat, struct renderer *r, const struct pipeline_draw *d, const struct camera *c,
 		  const struct params *p, enum step s, int frames)
 {
-	double t0 = bench_now_ms();
+	double t0 = clock_ms();
 	for (int f = 0; f < frames; f++) {
 		if (renderer_draw(r, d, c, p) < 0)
 			return -1;
@@ -38,7 +38,7 @@ static double run(struct platform *plat, struct renderer *r, const struct pipeli
 	}
 	if (s == PRESENT)
 		glFinish();
-	return (bench_now_ms() - t0) / frames;
+	return (clock_ms() - t0) / frames;
 }
 
 int main(int argc, char **argv)

@@ -25,20 +25,20 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 {
 	double t[64];
 	int n = 0;
-	double start = bench_now_ms();
+	double start = clock_ms();
 	/* warm-up (shader JIT, first-touch of buffers) */
 	if (w == DENSITY_ONLY)
 		pipeline_density(pl, p);
 	else
 		pipeline_run(pl, p);
 	glFinish();
-	while (n < 64 && (n < min_reps || bench_now_ms() - start < budget)) {
-		double t0 = bench_now_ms();
+	while (n < 64 && (n < min_reps || clock_ms() - start < budget)) {
+		double t0 = clock_ms();
 		int rc = w == DENSITY_ONLY ? pipeline_density(pl, p) : pipeline_run(pl, p);
 		glFinish();
 		if (rc < 0)
 			return -1;
-		t[n++] = bench_now_ms() - t0;
+		t[n++] = clock_ms() - t0;
 	}
 	qsort(t, (size_t)n, sizeof(double), bench_cmp_double);
 	return t[n / 2];
