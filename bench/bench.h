@@ -11,6 +11,8 @@
 
 #include "clock.h"
 #include "gpu.h"
+#include "log.h"
+#include "platform.h"
 
 static inline int bench_cmp_double(const void *a, const void *b)
 {
@@ -61,6 +63,25 @@ static inline void bench_print_machine(const struct gpu_caps *caps)
 	printf("machine: %s, %ld cores, load average %.2f at the start\n", cpu, sysconf(_SC_NPROCESSORS_ONLN),
 	       bench_loadavg());
 	printf("GL: %s | %s\n", caps->renderer, caps->version);
+}
+
+/* The GL context every benchmark runs in: the platform (auto, device,
+ * surfaceless, or a display at w x h), GLES 3.1 checked, the machine line
+ * printed.  NULL after one line on stderr. */
+static inline struct platform *bench_open(const char *plat_name, int w, int h)
+{
+	char err[512];
+	log_set_level(LOG_WARN);
+	struct platform_options po = { .name = plat_name, .width = w, .height = h };
+	struct platform *plat = platform_open(&po, err, sizeof(err));
+	struct gpu_caps caps;
+	if (plat && gpu_init(&caps, false, err, sizeof(err)) == 0) {
+		bench_print_machine(&caps);
+		return plat;
+	}
+	fprintf(stderr, "bench: %s\n", err);
+	platform_close(plat);
+	return NULL;
 }
 
 #endif

@@ -135,20 +135,10 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: --res %d out of range 8..8192\n", res);
 		return 2;
 	}
-	log_set_level(LOG_WARN);
+	struct platform *plat = bench_open(plat_name, 64, 64);
+	if (!plat)
+		return 1;
 	char err[512];
-	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
-	struct platform *plat = platform_open(&po, err, sizeof(err));
-	if (!plat) {
-		fprintf(stderr, "bench: %s\n", err);
-		return 1;
-	}
-	struct gpu_caps caps;
-	if (gpu_init(&caps, false, err, sizeof(err)) < 0) {
-		fprintf(stderr, "bench: %s\n", err);
-		return 1;
-	}
-	bench_print_machine(&caps);
 	printf("displacement map %dx%d over %gx%g world units, w = 15, lambda = 15, hash 16x16, iterative baseline: 32 "
 	       "line segments per curve, no hash\n\n",
 	       res, res, (double)TERRAIN, (double)TERRAIN);

@@ -67,21 +67,10 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench_display: bad --size, --frames, --rounds or --grid\n");
 		return 2;
 	}
-	log_set_level(LOG_WARN);
+	struct platform *plat = bench_open(plat_name, w, h);
+	if (!plat)
+		return 1;
 	char err[512];
-	struct platform_options po = { .name = plat_name, .width = w, .height = h };
-	struct platform *plat = platform_open(&po, err, sizeof(err));
-	if (!plat) {
-		fprintf(stderr, "bench_display: %s\n", err);
-		return 1;
-	}
-	struct gpu_caps caps;
-	if (gpu_init(&caps, false, err, sizeof(err)) < 0) {
-		fprintf(stderr, "bench_display: %s\n", err);
-		platform_close(plat);
-		return 1;
-	}
-	bench_print_machine(&caps);
 	if (plat->headless) {
 		printf("platform %s is headless: nothing to present (run under X11, Wayland or on a KMS console)\n",
 		       plat->backend->name);

@@ -63,20 +63,10 @@ int main(int argc, char **argv)
 			return 2;
 		}
 	}
-	log_set_level(LOG_WARN);
+	struct platform *plat = bench_open(plat_name, 64, 64);
+	if (!plat)
+		return 1;
 	char err[512];
-	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
-	struct platform *plat = platform_open(&po, err, sizeof(err));
-	if (!plat) {
-		fprintf(stderr, "bench: %s\n", err);
-		return 1;
-	}
-	struct gpu_caps caps;
-	if (gpu_init(&caps, false, err, sizeof(err)) < 0) {
-		fprintf(stderr, "bench: %s\n", err);
-		return 1;
-	}
-	bench_print_machine(&caps);
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 

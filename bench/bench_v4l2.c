@@ -121,14 +121,9 @@ int main(int argc, char **argv)
 	memset(&s, 0, sizeof(s));
 	s.w = 640;
 	s.h = 480;
-	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
-	struct platform *plat = platform_open(&po, err, sizeof(err));
-	struct gpu_caps caps;
-	if (!plat || gpu_init(&caps, false, err, sizeof(err)) < 0) {
-		fprintf(stderr, "bench: %s\n", err);
+	struct platform *plat = bench_open(plat_name, 64, 64);
+	if (!plat)
 		return 1;
-	}
-	bench_print_machine(&caps);
 	params_defaults(&s.p);
 	s.p.grid = 48; /* the terrain is extracted every frame, as in the app: a grid that leaves the frame rate to rendering */
 	grid_from_params(&s.g, &s.p);

@@ -124,16 +124,9 @@ int main(int argc, char **argv)
 			return 2;
 		}
 	}
-	log_set_level(LOG_WARN);
-	char err[512];
-	struct platform_options po = { .name = plat_name, .width = 64, .height = 64 };
-	struct platform *plat = platform_open(&po, err, sizeof(err));
-	struct gpu_caps caps;
-	if (!plat || gpu_init(&caps, false, err, sizeof(err)) < 0) {
-		fprintf(stderr, "bench: %s\n", err);
+	struct platform *plat = bench_open(plat_name, 64, 64);
+	if (!plat)
 		return 1;
-	}
-	bench_print_machine(&caps);
 	struct params p;
 	params_defaults(&p);
 	p.scene = 1;
