@@ -31,9 +31,9 @@ run_suite() { # name builddir meson-args...
 	return $rc
 }
 
-# the display tests (Xvfb, Weston, QEMU) fail rather than skip when a tool
+# the display and VM tests (Xvfb, Weston, QEMU) fail rather than skip when a tool
 # is missing: tools/deps.sh installs them all
-export ISOTERRA_REQUIRE_DISPLAY_TESTS=1
+export ISOTERRA_REQUIRE_DEVICE_TESTS=1
 status=0
 # Tests that boot a kernel under QEMU (meson suite "vm") run once, against the
 # release build; the sanitizer build runs everything else.

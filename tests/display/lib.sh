@@ -1,6 +1,6 @@
 # isoterra — shared helpers of the display tests (sourced).
 # Env (set by meson): ISOTERRA_BIN, IMGCMP, ISOTERRA_SRC.
-# ISOTERRA_REQUIRE_DISPLAY_TESTS=1 (tools/test-all.sh sets it) turns a
+# ISOTERRA_REQUIRE_DEVICE_TESTS=1 (tools/test-all.sh sets it) turns a
 # missing tool into a failure instead of a skip.
 BIN=${ISOTERRA_BIN:-./build/isoterra}
 IMGCMP=${IMGCMP:-./build/tests/imgcmp}
@@ -13,7 +13,7 @@ bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
 need() {
 	for t in "$@"; do
 		if ! command -v "$t" >/dev/null 2>&1 && [ ! -x "$t" ]; then
-			if [ "${ISOTERRA_REQUIRE_DISPLAY_TESTS:-0}" = 1 ]; then
+			if [ "${ISOTERRA_REQUIRE_DEVICE_TESTS:-0}" = 1 ]; then
 				echo "FAIL: '$t' is not installed (sh tools/deps.sh installs it)" >&2
 				echo "0 passed, 1 failed"
 				exit 1
