@@ -21,6 +21,7 @@
 #endif
 
 #define NLINES 10 /* 2 encoders x (A, B, switch) + 4 buttons */
+#define EVENTS_PER_READ 16 /* per line and poll: the kernel queues 16 (v1 uAPI) */
 
 enum role { R_ENC_A, R_ENC_B, R_ENC_SW, R_BUTTON };
 static const char *const role_name[] = { "A", "B", "switch", "" };
@@ -204,6 +205,24 @@ static void chip_gone(struct hal_gpio *g, int c, const char *why, uint64_t now)
 	ch->next_try = now + g->retry_ns;
 }
 
+struct edge {
+	int line, level;
+	uint64_t ts;
+};
+
+/* Stable insertion sort by timestamp (a few edges per frame; equal
+ * timestamps keep their order of reading). */
+static void sort_edges(struct edge *e, int n)
+{
+	for (int i = 1; i < n; i++) {
+		struct edge x = e[i];
+		int j = i;
+		for (; j > 0 && e[j - 1].ts > x.ts; j--)
+			e[j] = e[j - 1];
+		e[j] = x;
+	}
+}
+
 /* Event clock -> CLOCK_MONOTONIC (kernels before 5.7 stamped v1 events with
  * CLOCK_REALTIME). */
 static uint64_t event_ns(const struct timespec *ts, uint64_t now)
@@ -340,6 +359,13 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 	int pr = n ? poll(pfd, (nfds_t)n, 0) : 0;
 	if (pr < 0 && errno != EINTR)
 		log_warn("gpio: poll: %s", strerror(errno));
+	/* Each line has its own event fd, so the edges of an encoder's A and B
+	 * lines arrive in separate queues: when several accumulated since the
+	 * last frame (a slow frame, a fast turn), decoding one queue after the
+	 * other would scramble the Gray sequence.  All of them are merged by
+	 * their kernel timestamps first. */
+	struct edge ev_all[NLINES * EVENTS_PER_READ];
+	int nev = 0;
 	for (int k = 0; k < n && pr > 0; k++) {
 		struct gline *l = &g->lines[idx[k]];
 		if (!l->line) /* its chip went away while handling an earlier fd */
@@ -350,22 +376,28 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 		}
 		if (!(pfd[k].revents & POLLIN))
 			continue;
-		struct gpiod_line_event ev[16];
-		int ne = gpiod_line_event_read_fd_multiple(l->fd, ev, 16);
+		struct gpiod_line_event ev[EVENTS_PER_READ];
+		int ne = gpiod_line_event_read_fd_multiple(l->fd, ev, EVENTS_PER_READ);
 		if (ne < 0) {
 			chip_gone(g, l->chip, strerror(errno), now);
 			continue;
 		}
-		for (int e = 0; e < ne; e++) {
-			int level = ev[e].event_type == GPIOD_LINE_EVENT_RISING_EDGE;
-			uint64_t ts = event_ns(&ev[e].ts, now);
-			l->level = level;
-			switch (l->role) {
-			case R_ENC_A: rotary_edge(&g->enc[l->ctl], 0, level, ts); break;
-			case R_ENC_B: rotary_edge(&g->enc[l->ctl], 1, level, ts); break;
-			case R_ENC_SW: button_edge(&g->sw[l->ctl], level, ts); break;
-			case R_BUTTON: button_edge(&g->btn[l->ctl], level, ts); break;
-			}
+		for (int e = 0; e < ne; e++)
+			ev_all[nev++] = (struct edge){ .line = idx[k],
+						       .level = ev[e].event_type == GPIOD_LINE_EVENT_RISING_EDGE,
+						       .ts = event_ns(&ev[e].ts, now) };
+	}
+	sort_edges(ev_all, nev);
+	for (int e = 0; e < nev; e++) {
+		struct gline *l = &g->lines[ev_all[e].line];
+		int level = ev_all[e].level;
+		uint64_t ts = ev_all[e].ts;
+		l->level = level;
+		switch (l->role) {
+		case R_ENC_A: rotary_edge(&g->enc[l->ctl], 0, level, ts); break;
+		case R_ENC_B: rotary_edge(&g->enc[l->ctl], 1, level, ts); break;
+		case R_ENC_SW: button_edge(&g->sw[l->ctl], level, ts); break;
+		case R_BUTTON: button_edge(&g->btn[l->ctl], level, ts); break;
 		}
 	}
 #endif

@@ -1,16 +1,14 @@
 #!/bin/sh
 # isoterra — GPIO knobs against the real kernel: Debian's kernel under QEMU,
-# gpio-sim (built out of tree) as the gpiochip, and the app's input path
-# (hal_open/hal_poll with the parameter table, in hal_probe knobs: isoterra
-# itself crashed in the guest once the chip was open, see hal_probe.c and
-# docs/HARDWARE.md).  The guest part
-# (gpio_knobs_guest.sh) turns encoder 2 and encoder 1 through the Gray
-# sequence and presses a button by writing the lines' sysfs "pull"; the
-# app's knob log must show exactly the expected parameter steps.  Then the
-# chip is taken away (live = 0) and brought back, and finally removed
-# (rmdir): the app must keep running, report it, and work again when the
-# chip is back.
-# usage: gpio_knobs.sh HAL_PROBE BUILD_DIR [sanitize]
+# gpio-sim (built out of tree) as the gpiochip, and isoterra itself rendering
+# headless in the guest.  The guest part (gpio_knobs_guest.sh) turns
+# encoder 2 and encoder 1 through the Gray sequence and presses the buttons
+# by writing the lines' sysfs "pull"; the app's knob log must show exactly
+# the expected parameter steps.  Then the chip is taken away (live = 0) and
+# brought back, and finally removed (rmdir): the app must keep rendering,
+# report it, and work again when the chip is back.  A crash leaves a core
+# in the results folder, whose backtrace is printed here.
+# usage: gpio_knobs.sh ISOTERRA BUILD_DIR [sanitize]
 BIN=$1
 BUILD=$2
 [ "${3:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $3)"; exit 77; }
@@ -29,12 +27,13 @@ GPIOSIM=$HALVM_GPIOSIM
 ENV
 halvm_env "$RES"
 t0=$(date +%s)
-halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" "${ISOTERRA_VM_TIMEOUT:-560}"
+halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" "${ISOTERRA_VM_TIMEOUT:-840}"
 echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none})"
 if ! grep -q "HALVM-EXIT 0" "$RES/console.log"; then
 	echo "FAIL: the guest test failed; console:"
 	tail -60 "$RES/console.log"
 	[ -f "$RES/app.log" ] && { echo "--- app log:"; tail -30 "$RES/app.log"; }
+	halvm_cores "$RES" "$BIN"
 	exit 1
 fi
 grep -E "^(ok|FAIL|guest)" "$RES/console.log" | tr -d '\r'

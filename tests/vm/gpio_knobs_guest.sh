@@ -4,9 +4,10 @@
 . /run/res/env.sh
 R=/run/res
 fails=0
-ok() { echo "ok $*"; }
-bad() { echo "FAIL $*"; fails=$((fails + 1)); }
-die() { echo "FAIL $*"; exit 1; }
+up() { cut -d. -f1 /proc/uptime; } # guest seconds (loops of sleeps drift under TCG)
+ok() { echo "ok [$(up) s] $*"; }
+bad() { echo "FAIL [$(up) s] $*"; fails=$((fails + 1)); }
+die() { echo "FAIL [$(up) s] $*"; exit 1; }
 
 modprobe configfs || die "modprobe configfs"
 insmod "$GPIOSIM" || die "insmod gpio-sim"
@@ -35,7 +36,6 @@ nlog() { if [ -f $LOG ]; then wc -l <$LOG; else echo 0; fi; }
 # rendering under TCG takes seconds (the first one, compiling the shaders,
 # minutes without the shader cache): generous waits.
 WAIT=${WAIT:-60}
-up() { cut -d. -f1 /proc/uptime; } # guest seconds (loops of sleeps drift under TCG)
 # wait until the knob log has $1 lines, at most $2 (default $WAIT) seconds
 waitlog() {
 	end=$(($(up) + ${2:-$WAIT}))
@@ -80,10 +80,26 @@ ambient = 0.28
 sun = 1.0
 fov = 40
 CONF
-# the app's input path (hal_probe knobs: hal_open + hal_poll, see hal_probe.c)
-"$BIN" knobs --config $R/knobs.conf --keyboard off >$R/app.out 2>$R/app.log &
+# a crash leaves a core in the results folder (the host prints its backtrace)
+ulimit -c unlimited
+echo "/run/res/core.%e.%p" >/proc/sys/kernel/core_pattern
+trap save_cache EXIT
+# isoterra itself, headless, tiny frames (software rendering under TCG), one
+# PNG per frame so the test sees it render
+"$BIN" --platform surfaceless --size 64x48 --grid 8 --count 1000000 --cam-spin 0 --no-water \
+	--config $R/knobs.conf --keyboard off --out "$R/f%d.png" >$R/app.out 2>$R/app.log &
 APP=$!
 waitapp "gpio: $CHIP (knobs) ready" && ok "app opened the chip" || die "app did not open $CHIP: $(cat $R/app.log)"
+# the first frame compiles every shader (minutes under TCG without the cache)
+frames() { ls $R | grep -c '^f[0-9]*\.png$'; }
+waitframes() { # at least $1 frames, at most $2 s
+	end=$(($(up) + $2))
+	while [ "$(frames)" -lt "$1" ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
+	[ "$(frames)" -ge "$1" ]
+}
+t0=$(up)
+waitframes 2 ${WAIT_FIRST:-600} && ok "first frames rendered ($(($(up) - t0)) s)" ||
+	die "no frames in ${WAIT_FIRST:-600} s: $(tail -3 $R/app.log)"
 
 step "cw 2 3" "ambient 0.29"
 step "cw 2 3" "ambient 0.3"
@@ -104,7 +120,9 @@ step "cw 0 1" "select fov"
 # the chip goes away while the app runs ...
 echo 0 >$D/live
 waitapp "gpiochip 'knobs' is gone" && ok "vanished chip reported" || bad "vanished chip not reported"
-sleep 10
+nf=$(frames)
+waitframes $((nf + 2)) $WAIT && ok "frames rendered while the chip is gone ($nf -> $(frames))" ||
+	bad "no frames rendered while the chip is gone"
 kill -0 $APP 2>/dev/null && ok "app survives the chip going away" || bad "app died when the chip went away"
 [ "$(grep -c "is gone" $R/app.log)" -eq 1 ] && ok "reported once" || bad "reported $(grep -c 'is gone' $R/app.log) times"
 # ... and comes back
@@ -116,13 +134,14 @@ step "cw 2 3" "fov 40"
 # removed for good
 echo 0 >$D/live
 rmdir $D/bank0 $D && ok "chip removed (rmdir)" || bad "rmdir failed"
-sleep 10
+nf=$(frames)
+waitframes $((nf + 2)) $WAIT && ok "frames rendered after the removal ($nf -> $(frames))" ||
+	bad "no frames rendered after the chip's removal"
 kill -0 $APP 2>/dev/null && ok "app survives the chip's removal" || bad "app died after rmdir"
 kill -TERM $APP
 wait $APP
 rc=$?
 [ $rc -eq 0 ] && ok "app exits 0 on SIGTERM" || bad "app exit status $rc: $(tail -3 $R/app.log)"
 [ "$(nlog)" -eq $n ] && ok "no unexpected knob changes ($n)" || bad "$(nlog) knob log lines, want $n: $(cat $LOG)"
-save_cache
 echo "guest: $fails failures"
 [ $fails -eq 0 ]

@@ -1,12 +1,5 @@
 /* isoterra — helper of the VM tests (tests/vm/).
  *
- *   hal_probe knobs [isoterra options]
- *       the app's input path (hal_open, hal_poll: GPIO -> parameter table,
- *       knob_log) without the renderer, for tests/vm/gpio_knobs.sh: the
- *       isoterra binary itself crashed (SIGSEGV) in the TCG guest once a
- *       gpiochip was open, not reproducible under gdb nor on the host
- *       (see docs/HARDWARE.md), so the GPIO test drives this instead.
- *
  *   hal_probe compare CAPTURE.raw REF.png FORMAT MATRIX MIN_PSNR [W H]
  *       the last whole frame of a capture (YUYV, UYVY or NV12) back to RGB
  *       (CPU, limited range, BT.601 or BT.709: an implementation independent
@@ -25,18 +18,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <time.h>
-
-static volatile sig_atomic_t stop;
-static void on_term(int s) { (void)s; stop = 1; }
-
-static void nap_ms(int ms)
-{
-	struct timespec ts = { ms / 1000, (long)(ms % 1000) * 1000000L };
-	nanosleep(&ts, NULL);
-}
 
 static int parse(int argc, char **argv, struct params *p)
 {
@@ -47,37 +29,6 @@ static int parse(int argc, char **argv, struct params *p)
 		return -1;
 	}
 	return r == CLI_RUN ? 0 : -1;
-}
-
-/* The app's input path without the renderer: hal_open, then hal_poll (GPIO
- * knobs and buttons -> the parameter table, knob_log) every 5 ms, as the
- * frame loop calls it once per frame; SIGTERM ends it. */
-static int knobs(int argc, char **argv)
-{
-	struct params p;
-	if (parse(argc, argv, &p) < 0)
-		return 2;
-	p.osd = false;  /* no GL here */
-	p.keyboard = 1; /* off */
-	p.v4l2[0] = 0;
-	struct sigaction sa;
-	memset(&sa, 0, sizeof(sa));
-	sa.sa_handler = on_term;
-	sigemptyset(&sa.sa_mask);
-	if (sigaction(SIGTERM, &sa, NULL) < 0 || sigaction(SIGINT, &sa, NULL) < 0) {
-		log_error("sigaction failed");
-		return 2;
-	}
-	char err[512];
-	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
-	if (!h) {
-		log_error("%s", err);
-		return 2;
-	}
-	while (!stop && !hal_poll(h, &p))
-		nap_ms(5);
-	hal_close(h);
-	return 0;
 }
 
 static uint8_t *read_file(const char *path, size_t *len)
@@ -250,12 +201,10 @@ static int compare(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-	if (argc >= 2 && !strcmp(argv[1], "knobs"))
-		return knobs(argc - 1, argv + 1);
 	if (argc >= 4 && !strcmp(argv[1], "convert"))
 		return convert(argc - 1, argv + 1);
 	if ((argc == 7 || argc == 9) && !strcmp(argv[1], "compare"))
 		return compare(argc - 1, argv + 1);
-	fprintf(stderr, "usage: hal_probe knobs|convert|compare ... (see tests/vm/hal_probe.c)\n");
+	fprintf(stderr, "usage: hal_probe convert|compare ... (see tests/vm/hal_probe.c)\n");
 	return 2;
 }
