@@ -75,7 +75,7 @@ struct gpu_conv {
 	GLuint prog, src_tex, src_fbo, out_tex, out_fbo;
 	int src_w, src_h, out_h;
 	uint32_t words;
-	GLint l_src, l_fmt, l_w, l_h, l_bpl, l_size, l_words, l_out_w, l_k;
+	GLint l_src, l_scaled, l_w, l_h, l_bpl, l_size, l_words, l_out_w, l_k;
 	struct slot slots[MAX_SLOTS];
 	int nslots;
 	unsigned long seq;
@@ -136,13 +136,15 @@ struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, char 
 	c->f = *f;
 	c->mapped = -1;
 	c->nslots = nslots;
-	c->prog = gpu_compute_program("v4l2_convert.comp", NULL, err, errlen);
+	char defs[32];
+	snprintf(defs, sizeof(defs), "#define FMT %du\n", (int)f->fmt); /* one program per format */
+	c->prog = gpu_compute_program("v4l2_convert.comp", defs, err, errlen);
 	if (!c->prog) {
 		free(c);
 		return NULL;
 	}
 	c->l_src = glGetUniformLocation(c->prog, "u_src");
-	c->l_fmt = glGetUniformLocation(c->prog, "u_fmt");
+	c->l_scaled = glGetUniformLocation(c->prog, "u_scaled");
 	c->l_w = glGetUniformLocation(c->prog, "u_w");
 	c->l_h = glGetUniformLocation(c->prog, "u_h");
 	c->l_bpl = glGetUniformLocation(c->prog, "u_bpl");
@@ -206,7 +208,7 @@ int gpu_conv_submit(struct gpu_conv *c, GLuint src_fbo, int sw, int sh)
 	glActiveTexture(GL_TEXTURE0);
 	glBindTexture(GL_TEXTURE_2D, c->src_tex);
 	glUniform1i(c->l_src, 0);
-	glUniform1ui(c->l_fmt, (GLuint)c->f.fmt);
+	glUniform1i(c->l_scaled, sw != c->f.width || sh != c->f.height);
 	glUniform1ui(c->l_w, (GLuint)c->f.width);
 	glUniform1ui(c->l_h, (GLuint)c->f.height);
 	glUniform1ui(c->l_bpl, c->f.bytesperline);

@@ -3,6 +3,11 @@
 // with the device's bytesperline and sizeimage.  One invocation writes 4
 // bytes of the frame: word i goes to texel (i % OUT_W, i / OUT_W) of an
 // RGBA8 image that glReadPixels copies, byte for byte, into a pixel buffer.
+//
+// The host compiles one program per format (FMT = one of the F_* below), so
+// the per-byte format switch below is resolved at compile time.  The common
+// case of packed 4:2:2 with 4-byte aligned lines (a word = one macropixel:
+// two texel fetches) has its own path.
 layout(local_size_x = 64) in;
 precision highp image2D;
 
@@ -13,18 +18,27 @@ precision highp image2D;
 #define F_YU12 4u
 #define F_RGB24 5u
 #define F_BGR24 6u
+#ifndef FMT
+#error "FMT (the output format) must be defined by the host"
+#endif
 
 uniform highp sampler2D u_src;   // the rendered frame (GL rows: bottom first)
 layout(rgba8, binding = 0) writeonly uniform highp image2D u_out;
-uniform uint u_fmt, u_w, u_h, u_bpl, u_size, u_words, u_out_w;
+uniform uint u_w, u_h, u_bpl, u_size, u_words, u_out_w; // the device's frame
+uniform bool u_scaled;           // the device's size differs from the frame's
 uniform vec2 u_k;                // (Kr, Kb)
 
+// pixel (x, y) of the device's frame, y from the top; clamped to the edge.
+// Same size: the rendered pixel itself; else bilinear from the rendered frame.
 vec3 rgb(uint x, uint y)
 {
 	x = min(x, u_w - 1u);
 	y = min(y, u_h - 1u);
-	vec2 uv = vec2((float(x) + 0.5) / float(u_w), 1.0 - (float(y) + 0.5) / float(u_h));
-	return texture(u_src, uv).rgb;
+	if (u_scaled) {
+		vec2 uv = vec2((float(x) + 0.5) / float(u_w), 1.0 - (float(y) + 0.5) / float(u_h));
+		return textureLod(u_src, uv, 0.0).rgb;
+	}
+	return texelFetch(u_src, ivec2(int(x), int(u_h - 1u - y)), 0).rgb;
 }
 
 float luma(vec3 c) { return dot(c, vec3(u_k.x, 1.0 - u_k.x - u_k.y, u_k.y)); }
@@ -42,12 +56,12 @@ uint byte_at(uint off)
 {
 	if (off >= u_size)
 		return 0u;
-	if (u_fmt == F_YUYV || u_fmt == F_UYVY) {
+	if (FMT == F_YUYV || FMT == F_UYVY) {
 		uint y = off / u_bpl, x = off % u_bpl;
 		if (y >= u_h || x >= 4u * ((u_w + 1u) / 2u))
 			return 0u;
 		uint px = (x / 4u) * 2u, k = x % 4u;
-		if (u_fmt == F_UYVY)
+		if (FMT == F_UYVY)
 			k ^= 1u; // U Y0 V Y1 -> the roles of Y0 U Y1 V
 		if (k == 0u)
 			return Y(rgb(px, y));
@@ -56,12 +70,12 @@ uint byte_at(uint off)
 		vec3 c = 0.5 * (rgb(px, y) + rgb(px + 1u, y));
 		return k == 1u ? Cb(c) : Cr(c);
 	}
-	if (u_fmt == F_RGB24 || u_fmt == F_BGR24) {
+	if (FMT == F_RGB24 || FMT == F_BGR24) {
 		uint y = off / u_bpl, x = off % u_bpl;
 		if (y >= u_h || x >= 3u * u_w)
 			return 0u;
 		uint k = x % 3u;
-		if (u_fmt == F_BGR24)
+		if (FMT == F_BGR24)
 			k = 2u - k;
 		vec3 c = rgb(x / 3u, y);
 		return q(255.0 * (k == 0u ? c.r : k == 1u ? c.g : c.b));
@@ -73,12 +87,12 @@ uint byte_at(uint off)
 		return x < u_w ? Y(rgb(x, y)) : 0u;
 	}
 	uint o = off - luma_size, cw = (u_w + 1u) / 2u, ch = (u_h + 1u) / 2u;
-	if (u_fmt == F_NV12 || u_fmt == F_NV21) {
+	if (FMT == F_NV12 || FMT == F_NV21) {
 		uint y = o / u_bpl, x = o % u_bpl;
 		if (y >= ch || x >= 2u * cw)
 			return 0u;
 		uint k = x % 2u;
-		if (u_fmt == F_NV21)
+		if (FMT == F_NV21)
 			k ^= 1u;
 		vec3 c = avg4((x / 2u) * 2u, 2u * y);
 		return k == 0u ? Cb(c) : Cr(c);
@@ -95,12 +109,29 @@ uint byte_at(uint off)
 	return v ? Cr(c) : Cb(c);
 }
 
+// 4:2:2 with 4-byte aligned lines: word i is one whole macropixel (two
+// pixels) or line padding; (0, 0, 0, 0) past the last one
+uvec4 macropixel(uint i)
+{
+	uint wpl = u_bpl / 4u, y = i / wpl, px = 2u * (i % wpl);
+	if (y >= u_h || px >= u_w || 4u * i >= u_size)
+		return uvec4(0u);
+	vec3 a = rgb(px, y), b = rgb(px + 1u, y), c = 0.5 * (a + b);
+	uvec4 w = uvec4(Y(a), Cb(c), Y(b), Cr(c));
+	return FMT == F_UYVY ? w.yxwz : w;
+}
+
 void main()
 {
 	uint i = gl_GlobalInvocationID.x;
 	if (i >= u_words)
 		return;
-	uint o = 4u * i;
-	vec4 b = vec4(float(byte_at(o)), float(byte_at(o + 1u)), float(byte_at(o + 2u)), float(byte_at(o + 3u))) / 255.0;
-	imageStore(u_out, ivec2(int(i % u_out_w), int(i / u_out_w)), b);
+	uvec4 w;
+	if ((FMT == F_YUYV || FMT == F_UYVY) && u_bpl % 4u == 0u) {
+		w = macropixel(i);
+	} else {
+		uint o = 4u * i;
+		w = uvec4(byte_at(o), byte_at(o + 1u), byte_at(o + 2u), byte_at(o + 3u));
+	}
+	imageStore(u_out, ivec2(int(i % u_out_w), int(i / u_out_w)), vec4(w) / 255.0);
 }

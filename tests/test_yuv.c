@@ -1,7 +1,8 @@
 /* isoterra — the V4L2 colour conversion on the GPU (hal/convert.c +
  * shaders/v4l2_convert.comp) against a CPU reference of the BT.601 / BT.709
  * limited-range formulas, for every output format, tight and padded lines,
- * even and odd sizes; the asynchronous read-back ring and the paced sink.
+ * even and odd sizes, a device size other than the frame's (scaled); the
+ * asynchronous read-back ring and the paced sink.
  * Tolerance: 1 code value (rounding of float vs double). */
 #include "app.h"
 #include "convert.h"
@@ -154,11 +155,12 @@ int main(void)
 		GLuint tex, fbo = upload(img, w, h, &tex);
 		for (int fmt = 0; fmt < CF_COUNT; fmt++)
 			for (int m = 0; m < 2; m++)
-				for (int pad = 0; pad < 2; pad++) {
+				for (int pad = 0; pad < 3; pad++) {
 					struct frame_format f = { .fmt = fmt, .width = w, .height = h, .matrix = m };
 					conv_fmt_tight(fmt, w, h, &f.bytesperline, &f.sizeimage);
-					if (pad) { /* a device with padded lines and a larger buffer */
-						f.bytesperline += 12;
+					if (pad) { /* a device with padded lines (by 12, or by 2: lines
+						    * not 4-byte aligned, the packed 4:2:2 fallback) and a larger buffer */
+						f.bytesperline += pad == 1 ? 12 : 2;
 						f.sizeimage = conv_fmt_min_size(fmt, h, f.bytesperline) + 100;
 					}
 					struct gpu_conv *c = gpu_conv_create(&f, 2, err, sizeof(err));
@@ -184,6 +186,44 @@ int main(void)
 					gpu_conv_release(c);
 					gpu_conv_destroy(c);
 				}
+		/* a device that takes a different size: the conversion scales.  A
+		 * frame rendered at twice the size in 2x2 blocks of the image's
+		 * pixels must give the image's own bytes (bilinear sampling at the
+		 * blocks' centres), in every format. */
+		if (s == 0) {
+			int w2 = 2 * w, h2 = 2 * h;
+			uint8_t *big = malloc((size_t)w2 * h2 * 4);
+			for (int y = 0; y < h2; y++)
+				for (int x = 0; x < w2; x++)
+					memcpy(big + 4 * ((size_t)y * w2 + x), img + 4 * ((size_t)(y / 2) * w + x / 2), 4);
+			GLuint btex, bfbo = upload(big, w2, h2, &btex);
+			for (int fmt = 0; fmt < CF_COUNT; fmt++) {
+				struct frame_format f = { .fmt = fmt, .width = w, .height = h, .matrix = CM_BT709 };
+				conv_fmt_tight(fmt, w, h, &f.bytesperline, &f.sizeimage);
+				struct gpu_conv *c = gpu_conv_create(&f, 2, err, sizeof(err));
+				CHECK(c != NULL, "create %s: %s", conv_fmt_name(fmt), err);
+				if (!c)
+					continue;
+				CHECK(gpu_conv_submit(c, bfbo, w2, h2) == 1, "submit scaled");
+				const uint8_t *got = gpu_conv_ready(c, true);
+				uint8_t *want = malloc(f.sizeimage);
+				reference(&f, img, want);
+				int maxd = 0;
+				for (uint32_t i = 0; got && i < f.sizeimage; i++) {
+					int d = abs((int)got[i] - (int)want[i]);
+					maxd = d > maxd ? d : maxd;
+				}
+				printf("%dx%d frame -> %dx%d %-5s (scaled): max diff %d\n", w2, h2, w, h, conv_fmt_name(fmt),
+				       maxd);
+				CHECK(got && maxd <= 1, "scaled %s: max diff %d", conv_fmt_name(fmt), maxd);
+				free(want);
+				gpu_conv_release(c);
+				gpu_conv_destroy(c);
+			}
+			glDeleteFramebuffers(1, &bfbo);
+			glDeleteTextures(1, &btex);
+			free(big);
+		}
 		/* the ring: three frames in flight without waiting, then in order */
 		struct frame_format f = { .fmt = CF_YUYV, .width = w, .height = h };
 		conv_fmt_tight(CF_YUYV, w, h, &f.bytesperline, &f.sizeimage);

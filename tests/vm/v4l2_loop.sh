@@ -12,16 +12,21 @@
 # reach MIN_PSNR.  Negative control: a capture taken before the app streams
 # (vivid's test pattern) must not match.  Also: the capture node given as
 # --v4l2 is refused with one clear message (exit 2), and an output node
-# another program streams to is reported busy while the frames are rendered.
+# another program streams to is reported busy while the frames are rendered;
+# the output node disappearing while the app streams (vivid's Disconnect
+# control) is reported, rendering goes on, and the stream resumes when the
+# node is back (a second capture matches again).
 # usage: v4l2_loop.sh ISOTERRA HAL_PROBE BUILD_DIR [sanitize]
 BIN=$1
 PROBE=$2
 BUILD=$3
-# vivid scales the 4x smaller frames up with its own coarse scaler (not
-# block-exact: it softens and shifts edges by a line), and YUYV halves the
-# chroma: the looped frame measured 21.6 dB against the app's frame, vivid's
-# test pattern 9.4 dB.  The threshold sits between the two.
-MIN_PSNR=18
+# vivid scales the 4x smaller frames up with its own scaler and YUYV halves
+# the chroma: the looped frame measured 39.5 dB against the app's frame,
+# vivid's test pattern 9.2-9.4 dB.  (With the earlier conversion shader,
+# which sampled the frame through texture() with filtering, the guest's
+# llvmpipe gave 21.6 dB, mean error 10 levels: exact on the host, not in the
+# guest.  The threshold sits well above that and below the measurement.)
+MIN_PSNR=30
 [ "${4:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $4)"; exit 77; }
 HERE=$(cd "$(dirname "$0")" && pwd)
 HALVM_CACHE="$BUILD/hal-vm-cache"
@@ -54,6 +59,14 @@ if "$PROBE" compare "$RES/cap.yuv" "$RES/$REF" YUYV bt601 $MIN_PSNR $(cat "$RES/
 	passes=$((passes + 1))
 else
 	echo "FAIL capture does not match the app's frame $REF (PSNR < $MIN_PSNR dB)"
+	fails=$((fails + 1))
+fi
+# ... and again after the device was disconnected and came back
+if "$PROBE" compare "$RES/cap2.yuv" "$RES/$REF" YUYV bt601 $MIN_PSNR $(cat "$RES/size"); then
+	echo "ok capture after the reconnection matches the app's frame $REF"
+	passes=$((passes + 1))
+else
+	echo "FAIL capture after the reconnection does not match the app's frame $REF"
 	fails=$((fails + 1))
 fi
 # negative control: vivid's own picture before the app streamed

@@ -4,6 +4,7 @@
 . /run/res/env.sh
 R=/run/res
 fails=0
+up() { cut -d. -f1 /proc/uptime; } # guest seconds
 ok() { echo "ok $*"; }
 bad() { echo "FAIL $*"; fails=$((fails + 1)); }
 die() { echo "FAIL $*"; exit 1; }
@@ -70,7 +71,6 @@ fi
 "$BIN" --platform surfaceless --size ${SW}x$SH --grid 16 --count 1000000 --cam-spin 0 --no-water --keyboard off \
 	--v4l2 $OUT --v4l2-format YUYV --v4l2-matrix bt601 --v4l2-fps 0 --out "$R/frame%d.png" >$R/app.log 2>&1 &
 APP=$!
-up() { cut -d. -f1 /proc/uptime; }
 end=$(($(up) + WAIT))
 while [ ! -s $R/frame3.png ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
 [ -s $R/frame3.png ] || die "the app did not render 4 frames in $WAIT s: $(tail -5 $R/app.log)"
@@ -84,6 +84,31 @@ echo frame$n.png >$R/ref.name
 [ -s $R/cap.yuv ] && ok "capture while the app streams: $(wc -c <$R/cap.yuv) bytes (frame $n)" || bad "capture failed"
 cmp -s $R/frame2.png $R/frame$n.png && ok "the app's frames are still (frame 2 = frame $n)" ||
 	bad "the app's frames change (frame 2 != frame $n): the capture cannot be matched"
+# the device goes away while the app streams: vivid's "Disconnect" control
+# unregisters its nodes as a USB unplug would (ioctls fail with ENODEV) and
+# registers them again once the last file handle is closed.  The app must
+# report it, go on rendering, and stream again when the node is back.
+frames() { ls $R | grep -c '^frame[0-9]*\.png$'; }
+waitfor() { # regex in the app log, at most $2 s
+	end=$(($(up) + $2))
+	while ! grep -q "$1" $R/app.log && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
+	grep -q "$1" $R/app.log
+}
+v4l2-ctl -d $CAP --set-ctrl=disconnect=1 || bad "vivid's disconnect control failed"
+waitfor "v4l2: $OUT: .*No such device.*video output stopped" 120 &&
+	ok "device gone reported: $(grep "video output stopped" $R/app.log | head -1)" ||
+	bad "device gone not reported: $(tail -3 $R/app.log)"
+nf=$(frames)
+end=$(($(up) + 120))
+while [ "$(frames)" -lt $((nf + 2)) ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
+[ "$(frames)" -ge $((nf + 2)) ] && ok "frames rendered after the device went away ($nf -> $(frames))" ||
+	bad "rendering stopped with the device"
+waitfor "v4l2: $OUT .*(recovered)" 120 && ok "output resumed: $(grep "(recovered)" $R/app.log | head -1)" ||
+	bad "output did not resume: $(tail -3 $R/app.log)"
+# the looped frames are the app's again
+sleep 5
+capture $R/cap2.yuv
+[ -s $R/cap2.yuv ] && ok "capture after the reconnection: $(wc -c <$R/cap2.yuv) bytes" || bad "capture after the reconnection failed"
 kill -TERM $APP
 wait $APP
 rc=$?
