@@ -94,6 +94,23 @@ static void reference(const struct frame_format *f, const uint8_t *img, uint8_t 
 	}
 }
 
+/* The largest difference of got (NULL: 256) from the reference bytes of
+ * img, and how many bytes differ. */
+static int diff_reference(const struct frame_format *f, const uint8_t *img, const uint8_t *got, int *ndiff)
+{
+	uint8_t *want = malloc(f->sizeimage);
+	int maxd = got ? 0 : 256;
+	*ndiff = 0;
+	reference(f, img, want);
+	for (uint32_t i = 0; got && i < f->sizeimage; i++) {
+		int d = abs((int)got[i] - (int)want[i]);
+		maxd = d > maxd ? d : maxd;
+		*ndiff += d > 0;
+	}
+	free(want);
+	return maxd;
+}
+
 /* A source framebuffer holding img (GL rows bottom first). */
 static GLuint upload(const uint8_t *img, int w, int h, GLuint *tex)
 {
@@ -170,19 +187,11 @@ int main(void)
 					CHECK(gpu_conv_submit(c, fbo, w, h) == 1, "submit");
 					const uint8_t *got = gpu_conv_ready(c, true);
 					CHECK(got != NULL, "read-back %s", conv_fmt_name(fmt));
-					uint8_t *want = malloc(f.sizeimage);
-					reference(&f, img, want);
-					int maxd = 0, ndiff = 0;
-					for (uint32_t i = 0; got && i < f.sizeimage; i++) {
-						int d = abs((int)got[i] - (int)want[i]);
-						maxd = d > maxd ? d : maxd;
-						ndiff += d > 0;
-					}
+					int ndiff, maxd = diff_reference(&f, img, got, &ndiff);
 					printf("%dx%d %-5s %s %s: max diff %d, %d of %u bytes differ\n", w, h, conv_fmt_name(fmt),
 					       m ? "bt709" : "bt601", pad ? "padded" : "tight ", maxd, ndiff, f.sizeimage);
 					CHECK(maxd <= 1, "%dx%d %s matrix %d pad %d: max diff %d", w, h, conv_fmt_name(fmt), m, pad, maxd);
 					CHECK(ndiff <= (int)f.sizeimage / 50, "%s: %d bytes off by one (> 2%%)", conv_fmt_name(fmt), ndiff);
-					free(want);
 					gpu_conv_release(c);
 					gpu_conv_destroy(c);
 				}
@@ -206,17 +215,10 @@ int main(void)
 					continue;
 				CHECK(gpu_conv_submit(c, bfbo, w2, h2) == 1, "submit scaled");
 				const uint8_t *got = gpu_conv_ready(c, true);
-				uint8_t *want = malloc(f.sizeimage);
-				reference(&f, img, want);
-				int maxd = 0;
-				for (uint32_t i = 0; got && i < f.sizeimage; i++) {
-					int d = abs((int)got[i] - (int)want[i]);
-					maxd = d > maxd ? d : maxd;
-				}
+				int ndiff, maxd = diff_reference(&f, img, got, &ndiff);
 				printf("%dx%d frame -> %dx%d %-5s (scaled): max diff %d\n", w2, h2, w, h, conv_fmt_name(fmt),
 				       maxd);
-				CHECK(got && maxd <= 1, "scaled %s: max diff %d", conv_fmt_name(fmt), maxd);
-				free(want);
+				CHECK(maxd <= 1, "scaled %s: max diff %d", conv_fmt_name(fmt), maxd);
 				gpu_conv_release(c);
 				gpu_conv_destroy(c);
 			}
