@@ -59,45 +59,15 @@ halvm_gpio_sim() {
 	mkdir -p "$d" && cp "$d.tmp/gpio-sim-oot.ko" "$HALVM_GPIOSIM" && rm -rf "$d.tmp"
 }
 
-# initramfs: busybox, virtio_pci + 9p modules, an /init that mounts the host
-# and runs "chroot /host /bin/sh $halvm_script" (from the kernel command line).
+# initramfs: busybox, virtio_pci + 9p modules and hal_init (mounts the host
+# and runs "chroot /host /bin/sh $halvm_script" from the kernel command
+# line), built by mkinitramfs.sh like the KMS test's; rebuilt when either
+# script changes.
 halvm_initramfs() {
-	HALVM_INITRD="$HALVM_CACHE/initramfs-v2-$HALVM_REL.cpio.gz"
-	[ -s "$HALVM_INITRD" ] && return 0
-	r="$HALVM_CACHE/initramfs.tmp"
-	rm -rf "$r" && mkdir -p "$r/bin" "$r/mods" "$r/proc" "$r/sys" "$r/dev" "$r/host" || return 1
-	cp /bin/busybox "$r/bin/busybox" || return 1
-	: >"$r/mods/order"
-	for m in virtio_pci 9pnet_virtio 9p; do
-		modprobe -S "$HALVM_REL" --show-depends "$m" | awk '$1 == "insmod" {print $2}'
-	done | awk '!seen[$0]++' | while read -r ko; do
-		cp "$ko" "$r/mods/" && basename "$ko" >>"$r/mods/order"
-	done
-	cat >"$r/init" <<'INIT'
-#!/bin/busybox sh
-/bin/busybox --install -s /bin
-mount -t proc proc /proc
-mount -t sysfs sys /sys
-mount -t devtmpfs dev /dev
-for m in $(cat /mods/order); do insmod /mods/$m || echo "HALVM: insmod $m failed"; done
-script=$(sed -n 's/.*halvm_script=\([^ ]*\).*/\1/p' /proc/cmdline)
-if mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host; then
-	mount -o bind /proc /host/proc && mount -o bind /sys /host/sys && mount -o bind /dev /host/dev &&
-	mount -t tmpfs run /host/run && mkdir -p /host/run/res &&
-	mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 res /host/run/res &&
-	{ ! grep -q halvm_cache=1 /proc/cmdline || { mkdir -p /host/run/mesa-cache &&
-		mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 cache /host/run/mesa-cache; } ||
-		echo "HALVM: cannot mount the shader cache"; } &&
-	chroot /host /bin/sh "$script"
-	echo "HALVM-EXIT $?"
-else
-	echo "HALVM: cannot mount the host file system"
-fi
-poweroff -f
-INIT
-	chmod +x "$r/init"
-	(cd "$r" && find . | cpio -o -H newc 2>/dev/null | gzip -1 >"$HALVM_INITRD.tmp") && mv "$HALVM_INITRD.tmp" "$HALVM_INITRD"
-	rm -rf "$r"
+	HALVM_INITRD="$HALVM_CACHE/initramfs-$HALVM_REL.cpio.gz"
+	[ -s "$HALVM_INITRD" ] && [ "$HALVM_INITRD" -nt "$HERE/hal_init" ] && [ "$HALVM_INITRD" -nt "$HERE/mkinitramfs.sh" ] &&
+		return 0
+	sh "$HERE/mkinitramfs.sh" "$HALVM_INITRD" "$HALVM_REL" "$HERE/hal_init" virtio_pci 9pnet_virtio 9p >/dev/null
 }
 
 # Mesa's shader cache for the guest, kept between runs: software rendering

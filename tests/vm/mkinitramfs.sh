@@ -1,13 +1,16 @@
 #!/bin/sh
-# isoterra — build the QEMU test initramfs: busybox-static, the kernel
-# modules for virtio-pci, 9p and virtio-gpu (with their dependencies, as
-# `modprobe --show-depends` lists them for this kernel release) and
-# tests/vm/init as /init.
-#   mkinitramfs.sh OUT.cpio.gz KERNEL_RELEASE
+# isoterra — build a QEMU test initramfs: busybox-static, the kernel
+# modules named (with their dependencies, as `modprobe --show-depends`
+# lists them for this kernel release, in load order: /mods/order) and INIT
+# as /init.  Used by the KMS test (init: tests/vm/init, + virtio_gpu) and
+# the hardware-layer tests (init: tests/vm/hal_init).
+#   mkinitramfs.sh OUT.cpio.gz KERNEL_RELEASE INIT MODULE...
 set -eu
+[ $# -ge 4 ] || { echo "usage: mkinitramfs.sh OUT.cpio.gz KERNEL_RELEASE INIT MODULE..." >&2; exit 2; }
 out=$1
 rel=$2
-here=$(cd "$(dirname "$0")" && pwd)
+init=$3
+shift 3
 busybox=$(command -v busybox || echo /bin/busybox)
 [ -x "$busybox" ] || { echo "mkinitramfs: busybox not found (apt-get install busybox-static)" >&2; exit 1; }
 # a dynamically linked busybox would need its libraries in the initramfs
@@ -21,7 +24,7 @@ d=$(mktemp -d)
 trap 'rm -rf "$d"' EXIT
 mkdir -p "$d/bin" "$d/proc" "$d/sys" "$d/dev" "$d/host" "$d/mods"
 cp "$busybox" "$d/bin/busybox"
-for m in virtio_pci 9pnet_virtio 9p virtio_gpu; do
+for m in "$@"; do
 	modprobe -S "$rel" --show-depends "$m" || { echo "mkinitramfs: no module $m for $rel" >&2; exit 1; }
 done | awk '$1 == "insmod" && !seen[$2]++ { print $2 }' >"$d/list"
 while read -r ko; do
@@ -36,7 +39,7 @@ while read -r ko; do
 	echo "$name" >>"$d/mods/order"
 done <"$d/list"
 rm "$d/list"
-cp "$here/init" "$d/init"
+cp "$init" "$d/init"
 chmod 755 "$d/init"
 (cd "$d" && find . | cpio -o -H newc --quiet | gzip -1) >"$out.tmp"
 mv "$out.tmp" "$out"

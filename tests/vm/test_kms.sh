@@ -46,7 +46,7 @@ t0=$(date +%s)
 mkdir -p "$BUILD/vm"
 INITRD=$BUILD/vm/initramfs-$REL.cpio.gz
 if [ ! -s "$INITRD" ] || [ "$here/init" -nt "$INITRD" ] || [ "$here/mkinitramfs.sh" -nt "$INITRD" ]; then
-	sh "$here/mkinitramfs.sh" "$INITRD" "$REL" || { bad "mkinitramfs failed"; echo "$pass passed, $fail failed"; exit 1; }
+	sh "$here/mkinitramfs.sh" "$INITRD" "$REL" "$here/init" virtio_pci 9pnet_virtio 9p virtio_gpu || { bad "mkinitramfs failed"; echo "$pass passed, $fail failed"; exit 1; }
 fi
 
 # tiny work in the guest: software rendering there is ~350x slower
