@@ -22,7 +22,10 @@ struct hal_keys {
 	int ev_fd;             /* evdev, -1 when not used */
 	char ev_path[PARAM_STR_MAX];
 	bool ev_reported;
+	uint64_t ev_next_try;  /* when to try opening it again */
 };
+
+#define EV_RETRY_NS 2000000000ull /* a vanished evdev keyboard: every 2 s */
 
 /* Terminal settings are restored at exit even when the loop ends through
  * an error path. */
@@ -105,7 +108,7 @@ struct hal_keys *hal_keys_open(const struct params *p, char *err, size_t errlen)
 		snprintf(k->ev_path, sizeof(k->ev_path), "%s", p->keyboard_evdev);
 		k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
 		if (k->ev_fd < 0) {
-			log_warn("keys: cannot open %s: %s; retrying", k->ev_path, strerror(errno));
+			log_warn("keys: cannot open %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
 			k->ev_reported = true;
 		}
 		return k;
@@ -183,9 +186,9 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 		if (n > 0)
 			hal_keys_feed_tty(buf, (size_t)n, &k->esc, in);
 	}
-	if (k->ev_path[0] && k->ev_fd < 0) {
-		static unsigned tick;
-		if (++tick % 60 == 0 && (k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) >= 0) {
+	if (k->ev_path[0] && k->ev_fd < 0 && hal_now_ns() >= k->ev_next_try) {
+		k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
+		if ((k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) >= 0) {
 			log_info("keys: %s opened", k->ev_path);
 			k->ev_reported = false;
 		}
@@ -196,7 +199,7 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 			ssize_t n = read(k->ev_fd, ev, sizeof(ev));
 			if (n < 0) {
 				if (errno != EAGAIN && errno != EINTR) {
-					log_warn("keys: %s: %s; retrying", k->ev_path, strerror(errno));
+					log_warn("keys: %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
 					close(k->ev_fd);
 					k->ev_fd = -1;
 				}

@@ -8,10 +8,14 @@
 # brought back, and finally removed (rmdir): the app must keep rendering,
 # report it, and work again when the chip is back.  A crash leaves a core
 # in the results folder, whose backtrace is printed here.
-# usage: gpio_knobs.sh ISOTERRA BUILD_DIR [sanitize]
+# The same run takes keys from a virtual evdev keyboard (uinput, made by
+# hal_probe keys): --keyboard evdev drives the same actions, and the
+# keyboard going away is reported.
+# usage: gpio_knobs.sh ISOTERRA HAL_PROBE BUILD_DIR [sanitize]
 BIN=$1
-BUILD=$2
-[ "${3:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $3)"; exit 77; }
+PROBE=$2
+BUILD=$3
+[ "${4:-none}" = none ] || { echo "SKIP: VM tests run in the plain build only (this one: $4)"; exit 77; }
 HERE=$(cd "$(dirname "$0")" && pwd)
 HALVM_CACHE="$BUILD/hal-vm-cache"
 . "$HERE/hal_vm_lib.sh"
@@ -23,6 +27,7 @@ RES=$(mktemp -d "$BUILD/hal-vm-gpio.XXXXXX")
 [ -n "$ISOTERRA_KEEP" ] && echo "results kept in $RES" || trap 'rm -rf "$RES"' EXIT
 cat >"$RES/env.sh" <<ENV
 BIN=$BIN
+PROBE=$PROBE
 GPIOSIM=$HALVM_GPIOSIM
 ENV
 halvm_env "$RES"

@@ -42,8 +42,8 @@ waitlog() {
 	while [ "$(nlog)" -lt "$1" ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
 	[ "$(nlog)" -ge "$1" ]
 }
-waitapp() { # regex in the app log; gives up early when the app is gone
-	end=$(($(up) + $WAIT))
+waitapp() { # regex in the app log, at most $2 (default $WAIT) s; gives up early when the app is gone
+	end=$(($(up) + ${2:-$WAIT}))
 	while ! grep -q "$1" $R/app.log && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.25; done
 	grep -q "$1" $R/app.log
 }
@@ -80,16 +80,27 @@ ambient = 0.28
 sun = 1.0
 fov = 40
 CONF
+# a virtual keyboard (uinput -> evdev) for the same app: --keyboard evdev
+modprobe evdev; modprobe uinput || die "modprobe uinput"
+mkfifo /run/keys.fifo || die "mkfifo"
+"$PROBE" keys </run/keys.fifo >$R/keys.dev 2>$R/keys.log &
+exec 3>/run/keys.fifo
+end=$(($(up) + 30))
+while [ ! -s $R/keys.dev ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
+KDEV=$(cat $R/keys.dev)
+[ -c "$KDEV" ] && ok "virtual keyboard $KDEV" || die "no uinput keyboard: $(cat $R/keys.log)"
+key() { echo "$1" >&3; }
 # a crash leaves a core in the results folder (the host prints its backtrace)
 ulimit -c unlimited
 echo "/run/res/core.%e.%p" >/proc/sys/kernel/core_pattern
 trap save_cache EXIT
 # isoterra itself, headless, tiny frames (software rendering under TCG), one
-# PNG per frame so the test sees it render
+# PNG per frame so the test sees it render; without the keyboard's fifo (fd
+# 3), which must close when the test closes it
 "$BIN" --platform surfaceless --size 64x48 --grid 8 --count 1000000 --cam-spin 0 --no-water \
-	--config $R/knobs.conf --keyboard off --out "$R/f%d.png" >$R/app.out 2>$R/app.log &
+	--config $R/knobs.conf --keyboard evdev --keyboard-evdev $KDEV --out "$R/f%d.png" >$R/app.out 2>$R/app.log 3>&- &
 APP=$!
-waitapp "gpio: $CHIP (knobs) ready" && ok "app opened the chip" || die "app did not open $CHIP: $(cat $R/app.log)"
+waitapp "gpio: $CHIP (knobs) ready" ${WAIT_FIRST:-600} && ok "app opened the chip" || die "app did not open $CHIP: $(cat $R/app.log)"
 # the first frame compiles every shader (minutes under TCG without the cache)
 frames() { ls $R | grep -c '^f[0-9]*\.png$'; }
 waitframes() { # at least $1 frames, at most $2 s
@@ -138,6 +149,32 @@ nf=$(frames)
 waitframes $((nf + 2)) $WAIT && ok "frames rendered after the removal ($nf -> $(frames))" ||
 	bad "no frames rendered after the chip's removal"
 kill -0 $APP 2>/dev/null && ok "app survives the chip's removal" || bad "app died after rmdir"
+# the keyboard drives the same actions (the chip is gone: keys still work)
+step "key right" "select ambient"
+step "key up" "ambient 0.31"
+step "key down" "ambient 0.3"
+step "key p" "paused"
+step "key p" "running"
+step "key left" "select fov"
+step "key down" "fov 39"
+# the keyboard goes away: reported, the app goes on
+exec 3>&-
+waitapp "keys: $KDEV: .*retrying" && ok "vanished keyboard reported" || bad "vanished keyboard not reported: $(tail -2 $R/app.log)"
+nf=$(frames)
+waitframes $((nf + 2)) $WAIT && ok "frames rendered after the keyboard went away" || bad "no frames after the keyboard went away"
+# ... and comes back (a new uinput device takes the lowest free event node,
+# the same one): reopened, keys work again
+"$PROBE" keys </run/keys.fifo >$R/keys2.dev 2>>$R/keys.log &
+exec 3>/run/keys.fifo
+end=$(($(up) + 30))
+while [ ! -s $R/keys2.dev ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
+if [ "$(cat $R/keys2.dev)" = "$KDEV" ]; then
+	waitapp "keys: $KDEV opened" && ok "keyboard back: reopened" || bad "keyboard not reopened: $(tail -2 $R/app.log)"
+	step "key up" "fov 40"
+else
+	bad "the new virtual keyboard is '$(cat $R/keys2.dev)', not $KDEV"
+fi
+exec 3>&-
 kill -TERM $APP
 wait $APP
 rc=$?

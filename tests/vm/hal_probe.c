@@ -6,6 +6,11 @@
  *       of the app's GPU shader) against the reference PNG: prints the PSNR,
  *       exit 1 below MIN_PSNR.  W H: the capture's size when the app scaled
  *       its frame up to the device's (an integer factor): box-filtered down.
+ *   hal_probe keys
+ *       a virtual keyboard through /dev/uinput (the kernel's evdev, for the
+ *       app's --keyboard evdev): prints its /dev/input/eventN, then presses
+ *       and releases one key per line read from stdin (right, left, up,
+ *       down, p, r, s, n, q); ends at EOF.
  *   hal_probe convert IN.png OUT.raw [--v4l2-format F --v4l2-matrix M]
  *       (GL) the app's GPU conversion and PBO read-back of an image, to
  *       produce captures by hand when investigating.
@@ -15,8 +20,13 @@
 #include "convert.h"
 #include "v4l2_out.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <linux/uinput.h>
 #include <math.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -199,12 +209,94 @@ static int compare(int argc, char **argv)
 	return d.psnr >= min_psnr ? 0 : 1;
 }
 
+static const struct {
+	const char *name;
+	int code;
+} key_names[] = { { "right", KEY_RIGHT }, { "left", KEY_LEFT }, { "up", KEY_UP }, { "down", KEY_DOWN },
+		  { "p", KEY_P },	  { "r", KEY_R },	{ "s", KEY_S },	  { "n", KEY_N },
+		  { "q", KEY_Q } };
+
+static int emit(int fd, int type, int code, int value)
+{
+	struct input_event ev;
+	memset(&ev, 0, sizeof(ev));
+	ev.type = (unsigned short)type;
+	ev.code = (unsigned short)code;
+	ev.value = value;
+	return write(fd, &ev, sizeof(ev)) == (ssize_t)sizeof(ev) ? 0 : -1;
+}
+
+static int keys(void)
+{
+	int fd = open("/dev/uinput", O_WRONLY | O_CLOEXEC);
+	if (fd < 0) {
+		log_error("keys: /dev/uinput: %s", strerror(errno));
+		return 1;
+	}
+	struct uinput_setup us;
+	memset(&us, 0, sizeof(us));
+	us.id.bustype = BUS_VIRTUAL;
+	snprintf(us.name, sizeof(us.name), "isoterra test keys");
+	int ok = ioctl(fd, UI_SET_EVBIT, EV_KEY) == 0;
+	for (size_t i = 0; i < sizeof(key_names) / sizeof(key_names[0]); i++)
+		ok = ok && ioctl(fd, UI_SET_KEYBIT, key_names[i].code) == 0;
+	char sys[64] = "", path[300] = "";
+	ok = ok && ioctl(fd, UI_DEV_SETUP, &us) == 0 && ioctl(fd, UI_DEV_CREATE) == 0 &&
+	     ioctl(fd, UI_GET_SYSNAME(sizeof(sys)), sys) >= 0;
+	if (!ok) {
+		log_error("keys: setting up the uinput device failed: %s", strerror(errno));
+		close(fd);
+		return 1;
+	}
+	char dir[128];
+	snprintf(dir, sizeof(dir), "/sys/devices/virtual/input/%s", sys);
+	DIR *d = opendir(dir);
+	for (struct dirent *e; d && (e = readdir(d)) != NULL;)
+		if (!strncmp(e->d_name, "event", 5))
+			snprintf(path, sizeof(path), "/dev/input/%s", e->d_name);
+	if (d)
+		closedir(d);
+	if (!path[0]) {
+		log_error("keys: no event node under %s (is evdev loaded?)", dir);
+		ioctl(fd, UI_DEV_DESTROY);
+		close(fd);
+		return 1;
+	}
+	printf("%s\n", path);
+	fflush(stdout);
+	char line[64];
+	int rc = 0;
+	while (fgets(line, sizeof(line), stdin)) {
+		line[strcspn(line, "\r\n")] = 0;
+		int code = -1;
+		for (size_t i = 0; i < sizeof(key_names) / sizeof(key_names[0]); i++)
+			if (!strcmp(line, key_names[i].name))
+				code = key_names[i].code;
+		if (code < 0) {
+			log_error("keys: unknown key '%s'", line);
+			rc = 1;
+			continue;
+		}
+		if (emit(fd, EV_KEY, code, 1) < 0 || emit(fd, EV_SYN, SYN_REPORT, 0) < 0 || emit(fd, EV_KEY, code, 0) < 0 ||
+		    emit(fd, EV_SYN, SYN_REPORT, 0) < 0) {
+			log_error("keys: writing to /dev/uinput: %s", strerror(errno));
+			rc = 1;
+			break;
+		}
+	}
+	ioctl(fd, UI_DEV_DESTROY);
+	close(fd);
+	return rc;
+}
+
 int main(int argc, char **argv)
 {
+	if (argc == 2 && !strcmp(argv[1], "keys"))
+		return keys();
 	if (argc >= 4 && !strcmp(argv[1], "convert"))
 		return convert(argc - 1, argv + 1);
 	if ((argc == 7 || argc == 9) && !strcmp(argv[1], "compare"))
 		return compare(argc - 1, argv + 1);
-	fprintf(stderr, "usage: hal_probe convert|compare ... (see tests/vm/hal_probe.c)\n");
+	fprintf(stderr, "usage: hal_probe keys|convert|compare ... (see tests/vm/hal_probe.c)\n");
 	return 2;
 }
