@@ -21,8 +21,7 @@ struct hal_keys {
 	int esc;
 	int ev_fd;             /* evdev, -1 when not used */
 	char ev_path[PARAM_STR_MAX];
-	bool ev_reported;
-	uint64_t ev_next_try;  /* when to try opening it again */
+	uint64_t ev_next_try;  /* while ev_fd < 0: when to try opening it again */
 };
 
 #define EV_RETRY_NS 2000000000ull /* a vanished evdev keyboard: every 2 s */
@@ -109,7 +108,7 @@ struct hal_keys *hal_keys_open(const struct params *p, char *err, size_t errlen)
 		k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
 		if (k->ev_fd < 0) {
 			log_warn("keys: cannot open %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
-			k->ev_reported = true;
+			k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
 		}
 		return k;
 	}
@@ -186,11 +185,12 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 		if (n > 0)
 			hal_keys_feed_tty(buf, (size_t)n, &k->esc, in);
 	}
-	if (k->ev_path[0] && k->ev_fd < 0 && hal_now_ns() >= k->ev_next_try) {
-		k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
-		if ((k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) >= 0) {
-			log_info("keys: %s opened", k->ev_path);
-			k->ev_reported = false;
+	if (k->ev_path[0] && k->ev_fd < 0) {
+		uint64_t now = hal_now_ns();
+		if (now >= k->ev_next_try) {
+			k->ev_next_try = now + EV_RETRY_NS;
+			if ((k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) >= 0)
+				log_info("keys: %s opened", k->ev_path);
 		}
 	}
 	if (k->ev_fd >= 0) {
@@ -202,6 +202,7 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 					log_warn("keys: %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
 					close(k->ev_fd);
 					k->ev_fd = -1;
+					k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
 				}
 				break;
 			}

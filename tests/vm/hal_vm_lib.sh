@@ -4,7 +4,8 @@
 # root to chroot into (Mesa, libgpiod, v4l-utils, the build tree), a writable
 # 9p results folder, and gpio-sim built out of tree from linux-source-6.1.
 # See ../shared/vm/RECIPE.md.  Sourced; uses HALVM_CACHE (a cache folder in
-# the build tree).  Functions print one line why when they cannot run.
+# the build tree) and HERE (tests/vm: mkinitramfs.sh, hal_init).  Functions
+# print one line why when they cannot run.
 
 # Cannot run here: a skip (77) on a developer's machine, a failure where the
 # suite must run them (tools/test-all.sh sets ISOTERRA_REQUIRE_DEVICE_TESTS,
