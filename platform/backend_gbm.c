@@ -9,6 +9,7 @@
  * (the console, usually).  Structure after kmscube (drm-common, drm-atomic,
  * drm-legacy). */
 #include "platform.h"
+#include "util.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -326,7 +327,7 @@ static bool atomic_init(struct gbm_state *g)
 		{ &pp->crtc_w, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_W" },
 		{ &pp->crtc_h, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_H" },
 	};
-	for (size_t i = 0; i < sizeof(want) / sizeof(want[0]); i++) {
+	for (size_t i = 0; i < ARRAY_SIZE(want); i++) {
 		*want[i].id = prop_id(g->fd, want[i].obj, want[i].type, want[i].name, NULL);
 		if (!*want[i].id) {
 			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);

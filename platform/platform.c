@@ -1,5 +1,6 @@
 /* isoterra — backend table and selection ("auto"). */
 #include "platform.h"
+#include "util.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +23,7 @@ static const struct platform_backend *const backends[] = {
 	&platform_backend_device,
 	&platform_backend_surfaceless,
 };
-#define NBACKENDS (sizeof(backends) / sizeof(backends[0]))
+#define NBACKENDS (ARRAY_SIZE(backends))
 
 const char *platform_backend_names(void)
 {
@@ -84,7 +85,7 @@ static int open_auto(struct platform *p, const struct platform_options *opt, cha
 	static const struct {
 		const char *backend, *env;
 	} displays[] = { { "wayland", "WAYLAND_DISPLAY" }, { "x11", "DISPLAY" }, { "gbm", NULL } };
-	for (size_t i = 0; i < sizeof(displays) / sizeof(displays[0]); i++) {
+	for (size_t i = 0; i < ARRAY_SIZE(displays); i++) {
 		const struct platform_backend *b = find_backend(displays[i].backend);
 		if (!b || (displays[i].env && !env_set(displays[i].env)) || !b->probe())
 			continue;

@@ -12,6 +12,7 @@
  * and mc_nocompact.comp (15 vertices per cell), both closed by
  * mc_finish.comp and drawn with glDrawArraysIndirect. */
 #include "pipeline.h"
+#include "util.h"
 #include "gpu.h"
 #include "clock.h"
 #include "log.h"
@@ -373,11 +374,11 @@ void pipeline_destroy(struct pipeline *pl)
 			glDeleteProgram(pl->variants[i].prog);
 	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
-	for (size_t i = 0; i < sizeof(progs) / sizeof(progs[0]); i++)
+	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
 	GLuint bufs[] = { pl->b_dens, pl->b_l0, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
-	for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
+	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
 	if (pl->noise_ready)

@@ -2,6 +2,7 @@
  * triangle lists).  Bytes are encoded explicitly, so big-endian hosts write
  * the same file. */
 #include "ply.h"
+#include "util.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -182,7 +183,7 @@ static int read_header(FILE *f, const char *path, uint32_t *nv, uint32_t *nf, ch
 {
 	char line[256];
 	size_t total = 0;
-	for (size_t i = 0; i < sizeof(expected) / sizeof(expected[0]);) {
+	for (size_t i = 0; i < ARRAY_SIZE(expected);) {
 		if (header_line(f, line, sizeof(line), &total) < 0) {
 			if (i == 0)
 				snprintf(err, errlen, "'%s' is not a PLY file", path);

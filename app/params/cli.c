@@ -1,5 +1,6 @@
 /* isoterra — command line over the parameter table. */
 #include "cli.h"
+#include "util.h"
 #include "platform.h"
 
 #include <stdbool.h>
@@ -23,7 +24,7 @@ struct opt {
 static bool is_bool_word(const char *s)
 {
 	static const char *const words[] = { "1", "0", "true", "false", "on", "off", "yes", "no" };
-	for (size_t i = 0; i < sizeof(words) / sizeof(words[0]); i++)
+	for (size_t i = 0; i < ARRAY_SIZE(words); i++)
 		if (!strcmp(s, words[i]))
 			return true;
 	return false;

@@ -1,5 +1,6 @@
 /* isoterra — parameter table, setters, config file and presets. */
 #include "params.h"
+#include "util.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -20,7 +21,7 @@ const struct param_info param_table[] = {
 #undef PE
 #undef PS
 };
-const size_t param_count = sizeof(param_table) / sizeof(param_table[0]);
+const size_t param_count = ARRAY_SIZE(param_table);
 
 static void *field_ptr(const struct params *p, const struct param_info *pi)
 {
@@ -322,7 +323,7 @@ const struct preset presets[] = {
 	{ "bumps", "test field: sin(5x)cos(5z)/5", "field=bumps;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
 	{ "ripple", "test field: sin(10(x^2+z^2))/10", "field=ripple;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
 };
-const size_t preset_count = sizeof(presets) / sizeof(presets[0]);
+const size_t preset_count = ARRAY_SIZE(presets);
 
 static int apply_settings(struct params *p, const char *settings, const char *origin, char *err, size_t errlen)
 {

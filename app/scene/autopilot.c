@@ -10,6 +10,7 @@
  * camera within fly_clearance of rock is not taken: the camera climbs
  * instead. */
 #include "world.h"
+#include "util.h"
 #include "density_ref.h"
 #include "noise.h"
 
@@ -131,8 +132,8 @@ static void step(struct autopilot *a)
 	float best_yaw = want_yaw, best_pitch = 0.0f, best = 1e30f;
 	static const float dy[] = { 0.0f, 0.35f, -0.35f, 0.7f, -0.7f, 1.2f, -1.2f, 2.0f, -2.0f, 3.14159f };
 	static const float dp[] = { 0.0f, 0.3f, 0.6f };
-	for (size_t i = 0; i < sizeof(dy) / sizeof(dy[0]); i++)
-		for (size_t j = 0; j < sizeof(dp) / sizeof(dp[0]); j++) {
+	for (size_t i = 0; i < ARRAY_SIZE(dy); i++)
+		for (size_t j = 0; j < ARRAY_SIZE(dp); j++) {
 			float d[3];
 			heading(want_yaw + dy[i], dp[j], d);
 			float wst = worst_ahead(a, a->pos, d, look);
