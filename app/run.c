@@ -269,16 +269,16 @@ static int run_world(struct params *p, struct frame_out *o)
 	 * blocks stream in under the generation budget. */
 	bool live = !o->plat->headless;
 	double start = clock_ms() / 1e3;
-	if (p->camera == 2)
+	if (p->camera == CAMERA_MANUAL)
 		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s)",
-			 p->keyboard == 1 ? "off!" : "terminal or evdev");
+			 p->keyboard == KEYBOARD_OFF ? "off!" : "terminal or evdev");
 	for (int f = 0; frame_more(p, f); f++) {
 		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
 			o->fs->count = p->count = f + 1;
 		double t = live ? clock_ms() / 1e3 - start : (double)f / p->fps;
 		t -= (double)((float)t - hal_time(o->hal, (float)t)); /* paused time */
 		p->time = t0; /* the world does not scroll: the camera moves */
-		if (p->camera == 2) { /* manual: the keys steer, rock still stops */
+		if (p->camera == CAMERA_MANUAL) { /* manual: the keys steer, rock still stops */
 			float move[3], turn[2];
 			hal_flight(o->hal, move, turn);
 			autopilot_steer(&ap, move, turn);
@@ -370,7 +370,7 @@ int run_headless(const struct params *p_in)
 	if (sink_open(&fs, &p, w, h) < 0)
 		goto out;
 	struct frame_out o = { .fs = &fs, .plat = plat, .disp = &disp, .r = r, .w = w, .h = h, .hal = hal };
-	rc = p.scene == 1 ? run_world(&p, &o) : run_volume(&p, &o);
+	rc = p.scene == SCENE_WORLD ? run_world(&p, &o) : run_volume(&p, &o);
 	r = o.r; /* a resize may have replaced it */
 	if (sink_close(&fs) < 0)
 		rc = 1;

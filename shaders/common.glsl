@@ -15,7 +15,7 @@ uint lin_id()
 }
 
 #ifndef DENSITY_WRITER
-layout(std430, binding = 0) restrict readonly buffer Dens { float dens[]; };
+layout(std430, binding = BIND_DENSITY) restrict readonly buffer Dens { float dens[]; };
 // density at corner c (each component -1 .. n+1)
 float D(ivec3 c)
 {
@@ -31,7 +31,7 @@ vec3 grad_at(ivec3 c)
 }
 
 // Marching Cubes tables (mc_tables.c), uploaded verbatim.
-layout(std430, binding = 3) restrict readonly buffer McTables {
+layout(std430, binding = BIND_MC_TABLES) restrict readonly buffer McTables {
 	uint mc_tricount[256];
 	int mc_tri[256 * 15];
 	ivec4 mc_edge_owner[12]; // owner offset xyz, slot

@@ -13,10 +13,10 @@
 //
 //   vec4 curve_eval(vec2 xz);   // (height, Θ of the closest curve, |d| closest, Σ Θ)
 
-layout(std430, binding = 8) restrict readonly buffer CurvePivot { ivec2 curve_pivot[]; };
-layout(std430, binding = 9) restrict readonly buffer CurveIndex { int curve_index[]; };
-layout(std430, binding = 10) restrict readonly buffer CurveCtrl { vec4 curve_ctrl[]; };
-layout(std430, binding = 11) restrict readonly buffer CurvePrm { vec4 curve_prm[]; };
+layout(std430, binding = BIND_CURVE_PIVOT) restrict readonly buffer CurvePivot { ivec2 curve_pivot[]; };
+layout(std430, binding = BIND_CURVE_INDEX) restrict readonly buffer CurveIndex { int curve_index[]; };
+layout(std430, binding = BIND_CURVE_CTRL) restrict readonly buffer CurveCtrl { vec4 curve_ctrl[]; };
+layout(std430, binding = BIND_CURVE_PRM) restrict readonly buffer CurvePrm { vec4 curve_prm[]; };
 
 uniform int u_curve_count;        // quadratics; 0 = no curves (nothing is read)
 uniform int u_curve_all_offset;   // start of the all-curves list in curve_index

@@ -4,7 +4,7 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #include "common.glsl"
 #include "density.glsl"
-layout(std430, binding = 0) restrict writeonly buffer DensOut { float dens_out[]; };
+layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float dens_out[]; };
 uniform float u_density_bias; // subtracted (coarse LOD blocks erode a little)
 
 void main()

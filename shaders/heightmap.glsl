@@ -15,7 +15,7 @@
 
 #include "noise.glsl"
 
-layout(binding = 3) uniform highp sampler2D u_heightmap_tex;
+layout(binding = TEX_HEIGHTMAP) uniform highp sampler2D u_heightmap_tex;
 uniform ivec2 u_heightmap_size; // samples in x, z (0 = no map)
 
 float hm_texel(ivec2 c)

@@ -7,8 +7,8 @@
 // Level k >= 1 holds uvec2(triangles, vertices) sums of four level k-1
 // nodes; all levels live in one buffer at offsets u_hp_off[k].  The top
 // level (u_hp_top) has one node: the totals.
-layout(std430, binding = 1) restrict buffer HpBase { uint hp_l0[]; };
-layout(std430, binding = 2) restrict buffer HpLevels { uvec2 hp[]; };
+layout(std430, binding = BIND_HP_BASE) restrict buffer HpBase { uint hp_l0[]; };
+layout(std430, binding = BIND_HP_LEVELS) restrict buffer HpLevels { uvec2 hp[]; };
 uniform uint u_hp_off[16];
 uniform int u_hp_top;
 uniform uint u_pre_base; // prefix sums (hp_downsweep.comp) start here

@@ -3,7 +3,7 @@
 layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "hp.glsl"
-layout(std430, binding = 7) restrict buffer TestOut { uvec2 test_out[]; };
+layout(std430, binding = BIND_TEST_OUT) restrict buffer TestOut { uvec2 test_out[]; };
 uniform int u_mode;      // 0: level 1 from level 0; 1: traverse; 2: prefix
 uniform uint u_n;        // items
 uniform uint u_words;

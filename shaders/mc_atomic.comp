@@ -5,7 +5,7 @@ layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "mc_status.glsl"
 struct Vertex { vec4 pos; vec4 nrm; };
-layout(std430, binding = 4) restrict writeonly buffer Verts { Vertex verts[]; };
+layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };
 
 void main()
 {
@@ -18,7 +18,7 @@ void main()
 	uint n = mc_tricount[cs];
 	if (n == 0u)
 		return;
-	uint base = atomicAdd(st[27], n);
+	uint base = atomicAdd(st[ST_APPEND_COUNTER], n);
 	for (uint r = 0u; r < n; ++r) {
 		uint t = base + r;
 		if (t >= u_tri_cap)

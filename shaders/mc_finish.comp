@@ -7,13 +7,13 @@ uniform int u_nocompact;
 
 void main()
 {
-	uint tris = st[27];
+	uint tris = st[ST_APPEND_COUNTER];
 	st_write_counts(tris, 3u * tris);
 	if (u_nocompact != 0) {
 		uint ncells = uint(u_cells.x * u_cells.y * u_cells.z);
-		st[16] = 15u * ncells;
-		st[22] = 5u * ncells;
-		st[23] = 15u * ncells;
-		st[26] = 0u;
+		st[ST_DRAW_ARRAYS] = 15u * ncells;
+		st[ST_TRIS_WRITTEN] = 5u * ncells;
+		st[ST_VERTS_WRITTEN] = 15u * ncells;
+		st[ST_OVERFLOW] = 0u;
 	}
 }

@@ -5,19 +5,19 @@ layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "hp.glsl"
 #include "mc_status.glsl"
-layout(std430, binding = 5) restrict writeonly buffer Indices { uint idx[]; };
+layout(std430, binding = BIND_INDICES) restrict writeonly buffer Indices { uint idx[]; };
 
 void main()
 {
 	uint t = lin_id();
-	if (t >= st[22])
+	if (t >= st[ST_TRIS_WRITTEN])
 		return;
 	uint cell, rank;
 	hp_traverse(t, 0, cell, rank);
 	ivec3 o = u_cells + 1;
 	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
 	int cs = cell_case(c);
-	uint vcount = st[23];
+	uint vcount = st[ST_VERTS_WRITTEN];
 	uint ids[3];
 	bool ok = true;
 	for (int k = 0; k < 3; ++k) {

@@ -4,7 +4,7 @@ layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "mc_status.glsl"
 struct Vertex { vec4 pos; vec4 nrm; };
-layout(std430, binding = 4) restrict writeonly buffer Verts { Vertex verts[]; };
+layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };
 
 void main()
 {
@@ -16,7 +16,7 @@ void main()
 	int cs = cell_case(c);
 	uint n = mc_tricount[cs];
 	if (n != 0u)
-		atomicAdd(st[27], n);
+		atomicAdd(st[ST_APPEND_COUNTER], n);
 	vec4 zero = vec4(u_origin, 1.0);
 	for (uint r = 0u; r < 5u; ++r) {
 		for (int k = 0; k < 3; ++k) {

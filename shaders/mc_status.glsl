@@ -1,12 +1,6 @@
-// isoterra — the status / indirect command buffer (binding 6).
-//   [0..4]   DrawElementsIndirectCommand {count, instances, first, baseVertex, baseInstance}
-//   [8..10]  DispatchIndirectCommand for the vertex pass
-//   [12..14] DispatchIndirectCommand for the triangle pass
-//   [16..19] DrawArraysIndirectCommand {count, instances, first, baseInstance}
-//   [20] triangles needed  [21] vertices needed  [22] triangles written
-//   [23] vertices written  [24] triangle capacity [25] vertex capacity
-//   [26] overflow flag     [27] atomic append counter (triangles)
-layout(std430, binding = 6) restrict buffer Status { uint st[32]; };
+// isoterra — the status / indirect command buffer; its words are named in
+// app/gpu/abi.h (ST_*), shared with the host.
+layout(std430, binding = BIND_STATUS) restrict buffer Status { uint st[ST_WORDS]; };
 uniform uint u_tri_cap;
 uniform uint u_vert_cap;
 uniform uint u_max_groups; // GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] we may use
@@ -26,23 +20,23 @@ void st_write_counts(uint tris_needed, uint verts_needed)
 {
 	uint tris = min(tris_needed, u_tri_cap);
 	uint verts = min(verts_needed, u_vert_cap);
-	st[0] = 3u * tris;
-	st[1] = 1u;
-	st[2] = u_first_index;
-	st[3] = u_base_vertex;
-	st[4] = 0u;
+	st[ST_DRAW_ELEMENTS + 0] = 3u * tris; // count
+	st[ST_DRAW_ELEMENTS + 1] = 1u;       // instances
+	st[ST_DRAW_ELEMENTS + 2] = u_first_index;
+	st[ST_DRAW_ELEMENTS + 3] = u_base_vertex;
+	st[ST_DRAW_ELEMENTS + 4] = 0u;       // base instance
 	uvec3 gv = groups_for(verts), gt = groups_for(tris);
-	st[8] = gv.x; st[9] = gv.y; st[10] = gv.z;
-	st[12] = gt.x; st[13] = gt.y; st[14] = gt.z;
-	st[16] = 3u * tris;
-	st[17] = 1u;
-	st[18] = 0u;
-	st[19] = 0u;
-	st[20] = tris_needed;
-	st[21] = verts_needed;
-	st[22] = tris;
-	st[23] = verts;
-	st[24] = u_tri_cap;
-	st[25] = u_vert_cap;
-	st[26] = (tris < tris_needed || verts < verts_needed) ? 1u : 0u;
+	st[ST_DISPATCH_VERTS + 0] = gv.x; st[ST_DISPATCH_VERTS + 1] = gv.y; st[ST_DISPATCH_VERTS + 2] = gv.z;
+	st[ST_DISPATCH_TRIS + 0] = gt.x; st[ST_DISPATCH_TRIS + 1] = gt.y; st[ST_DISPATCH_TRIS + 2] = gt.z;
+	st[ST_DRAW_ARRAYS + 0] = 3u * tris;
+	st[ST_DRAW_ARRAYS + 1] = 1u;
+	st[ST_DRAW_ARRAYS + 2] = 0u;
+	st[ST_DRAW_ARRAYS + 3] = 0u;
+	st[ST_TRIS_NEEDED] = tris_needed;
+	st[ST_VERTS_NEEDED] = verts_needed;
+	st[ST_TRIS_WRITTEN] = tris;
+	st[ST_VERTS_WRITTEN] = verts;
+	st[ST_TRI_CAP] = u_tri_cap;
+	st[ST_VERT_CAP] = u_vert_cap;
+	st[ST_OVERFLOW] = (tris < tris_needed || verts < verts_needed) ? 1u : 0u;
 }

@@ -9,12 +9,12 @@ layout(local_size_x = 64) in;
 #include "ao.glsl"
 #endif
 struct Vertex { vec4 pos; vec4 nrm; }; // nrm.w = ambient visibility
-layout(std430, binding = 4) restrict writeonly buffer Verts { Vertex verts[]; };
+layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };
 
 void main()
 {
 	uint v = lin_id();
-	if (v >= st[23])
+	if (v >= st[ST_VERTS_WRITTEN])
 		return;
 	uint cell, rank;
 	hp_traverse(v, 1, cell, rank);

@@ -12,15 +12,15 @@
 //  * worley(p, salt): F1..F4 with one feature point per unit cube (hash of
 //    cube, seed, salt), 27 cubes searched.
 
-layout(std140, binding = 0) uniform NoiseTables {
+layout(std140, binding = UBIND_NOISE) uniform NoiseTables {
 	ivec4 nt_perm[64]; // 256 permutation entries, 4 per ivec4
 	vec4 nt_rot[12];   // 4 row-major 3x3 rotations, one vec4 per row
 	ivec4 nt_info;     // x = seed
 };
 
-layout(binding = 0) uniform highp sampler3D u_noise0;
-layout(binding = 1) uniform highp sampler3D u_noise1;
-layout(binding = 2) uniform highp sampler3D u_noise2;
+layout(binding = TEX_NOISE0) uniform highp sampler3D u_noise0;
+layout(binding = TEX_NOISE1) uniform highp sampler3D u_noise1;
+layout(binding = TEX_NOISE2) uniform highp sampler3D u_noise2;
 
 int nperm(int i)
 {

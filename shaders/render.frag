@@ -10,7 +10,7 @@ in float v_ao;
 uniform vec3 u_eye;
 uniform float u_fog_density;
 uniform float u_fade;
-layout(binding = 7) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
+layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
 out vec4 frag;
 
 #include "shade.glsl"

@@ -22,8 +22,8 @@ precision highp image2D;
 #error "FMT (the output format) must be defined by the host"
 #endif
 
-uniform highp sampler2D u_src;   // the rendered frame (GL rows: bottom first)
-layout(rgba8, binding = 0) writeonly uniform highp image2D u_out;
+layout(binding = TEX_FRAME) uniform highp sampler2D u_src; // the rendered frame (GL rows: bottom first)
+layout(rgba8, binding = IMG_CONVERT_OUT) writeonly uniform highp image2D u_out;
 uniform uint u_w, u_h, u_bpl, u_size, u_words, u_out_w; // the device's frame
 uniform bool u_scaled;           // the device's size differs from the frame's
 uniform vec2 u_k;                // (Kr, Kb)

@@ -3,7 +3,7 @@
 in vec3 v_pos;
 uniform vec3 u_eye;
 uniform float u_fog_density;
-layout(binding = 7) uniform highp sampler2D u_surface;
+layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface;
 out vec4 frag;
 #include "shade.glsl"
 

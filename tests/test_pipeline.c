@@ -107,13 +107,13 @@ static void check_field(const char *what, const struct params *p, const struct g
 
 	/* atomic append and no compaction give the same triangles */
 	struct params q = *p;
-	q.compaction = COMPACT_ATOMIC;
+	q.compaction = COMPACTION_ATOMIC;
 	CHECK(pipeline_run(pl, &q) == 0, "%s: atomic run", what);
 	struct extract_stats sa;
 	pipeline_read_stats(pl, &sa);
 	CHECK(sa.triangles == gm.ntris, "%s: atomic append %u triangles vs HP %u", what, sa.triangles, gm.ntris);
 	if (g->nx <= 64) {
-		q.compaction = COMPACT_NONE;
+		q.compaction = COMPACTION_NONE;
 		CHECK(pipeline_run(pl, &q) == 0, "%s: no-compaction run", what);
 		struct mesh nm;
 		CHECK(pipeline_read_mesh(pl, &nm) == 0, "%s: read no-compaction mesh", what);
@@ -191,7 +191,7 @@ static void check_worst_case(void)
 		mesh_free(&m);
 		/* the same through atomic append */
 		struct params q = p;
-		q.compaction = COMPACT_ATOMIC;
+		q.compaction = COMPACTION_ATOMIC;
 		CHECK(pipeline_run(pl, &q) == 0, "checker atomic run");
 		pipeline_read_stats(pl, &st);
 		CHECK(st.overflow && st.triangles <= st.triangle_capacity, "checker atomic clamped");

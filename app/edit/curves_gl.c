@@ -3,6 +3,7 @@
  * displacement-map bake and the shader test hook. */
 #include "edits.h"
 #include "gpu.h"
+#include "abi.h"
 #include "log.h"
 
 #include <math.h>
@@ -10,13 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define BIND_PIVOT 8
-#define BIND_INDEX 9
-#define BIND_CTRL 10
-#define BIND_PRM 11
-#define BIND_AUX_IN 12
-#define BIND_AUX_OUT 13
-#define HM_UNIT 3
 
 static struct {
 	bool ready;
@@ -104,7 +98,7 @@ static int upload_heightmap(const struct edits *e)
 	glGenTextures(1, &G.hm_tex);
 	GLint prev = 0;
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
-	glActiveTexture(GL_TEXTURE0 + HM_UNIT);
+	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
 	glBindTexture(GL_TEXTURE_2D, G.hm_tex);
 	int w = e->hm.w ? e->hm.w : 1, hh = e->hm.w ? e->hm.h : 1;
 	GLint max_tex = 0;
@@ -164,10 +158,10 @@ int edits_gl_bind(GLuint prog, const struct params *p)
 	if (upload_curves(e) < 0 || upload_heightmap(e) < 0)
 		return -1;
 	for (int i = 0; i < 4; i++)
-		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_PIVOT + i, G.buf[i]);
+		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_CURVE_PIVOT + i, G.buf[i]);
 	GLint prev = 0;
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
-	glActiveTexture(GL_TEXTURE0 + HM_UNIT);
+	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
 	glBindTexture(GL_TEXTURE_2D, G.hm_tex);
 	glActiveTexture((GLenum)prev);
 	set_uniforms(prog, e);
@@ -305,7 +299,7 @@ int curves_bake(const struct params *p, const struct bake_opts *o, float *out, c
 	glProgramUniform2f(*prog, glGetUniformLocation(*prog, "u_bake_origin"), o->origin[0], o->origin[1]);
 	glProgramUniform2f(*prog, glGetUniformLocation(*prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
 			   o->size[1] / (float)o->res[1]);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G.b_bake);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G.b_bake);
 	glUseProgram(*prog);
 	if (dense) {
 		glDispatchCompute((GLuint)(o->res[0] + 7) / 8, (GLuint)(o->res[1] + 7) / 8, 1);
@@ -351,7 +345,7 @@ int curves_bake(const struct params *p, const struct bake_opts *o, float *out, c
 			int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
 			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_ntiles"), nt);
 			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_groups_x"), gx);
-			glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G.b_tiles);
+			glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G.b_tiles);
 			glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 			glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
 		}
@@ -394,8 +388,8 @@ int curves_gpu_test(const struct params *p, int mode, const float *in, int n, fl
 	gpu_set_param_uniforms(G.p_test, p);
 	glProgramUniform1i(G.p_test, glGetUniformLocation(G.p_test, "u_test_mode"), mode);
 	glProgramUniform1i(G.p_test, glGetUniformLocation(G.p_test, "u_test_n"), n);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G.b_in);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G.b_out);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G.b_in);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G.b_out);
 	glUseProgram(G.p_test);
 	glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
 	glUseProgram(0);

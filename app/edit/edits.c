@@ -172,7 +172,7 @@ int edits_load(const struct params *p, char *err, size_t errlen)
 		memset(&hm_key, 0, sizeof(hm_key));
 		note_change(whole_plane);
 	}
-	if (p->field == params_enum_index(params_find("field"), "heightmap") && !E.hm.w) {
+	if (p->field == FIELD_HEIGHTMAP && !E.hm.w) {
 		snprintf(err, errlen, "field=heightmap needs a heightmap file (--heightmap FILE.png, 16-bit grayscale)");
 		return -1;
 	}

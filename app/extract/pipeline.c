@@ -14,6 +14,7 @@
 #include "pipeline.h"
 #include "util.h"
 #include "gpu.h"
+#include "abi.h"
 #include "clock.h"
 #include "log.h"
 #include "mc.h"
@@ -25,8 +26,6 @@
 #include <string.h>
 
 #define MAX_LEVELS 16
-#define VERTEX_BYTES 32u
-#define STATUS_WORDS 32
 #define GUARD_BYTES 1024u   /* canary after every output buffer */
 #define GUARD_WORD 0xa5c3e1f7u
 
@@ -350,7 +349,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_idx);
 	write_guard((GLintptr)pl->tri_cap * 12);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	uint32_t zero[STATUS_WORDS] = { 0 };
+	uint32_t zero[ST_WORDS] = { 0 };
 	pl->b_status = make_buffer(sizeof(zero), zero, GL_DYNAMIC_DRAW);
 	glGenBuffers(1, &pl->b_verts);
 	upload_tables(pl);
@@ -390,13 +389,13 @@ void pipeline_destroy(struct pipeline *pl)
 
 static void bind_all(const struct pipeline *pl)
 {
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pl->b_dens);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, pl->b_l0);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, pl->b_hp);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, pl->b_tables);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, pl->b_verts);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, pl->b_idx);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, pl->b_status);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_DENSITY, pl->b_dens);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, pl->b_l0);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, pl->b_hp);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_MC_TABLES, pl->b_tables);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, pl->b_verts);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_INDICES, pl->b_idx);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, pl->b_status);
 }
 
 int pipeline_density(struct pipeline *pl, const struct params *p)
@@ -483,9 +482,9 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	set_common(pl, pl->p_setup, p);
 	if (pl->has_target) {
 		const struct pipeline_target *tg = &pl->target;
-		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, tg->vbo, tg->vbo_offset, (GLsizeiptr)tg->vert_cap * VERTEX_BYTES);
-		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 5, tg->ibo, tg->ibo_offset, (GLsizeiptr)tg->tri_cap * 12);
-		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 6, tg->status, tg->status_offset, PIPELINE_STATUS_BYTES);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, tg->vbo, tg->vbo_offset, (GLsizeiptr)tg->vert_cap * VERTEX_BYTES);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_INDICES, tg->ibo, tg->ibo_offset, (GLsizeiptr)tg->tri_cap * 12);
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, tg->status, tg->status_offset, ST_BYTES);
 		set_caps(pl->p_setup, tg->tri_cap, tg->vert_cap);
 		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), tg->first_index);
 		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), tg->base_vertex);
@@ -512,11 +511,11 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	if (edits_gl_bind(pl->p_vertices, p) < 0) /* normals and AO read density() */
 		return -1;
 	glUseProgram(pl->p_vertices);
-	glDispatchComputeIndirect(status_off + 8 * 4);
+	glDispatchComputeIndirect(status_off + ST_DISPATCH_VERTS * 4);
 	mark(pl, PASS_VERTICES, &t);
 	set_common(pl, pl->p_indices, p);
 	glUseProgram(pl->p_indices);
-	glDispatchComputeIndirect(status_off + 12 * 4);
+	glDispatchComputeIndirect(status_off + ST_DISPATCH_TRIS * 4);
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 	mark(pl, PASS_INDICES, &t);
 	return 0;
@@ -543,7 +542,7 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	bind_all(pl);
 	uint32_t zero = 0;
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_status);
-	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 27 * 4, 4, &zero);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, ST_APPEND_COUNTER * 4, 4, &zero);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 	uint32_t tcap = nocompact ? (uint32_t)(5 * ncells) : pl->tri_cap;
 	set_common(pl, *prog, p);
@@ -564,9 +563,9 @@ int pipeline_run(struct pipeline *pl, const struct params *p)
 	if (pipeline_density(pl, p) < 0)
 		return -1;
 	int rc;
-	switch (pl->has_target ? COMPACT_HP : p->compaction) {
-	case COMPACT_ATOMIC: rc = run_append(pl, p, false); break;
-	case COMPACT_NONE: rc = run_append(pl, p, true); break;
+	switch (pl->has_target ? COMPACTION_HP : p->compaction) {
+	case COMPACTION_ATOMIC: rc = run_append(pl, p, false); break;
+	case COMPACTION_NONE: rc = run_append(pl, p, true); break;
 	default: rc = run_hp(pl, p); break;
 	}
 	pl->last_mode = p->compaction;
@@ -581,10 +580,10 @@ int pipeline_run(struct pipeline *pl, const struct params *p)
 void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d)
 {
 	d->vbo = pl->b_verts;
-	d->indexed = pl->last_mode == COMPACT_HP || pl->last_mode < 0;
+	d->indexed = pl->last_mode == COMPACTION_HP || pl->last_mode < 0;
 	d->ibo = d->indexed ? pl->b_idx : 0;
 	d->indirect = pl->b_status;
-	d->indirect_offset = d->indexed ? 0 : 16 * 4;
+	d->indirect_offset = (d->indexed ? ST_DRAW_ELEMENTS : ST_DRAW_ARRAYS) * 4;
 }
 
 /* ---- read-back ------------------------------------------------------------ */
@@ -598,7 +597,8 @@ static int read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
 	void *m = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, off, size, GL_MAP_READ_BIT);
 	if (!m) {
 		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-		return gpu_check("glMapBufferRange") < 0 ? -1 : -1;
+		gpu_check("glMapBufferRange");
+		return -1;
 	}
 	memcpy(out, m, (size_t)size);
 	GLboolean ok = glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
@@ -628,17 +628,17 @@ int pipeline_check_guards(struct pipeline *pl)
 
 int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st)
 {
-	uint32_t s[STATUS_WORDS];
+	uint32_t s[ST_WORDS];
 	memset(st, 0, sizeof(*st));
 	if (read_buffer(pl->b_status, 0, sizeof(s), s) < 0)
 		return -1;
-	st->triangles_needed = s[20];
-	st->vertices_needed = s[21];
-	st->triangles = s[22];
-	st->vertices = s[23];
-	st->triangle_capacity = s[24];
-	st->vertex_capacity = s[25];
-	st->overflow = s[26] != 0;
+	st->triangles_needed = s[ST_TRIS_NEEDED];
+	st->vertices_needed = s[ST_VERTS_NEEDED];
+	st->triangles = s[ST_TRIS_WRITTEN];
+	st->vertices = s[ST_VERTS_WRITTEN];
+	st->triangle_capacity = s[ST_TRI_CAP];
+	st->vertex_capacity = s[ST_VERT_CAP];
+	st->overflow = s[ST_OVERFLOW] != 0;
 	return 0;
 }
 
@@ -648,7 +648,7 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 	memset(m, 0, sizeof(*m));
 	if (pipeline_read_stats(pl, &st) < 0)
 		return -1;
-	bool indexed = pl->last_mode == COMPACT_HP;
+	bool indexed = pl->last_mode == COMPACTION_HP;
 	uint32_t nv = indexed ? st.vertices : 3 * st.triangles;
 	uint32_t nt = st.triangles;
 	if (mesh_alloc(m, nv, nt) < 0)
@@ -704,9 +704,9 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	GLuint b_hp = make_buffer((GLsizeiptr)nodes * 16, NULL, GL_DYNAMIC_COPY);
 	uint32_t outn = n * (comp == 0 ? 5 : 3);
 	GLuint b_out = make_buffer((GLsizeiptr)(outn ? outn : 1) * 8, NULL, GL_DYNAMIC_COPY);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b_l0);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b_hp);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, b_out);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, b_l0);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, b_hp);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_TEST_OUT, b_out);
 	GLint l_mode = glGetUniformLocation(prog, "u_mode"), l_n = glGetUniformLocation(prog, "u_n");
 	set_common(&pl, prog, NULL);
 	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_words"), pl.words);

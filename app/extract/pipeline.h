@@ -4,7 +4,6 @@
  * below are for tests, export and end-of-run reports. */
 #ifndef ISOTERRA_PIPELINE_H
 #define ISOTERRA_PIPELINE_H
-#define PIPELINE_STATUS_BYTES 128
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -26,7 +25,6 @@ struct extract_stats {
 
 struct pipeline;
 
-enum compaction { COMPACT_HP = 0, COMPACT_ATOMIC = 1, COMPACT_NONE = 2 };
 
 /* Creates buffers and programs for grid g.  Capacities: max_tris/max_verts
  * (0 = automatic).  Returns NULL with err. */
@@ -41,7 +39,7 @@ void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT]);
 
 /* Output into a slot of someone else's buffers (the world's block pool)
  * instead of the pipeline's own: vertices at vbo_offset (vert_cap of them),
- * indices at ibo_offset (tri_cap triangles), the 128-byte status block with
+ * indices at ibo_offset (tri_cap triangles), the ST_BYTES status block (abi.h) with
  * the draw command at status_offset; offsets must honour
  * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT.  The draw command gets
  * first_index / base_vertex so one element buffer serves every slot.  NULL

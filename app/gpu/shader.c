@@ -15,12 +15,20 @@ void shader_set_dir(const char *dir)
 	snprintf(shader_dir, sizeof(shader_dir), "%s", dir ? dir : "");
 }
 
+static const char *embedded_text(const char *name)
+{
+	for (size_t i = 0; i < embedded_shader_count; i++)
+		if (!strcmp(embedded_shaders[i].name, name))
+			return embedded_shaders[i].text;
+	return NULL;
+}
+
 char *shader_read(const char *name, char *err, size_t errlen)
 {
 	if (!shader_dir[0]) {
-		for (size_t i = 0; i < embedded_shader_count; i++)
-			if (!strcmp(embedded_shaders[i].name, name))
-				return strdup(embedded_shaders[i].text);
+		const char *text = embedded_text(name);
+		if (text)
+			return strdup(text);
 		snprintf(err, errlen, "shader '%s' is not embedded in this binary", name);
 		return NULL;
 	}
@@ -163,8 +171,15 @@ static int assemble(struct srcbuf *b, const char *stage_define, const char *file
 			   "precision highp float;\nprecision highp int;\n"
 			   "precision highp sampler3D;\nprecision highp usampler3D;\n"
 			   "precision highp image3D;\n";
+	/* the host/shader contract (app/gpu/abi.h) always comes from the copy
+	 * this binary was compiled with, even with --shader-dir */
+	const char *abi = embedded_text("abi.h");
+	if (!abi) {
+		snprintf(err, errlen, "abi.h is not embedded in this binary");
+		return -1;
+	}
 	/* the caller's defines come first: they may specialize parameters */
-	if (sb_add(b, head, strlen(head)) || sb_add(b, stage_define, strlen(stage_define)) ||
+	if (sb_add(b, head, strlen(head)) || sb_add(b, abi, strlen(abi)) || sb_add(b, stage_define, strlen(stage_define)) ||
 	    (defines && sb_add(b, defines, strlen(defines))) || sb_add(b, decls, strlen(decls))) {
 		snprintf(err, errlen, "out of memory");
 		return -1;

@@ -16,7 +16,7 @@
 #include "atomic_file.h"
 #include "log.h"
 
-#define VERTEX_BYTES 24u /* 6 float32 */
+#define PLY_VERTEX_BYTES 24u /* 6 float32 */
 #define FACE_BYTES 13u   /* uchar 3 + 3 uint32 */
 #define HEADER_MAX 4096
 #define CHUNK 1024u      /* vertices or faces per fwrite/fread */
@@ -86,15 +86,15 @@ int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen)
 	                  "end_header\n",
 	                  m->nverts, m->ntris) > 0;
 
-	uint8_t buf[CHUNK * VERTEX_BYTES];
+	uint8_t buf[CHUNK * PLY_VERTEX_BYTES];
 	size_t used = 0;
 	for (uint32_t v = 0; ok && v < m->nverts; v++) {
 		for (int k = 0; k < 3; k++) {
 			put_f32(buf + used + 4 * k, m->pos[3 * (size_t)v + k]);
 			put_f32(buf + used + 12 + 4 * k, m->nrm[3 * (size_t)v + k]);
 		}
-		used += VERTEX_BYTES;
-		if (used + VERTEX_BYTES > sizeof(buf)) {
+		used += PLY_VERTEX_BYTES;
+		if (used + PLY_VERTEX_BYTES > sizeof(buf)) {
 			ok = fwrite(buf, 1, used, af.f) == used;
 			used = 0;
 		}
@@ -242,7 +242,7 @@ int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 		fclose(f);
 		return -1;
 	}
-	uint64_t want = (uint64_t)nv * VERTEX_BYTES + (uint64_t)nf * FACE_BYTES;
+	uint64_t want = (uint64_t)nv * PLY_VERTEX_BYTES + (uint64_t)nf * FACE_BYTES;
 	uint64_t have = (uint64_t)st.st_size - (uint64_t)start;
 	if (have != want) {
 		snprintf(err, errlen, "'%s': %s PLY body (%" PRIu64 " bytes, %" PRIu32 " vertices and %" PRIu32
@@ -255,18 +255,18 @@ int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 		fclose(f);
 		return -1;
 	}
-	uint8_t buf[CHUNK * VERTEX_BYTES];
+	uint8_t buf[CHUNK * PLY_VERTEX_BYTES];
 	int rc = 0;
 	for (uint32_t v = 0; v < nv && rc == 0;) {
 		uint32_t chunk = nv - v < CHUNK ? nv - v : CHUNK;
-		if (fread(buf, VERTEX_BYTES, chunk, f) != chunk) {
+		if (fread(buf, PLY_VERTEX_BYTES, chunk, f) != chunk) {
 			rc = -1;
 			break;
 		}
 		for (uint32_t i = 0; i < chunk; i++, v++)
 			for (int k = 0; k < 3; k++) {
-				m->pos[3 * (size_t)v + k] = get_f32(buf + i * VERTEX_BYTES + 4 * k);
-				m->nrm[3 * (size_t)v + k] = get_f32(buf + i * VERTEX_BYTES + 12 + 4 * k);
+				m->pos[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 4 * k);
+				m->nrm[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 12 + 4 * k);
 			}
 	}
 	for (uint32_t t = 0; t < nf && rc == 0;) {

@@ -11,6 +11,8 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "params_enums.h" /* enum param_<name>: generated from params.def */
+
 enum param_type { PT_FLOAT, PT_INT, PT_BOOL, PT_ENUM, PT_STRING };
 
 enum param_flags {

@@ -2,6 +2,7 @@
  * the mesh with the pipeline's indirect command, resolve and read-back. */
 #include "render.h"
 #include "gpu.h"
+#include "abi.h"
 #include "log.h"
 
 #include <stdlib.h>
@@ -155,10 +156,10 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	gpu_set_param_uniforms(r->prog, p);
 	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(r->l_eye, 1, c->eye);
-	float fog_range = p->scene == 1 ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
+	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
 	glUniform1f(r->l_fog, 0.35f / fog_range);
 	glUniform1f(r->l_fade, 1.0f);
-	glActiveTexture(GL_TEXTURE0 + SURFACE_TEXTURE_UNIT);
+	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
 	glActiveTexture(GL_TEXTURE0);
 	glBindVertexArray(r->vao);
@@ -199,7 +200,7 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	glUniformMatrix4fv(glGetUniformLocation(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
 	glUniform3fv(glGetUniformLocation(r->water, "u_eye"), 1, c->eye);
 	glUniform4fv(glGetUniformLocation(r->water, "u_water_rect"), 1, rect);
-	float fog_range = p->scene == 1 ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
+	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
 	glUniform1f(glGetUniformLocation(r->water, "u_fog_density"), 0.35f / fog_range);
 	glEnable(GL_BLEND);
 	glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -234,7 +235,7 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	struct grid g;
 	grid_from_params(&g, p);
 	float rect[4] = { g.origin[0], g.origin[2], g.origin[0] + g.cell * (float)g.nx, g.origin[2] + g.cell * (float)g.nz };
-	if (p->field == 0 && p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)
+	if (p->field == FIELD_TERRAIN && p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)
 		renderer_water(r, c, p, rect);
 	return renderer_end(r);
 }

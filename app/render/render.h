@@ -24,7 +24,6 @@ void camera_look(struct camera *c, const float eye[3], const float at[3], float 
 
 /* The generated surface texture (albedo variation, bump slopes, height). */
 GLuint surface_texture_create(void);
-#define SURFACE_TEXTURE_UNIT 7
 
 struct renderer;
 struct renderer *renderer_create(int width, int height, char *err, size_t errlen);

@@ -21,6 +21,7 @@
 #include "world.h"
 #include "edits.h"
 #include "gpu.h"
+#include "abi.h"
 #include "clock.h"
 #include "log.h"
 #include "pipeline.h"
@@ -52,6 +53,11 @@ struct readback {
 };
 
 #define READBACKS 64
+/* a generated block's counters, copied out of its status block for the
+ * fence-guarded read-back: triangles/vertices needed ... overflow flag */
+#define RB_FIRST ST_TRIS_NEEDED
+#define RB_WORDS (ST_OVERFLOW - ST_TRIS_NEEDED + 1)
+#define RB_BYTES (RB_WORDS * 4)
 #define AO_MARGIN 6      /* extra density samples around a block: short AO rays */
 
 struct world {
@@ -151,19 +157,19 @@ struct world *world_create(const struct params *p, char *err, size_t errlen)
 	glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
 	if (align < 16)
 		align = 16;
-	w->vstride = (GLintptr)w->vcap * 32;
+	w->vstride = (GLintptr)w->vcap * VERTEX_BYTES;
 	w->istride = (GLintptr)w->tcap * 12;
-	w->sstride = PIPELINE_STATUS_BYTES;
+	w->sstride = ST_BYTES;
 	w->vstride = (w->vstride + align - 1) / align * align;
 	w->istride = (w->istride + align - 1) / align * align;
 	w->sstride = (w->sstride + align - 1) / align * align;
 	/* vertex and element offsets must be whole vertices / indices */
-	w->vstride = (w->vstride + 31) / 32 * 32;
+	w->vstride = (w->vstride + VERTEX_BYTES - 1) / VERTEX_BYTES * VERTEX_BYTES;
 	w->istride = (w->istride + 11) / 12 * 12;
 	while (w->istride % align)
 		w->istride += 12;
 	while (w->vstride % align)
-		w->vstride += 32;
+		w->vstride += VERTEX_BYTES;
 
 	w->cap = 4096;
 	w->blocks = malloc(sizeof(*w->blocks) * w->cap);
@@ -205,7 +211,7 @@ struct world *world_create(const struct params *p, char *err, size_t errlen)
 	for (int i = 0; i < READBACKS; i++) {
 		glGenBuffers(1, &w->rb[i].buf);
 		glBindBuffer(GL_COPY_WRITE_BUFFER, w->rb[i].buf);
-		glBufferData(GL_COPY_WRITE_BUFFER, 16, NULL, GL_STREAM_READ);
+		glBufferData(GL_COPY_WRITE_BUFFER, RB_BYTES, NULL, GL_STREAM_READ);
 		w->rb[i].block = -1;
 	}
 	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
@@ -304,7 +310,7 @@ static float lod_range(const struct params *p, int lod)
  * about 1.6 x noise_amp, the warp moves it by warp_amp. */
 static void height_band(const struct params *p, const float eye[3], float range, float *ylo, float *yhi)
 {
-	if (p->shape != 0) { /* planet, caves: anywhere */
+	if (p->shape != SHAPE_GROUND) { /* planet, caves: anywhere */
 		*ylo = eye[1] - range;
 		*yhi = eye[1] + range;
 		return;
@@ -316,10 +322,7 @@ static void height_band(const struct params *p, const float eye[3], float range,
 		*ylo = p->floor_y - 1.0f;
 	/* terrain edits: the heightmap's own range; curves put the surface at
 	 * their heights (cut and fill) */
-	static int field_heightmap = -1;
-	if (field_heightmap < 0)
-		field_heightmap = params_enum_index(params_find("field"), "heightmap");
-	if (p->field == field_heightmap) {
+	if (p->field == FIELD_HEIGHTMAP) {
 		float extra = p->heightmap_detail + 1.6f * p->heightmap_noise * p->noise_amp + p->warp_amp + 1.0f;
 		*ylo = fminf(*ylo, p->heightmap_base - extra);
 		*yhi = fmaxf(*yhi, p->heightmap_base + p->heightmap_height + extra);
@@ -469,26 +472,25 @@ static void collect(struct world *w, bool wait)
 			continue;
 		glDeleteSync(r->fence);
 		r->fence = 0;
-		uint32_t v[4] = { 0, 0, 0, 0 };
+		uint32_t v[RB_WORDS] = { 0 };
 		glBindBuffer(GL_COPY_READ_BUFFER, r->buf);
-		void *m = glMapBufferRange(GL_COPY_READ_BUFFER, 0, 16, GL_MAP_READ_BIT);
+		void *m = glMapBufferRange(GL_COPY_READ_BUFFER, 0, RB_BYTES, GL_MAP_READ_BIT);
 		if (m) {
-			memcpy(v, m, 16);
+			memcpy(v, m, RB_BYTES);
 			glUnmapBuffer(GL_COPY_READ_BUFFER);
 		}
 		glBindBuffer(GL_COPY_READ_BUFFER, 0);
 		struct block *blk = &w->blocks[r->block];
 		blk->readback = -1;
 		r->block = -1;
-		/* status words 20..23: triangles needed, vertices needed, written */
-		if (v[0] > w->tcap || v[1] > w->vcap)
+		if (v[ST_OVERFLOW - RB_FIRST])
 			w->st.overflowed++;
-		if (m && v[0] == 0 && blk->stale) {
+		if (m && v[ST_TRIS_NEEDED - RB_FIRST] == 0 && blk->stale) {
 			/* edited since: the empty result is stale, ask again */
 			blk->state = B_FREE;
 			blk->stale = false;
 			free_slot(w, (int)(blk - w->blocks));
-		} else if (m && v[0] == 0) {
+		} else if (m && v[ST_TRIS_NEEDED - RB_FIRST] == 0) {
 			blk->state = B_EMPTY;
 			free_slot(w, (int)(blk - w->blocks));
 			w->st.empty_found++;
@@ -527,7 +529,7 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 		.vbo = w->vbo, .ibo = w->ibo, .status = w->status,
 		.vbo_offset = w->vstride * slot, .ibo_offset = w->istride * slot, .status_offset = w->sstride * slot,
 		.vert_cap = w->vcap, .tri_cap = w->tcap,
-		.first_index = (uint32_t)(w->istride * slot / 4), .base_vertex = (uint32_t)(w->vstride * slot / 32),
+		.first_index = (uint32_t)(w->istride * slot / 4), .base_vertex = (uint32_t)(w->vstride * slot / VERTEX_BYTES),
 	};
 	pipeline_set_target(w->pl, &t);
 	struct params q = *p;
@@ -547,7 +549,7 @@ static int generate(struct world *w, const struct params *p, int b, int slot, do
 	if (r >= 0) {
 		glBindBuffer(GL_COPY_READ_BUFFER, w->status);
 		glBindBuffer(GL_COPY_WRITE_BUFFER, w->rb[r].buf);
-		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, w->sstride * slot + 20 * 4, 0, 16);
+		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, w->sstride * slot + RB_FIRST * 4, 0, RB_BYTES);
 		glBindBuffer(GL_COPY_READ_BUFFER, 0);
 		glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 		w->rb[r].fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
@@ -741,7 +743,7 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 	pipeline_set_target(w->pl, NULL);
 	struct params q = *p;
 	q.closed = false;
-	q.compaction = COMPACT_HP;
+	q.compaction = COMPACTION_HP;
 	if (pipeline_run(w->pl, &q) < 0)
 		return -1;
 	return pipeline_read_mesh(w->pl, m);

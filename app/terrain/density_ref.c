@@ -17,13 +17,8 @@ static const float worley_mean[4] = { 0.5205f, 0.7167f, 0.8451f, 0.9437f };
 static const float octave_shift[3] = { 17.31f, -9.17f, 23.53f };
 #define PI_F 3.14159265358979f
 
-/* values of the FIELD_/SHAPE_/... enums (index in the params.def choices) */
-enum { FIELD_TERRAIN, FIELD_TORUS, FIELD_BUMPS, FIELD_RIPPLE, FIELD_SPHERE, FIELD_CHECKER, FIELD_HEIGHTMAP };
-enum { SHAPE_GROUND, SHAPE_PLANET, SHAPE_CAVES };
-enum { NOISE_ALU, NOISE_TEXTURE };
-enum { FRACTAL_GEISS, FRACTAL_FBM, FRACTAL_TURBULENCE, FRACTAL_RIDGED, FRACTAL_MULTIFRACTAL, FRACTAL_HETERO,
-       FRACTAL_WORLEY };
-enum { TERRACE_OFF, TERRACE_PRE, TERRACE_POST };
+/* FIELD_*, SHAPE_*, NOISE_*, FRACTAL_*, TERRACE_*: params_enums.h, generated
+ * from params.def like the shaders' #defines */
 
 static inline float clampf(float x, float lo, float hi)
 {

@@ -3,6 +3,7 @@
  * block (permutation, rotations, seed; UBO binding 0).  See noise.h and
  * shaders/noise.glsl. */
 #include "noise.h"
+#include "abi.h"
 
 #include <GLES3/gl31.h>
 #include <stdio.h>
@@ -52,11 +53,11 @@ int noise_gl_init(struct noise_gl *ng, const struct noise_set *ns, char *err, si
 void noise_gl_bind(const struct noise_gl *ng)
 {
 	for (int k = 0; k < NOISE_TEX_COUNT; k++) {
-		glActiveTexture(GL_TEXTURE0 + (GLenum)k);
+		glActiveTexture(GL_TEXTURE0 + TEX_NOISE0 + (GLenum)k);
 		glBindTexture(GL_TEXTURE_3D, ng->tex[k]);
 	}
 	glActiveTexture(GL_TEXTURE0);
-	glBindBufferBase(GL_UNIFORM_BUFFER, 0, ng->ubo);
+	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_NOISE, ng->ubo);
 }
 
 void noise_gl_destroy(struct noise_gl *ng)
