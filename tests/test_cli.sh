@@ -6,32 +6,7 @@ BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
 SRC=${ISOTERRA_SRC:-$(dirname "$0")/..}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-
-# expect_fail "regex of the message" args...
-expect_fail() {
-	pat=$1
-	shift
-	"$BIN" "$@" >"$T/out" 2>"$T/err"
-	rc=$?
-	if [ $rc -eq 0 ]; then
-		bad "isoterra $* exited 0"
-		return
-	fi
-	if ! grep -Eq "$pat" "$T/err"; then
-		bad "isoterra $*: message does not match '$pat': $(cat "$T/err")"
-		return
-	fi
-	lines=$(grep -c . "$T/err")
-	if [ "$lines" -gt 3 ]; then
-		bad "isoterra $*: $lines lines of messages, want one clear line: $(cat "$T/err")"
-		return
-	fi
-	ok
-}
+. "$(dirname "$0")/cli_lib.sh"
 
 cd "$T" || exit 1
 expect_fail "unknown option '--nope'" --nope

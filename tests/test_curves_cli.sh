@@ -5,38 +5,10 @@
 BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+MAX_MSG_LINES=2
+NO_OUTPUT=out.png
+. "$(dirname "$0")/cli_lib.sh"
 SMALL="--size 64x48 --grid 16 --out out.png"
-
-# expect_fail "regex of the message" args...
-expect_fail() {
-	pat=$1
-	shift
-	rm -f out.png
-	"$BIN" "$@" >"$T/out" 2>"$T/err"
-	rc=$?
-	if [ $rc -eq 0 ]; then
-		bad "isoterra $* exited 0"
-		return
-	fi
-	if ! grep -Eq "$pat" "$T/err"; then
-		bad "isoterra $*: message does not match '$pat': $(cat "$T/err")"
-		return
-	fi
-	lines=$(grep -c . "$T/err")
-	if [ "$lines" -gt 2 ]; then
-		bad "isoterra $*: $lines lines of messages, want one clear line: $(cat "$T/err")"
-		return
-	fi
-	if [ -e out.png ]; then
-		bad "isoterra $*: failed but wrote out.png"
-		return
-	fi
-	ok
-}
 
 expect_ok() {
 	rm -f out.png

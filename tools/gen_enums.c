@@ -8,6 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "gen_file.h"
+
 struct entry {
 	const char *name, *choices;
 };
@@ -38,13 +40,10 @@ int main(int argc, char **argv)
 		fprintf(stderr, "usage: %s OUT.h\n", argv[0]);
 		return 2;
 	}
-	char tmp[4096];
-	snprintf(tmp, sizeof(tmp), "%s.tmp", argv[1]);
-	FILE *out = fopen(tmp, "w");
-	if (!out) {
-		perror(tmp);
+	struct gen_file g;
+	FILE *out = gen_begin(&g, argv[1]);
+	if (!out)
 		return 1;
-	}
 	fprintf(out, "/* generated from app/params/params.def by isoterra-gen-enums: do not edit */\n"
 		     "#ifndef ISOTERRA_PARAMS_ENUMS_H\n#define ISOTERRA_PARAMS_ENUMS_H\n");
 	for (size_t i = 0; i < sizeof(entries) / sizeof(entries[0]); i++) {
@@ -64,10 +63,5 @@ int main(int argc, char **argv)
 		fputs("_COUNT\n};\n", out);
 	}
 	fprintf(out, "\n#endif\n");
-	if (fclose(out) != 0 || rename(tmp, argv[1]) != 0) {
-		perror(argv[1]);
-		remove(tmp);
-		return 1;
-	}
-	return 0;
+	return gen_commit(&g);
 }

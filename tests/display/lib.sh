@@ -9,6 +9,21 @@ fail=0
 ok() { pass=$((pass + 1)); echo "ok: $*"; }
 bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
 
+# scratch: a scratch folder $T, removed on exit (ISOTERRA_KEEP=1 keeps it),
+# with the app ($APID, killed) and the display server ($SERVER_PID,
+# terminated) stopped on exit
+scratch() {
+	T=$(mktemp -d)
+	APID=
+	SERVER_PID=
+	trap 'scratch_cleanup' EXIT
+}
+scratch_cleanup() {
+	[ -n "$APID" ] && kill -KILL "$APID" 2>/dev/null
+	[ -n "$SERVER_PID" ] && kill -TERM "$SERVER_PID" 2>/dev/null
+	[ "${ISOTERRA_KEEP:-0}" = 1 ] || rm -rf "$T"
+}
+
 # need TOOL... : skip (77) when a tool is missing, unless required.
 need() {
 	for t in "$@"; do

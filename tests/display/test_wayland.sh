@@ -6,15 +6,7 @@
 # auto picks wayland, a missing compositor is one clear error.
 . "$(dirname "$0")/lib.sh"
 need weston weston-screenshooter
-T=$(mktemp -d)
-WPID=
-APID=
-cleanup() {
-	[ -n "$APID" ] && kill -KILL "$APID" 2>/dev/null
-	[ -n "$WPID" ] && kill -TERM "$WPID" 2>/dev/null
-	[ "${ISOTERRA_KEEP:-0}" = 1 ] || rm -rf "$T"
-}
-trap cleanup EXIT
+scratch # $T; kills $APID and $SERVER_PID on exit
 ARGS="--grid 24 --cam-spin 0 --seed 7 --fps 1000" # --fps 1000: the clock (water, sky) all but stands still, so any frame on screen matches the reference
 OUT_W=320
 OUT_H=240
@@ -27,9 +19,9 @@ SOCK=isoterra-test-$$
 # --debug: lets weston-screenshooter take the screenshot
 weston --backend=headless-backend.so --use-pixman --width=$OUT_W --height=$OUT_H --socket=$SOCK \
 	--idle-time=0 --no-config --debug --log="$T/weston.log" >"$T/weston.out" 2>&1 &
-WPID=$!
+SERVER_PID=$!
 n=0
-while [ ! -S "$XDG_RUNTIME_DIR/$SOCK" ] && alive "$WPID" && [ $n -lt 200 ]; do sleep 0.1; n=$((n + 1)); done
+while [ ! -S "$XDG_RUNTIME_DIR/$SOCK" ] && alive "$SERVER_PID" && [ $n -lt 200 ]; do sleep 0.1; n=$((n + 1)); done
 if [ ! -S "$XDG_RUNTIME_DIR/$SOCK" ]; then
 	bad "weston did not start: $(tail -5 "$T/weston.log" "$T/weston.out")"
 	echo "$pass passed, $fail failed"

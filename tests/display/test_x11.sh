@@ -6,15 +6,7 @@
 # server is one clear error.
 . "$(dirname "$0")/lib.sh"
 need Xvfb xwd "${X11POKE:-x11poke}"
-T=$(mktemp -d)
-XPID=
-APID=
-cleanup() {
-	[ -n "$APID" ] && kill -KILL "$APID" 2>/dev/null
-	[ -n "$XPID" ] && kill -TERM "$XPID" 2>/dev/null
-	[ "${ISOTERRA_KEEP:-0}" = 1 ] || rm -rf "$T"
-}
-trap cleanup EXIT
+scratch # $T; kills $APID and $SERVER_PID on exit
 # static frames: the camera does not orbit, the field does not scroll
 ARGS="--grid 24 --cam-spin 0 --seed 7 --fps 1000" # --fps 1000: the clock (water, sky) all but stands still, so any frame on screen matches the reference
 SCREEN=400x300
@@ -22,8 +14,8 @@ SCREEN=400x300
 # Xvfb picks a free display number itself (-displayfd): no clash with
 # other X servers on the machine.
 Xvfb -displayfd 3 -nolisten tcp -screen 0 ${SCREEN}x24 3>"$T/display" >"$T/xvfb.log" 2>&1 &
-XPID=$!
-wait_for "$T/display" '^[0-9]+$' 20 "$XPID" || { bad "Xvfb did not start: $(cat "$T/xvfb.log")"; echo "$pass passed, $fail failed"; exit 1; }
+SERVER_PID=$!
+wait_for "$T/display" '^[0-9]+$' 20 "$SERVER_PID" || { bad "Xvfb did not start: $(cat "$T/xvfb.log")"; echo "$pass passed, $fail failed"; exit 1; }
 DISPLAY=:$(cat "$T/display")
 export DISPLAY
 unset WAYLAND_DISPLAY
