@@ -44,18 +44,26 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 	return t[n / 2];
 }
 
+/* Default parameters at grid size n (octaves: 0 keeps the default's) and
+ * their pipeline; NULL with err when it cannot be created. */
+static struct pipeline *open_pipeline(struct params *p, struct grid *g, int n, int octaves, char *err, size_t errlen)
+{
+	params_defaults(p);
+	if (octaves)
+		p->octaves = octaves;
+	p->grid = n;
+	grid_from_params(g, p);
+	return pipeline_create(g, p, err, errlen);
+}
+
 /* Fixed field at grid size n: density pass, full pipeline and, from one
  * profiled run, where the time goes (written to breakdown). */
 static void measure_size(int n, double budget, char *breakdown, size_t len)
 {
 	char err[512];
 	struct params p;
-	params_defaults(&p);
-	p.octaves = 7;
-	p.grid = n;
 	struct grid g;
-	grid_from_params(&g, &p);
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(&p, &g, n, 7, err, sizeof(err));
 	if (!pl) {
 		printf("%-6d n/a: %s\n", n, err);
 		return;
@@ -83,12 +91,8 @@ static void measure_compaction(int gsz, double budget)
 {
 	char err[512];
 	struct params p;
-	params_defaults(&p);
-	p.octaves = 7;
-	p.grid = gsz;
 	struct grid g;
-	grid_from_params(&g, &p);
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(&p, &g, gsz, 7, err, sizeof(err));
 	if (!pl) {
 		printf("  %d^3: n/a: %s\n", gsz, err);
 		return;
@@ -117,11 +121,8 @@ static void measure_noise(int n, double budget)
 {
 	char err[512];
 	struct params p;
-	params_defaults(&p);
-	p.grid = n;
 	struct grid g;
-	grid_from_params(&g, &p);
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(&p, &g, n, 0, err, sizeof(err));
 	if (!pl)
 		return;
 	double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
