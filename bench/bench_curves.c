@@ -113,6 +113,64 @@ static double time_bake(const struct params *p, const struct bake_opts *o, int m
 	return t[0];
 }
 
+static const char *const shapes[3] = { "3 paths dispersed", "3 paths concentrated (bottom-right 512^2)",
+				      "1 path across the terrain" };
+
+/* Dataset 'A' + d: building the curves, then analytic (with its CPU time),
+ * dense and iterative bakes; one table row.  -1 when the curves cannot be
+ * built, 1 when a bake failed, else 0. */
+static int measure_dataset(int d, const struct params *p, struct bake_opts *o, double budget)
+{
+	char err[512];
+	struct curve_set s;
+	dataset((char)('A' + d), &s);
+	double t0 = clock_ms();
+	if (edits_set_curves(&s, 16, err, sizeof(err)) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		return -1;
+	}
+	double build_ms = clock_ms() - t0;
+	const struct edits *e = edits_get();
+	o->iterative = false;
+	double ta = time_bake(p, o, 3, budget);
+	double ca = last_cpu;
+	o->dense = true;
+	double td = time_bake(p, o, 2, budget / 3);
+	o->dense = false;
+	o->iterative = true;
+	double ti = time_bake(p, o, 1, 0);
+	o->iterative = false;
+	printf("%-3c %-40s %6d %9.2f %9d %12.1f %9.1f %10.1f %14.1f %7.1fx\n", 'A' + d, shapes[d], e->quads.nquads,
+	       build_ms, e->hash.nindex, ta, ca, td, ti, ti / ta);
+	curve_set_free(&s);
+	return ta < 0 || ti < 0 || td < 0 ? 1 : 0;
+}
+
+/* Dataset C, analytic, through hashes of 1 (not above 512^2 texels) to 64^2
+ * cells.  0, or -1 when the curves cannot be built. */
+static int measure_hash_sizes(const struct params *p, struct bake_opts *o, int res, double budget)
+{
+	char err[512];
+	struct curve_set s;
+	dataset('C', &s);
+	int dims[5] = { 1, 8, 16, 32, 64 };
+	o->iterative = false;
+	for (int i = 0; i < 5; i++) {
+		if (dims[i] == 1 && res > 512)
+			continue; /* every curve at every texel: minutes at 2048^2 on llvmpipe */
+		if (edits_set_curves(&s, dims[i], err, sizeof(err)) < 0) {
+			fprintf(stderr, "bench: %s\n", err);
+			return -1;
+		}
+		const struct edits *e = edits_get();
+		double t = time_bake(p, o, 3, budget / 2);
+		printf("  hash %2dx%-2d  %8.1f ms (cpu %7.1f)   entries %5d   max per cell %3d\n", dims[i], dims[i], t,
+		       last_cpu, e->hash.nindex, e->hash.max_per_cell);
+	}
+	curve_set_free(&s);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
@@ -159,54 +217,17 @@ int main(int argc, char **argv)
 	       " llvmpipe's threads included: on an idle machine wall ~ cpu / cores)\n");
 	printf("%-3s %-40s %6s %9s %9s %12s %9s %10s %14s %8s\n", "set", "shape", "quads", "build ms", "entries",
 	       "analytic ms", "(cpu)", "dense ms", "iterative ms", "ratio");
-	const char *shapes[3] = { "3 paths dispersed", "3 paths concentrated (bottom-right 512^2)",
-				  "1 path across the terrain" };
 	for (int d = 0; d < 3; d++) {
-		struct curve_set s;
-		dataset((char)('A' + d), &s);
-		double t0 = clock_ms();
-		if (edits_set_curves(&s, 16, err, sizeof(err)) < 0) {
-			fprintf(stderr, "bench: %s\n", err);
+		int rc = measure_dataset(d, &p, &o, budget);
+		if (rc < 0)
 			return 1;
-		}
-		double build_ms = clock_ms() - t0;
-		const struct edits *e = edits_get();
-		o.iterative = false;
-		double ta = time_bake(&p, &o, 3, budget);
-		double ca = last_cpu;
-		o.dense = true;
-		double td = time_bake(&p, &o, 2, budget / 3);
-		o.dense = false;
-		o.iterative = true;
-		double ti = time_bake(&p, &o, 1, 0);
-		o.iterative = false;
-		if (ta < 0 || ti < 0 || td < 0)
+		if (rc > 0)
 			status = 1;
-		printf("%-3c %-40s %6d %9.2f %9d %12.1f %9.1f %10.1f %14.1f %7.1fx\n", 'A' + d, shapes[d], e->quads.nquads,
-		       build_ms, e->hash.nindex, ta, ca, td, ti, ti / ta);
-		curve_set_free(&s);
 	}
 
 	printf("\ndataset C, analytic, by hash size (entries = cell list length; max = longest cell list):\n");
-	{
-		struct curve_set s;
-		dataset('C', &s);
-		int dims[5] = { 1, 8, 16, 32, 64 };
-		o.iterative = false;
-		for (int i = 0; i < 5; i++) {
-			if (dims[i] == 1 && res > 512)
-				continue; /* every curve at every texel: minutes at 2048^2 on llvmpipe */
-			if (edits_set_curves(&s, dims[i], err, sizeof(err)) < 0) {
-				fprintf(stderr, "bench: %s\n", err);
-				return 1;
-			}
-			const struct edits *e = edits_get();
-			double t = time_bake(&p, &o, 3, budget / 2);
-			printf("  hash %2dx%-2d  %8.1f ms (cpu %7.1f)   entries %5d   max per cell %3d\n", dims[i], dims[i], t,
-			       last_cpu, e->hash.nindex, e->hash.max_per_cell);
-		}
-		curve_set_free(&s);
-	}
+	if (measure_hash_sizes(&p, &o, res, budget) < 0)
+		return 1;
 	printf("\nload average %.2f at the end\n", bench_loadavg());
 	edits_gl_release();
 	edits_clear();

@@ -44,6 +44,95 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 	return t[n / 2];
 }
 
+/* Default parameters at grid size n (octaves: 0 keeps the default's) and
+ * their pipeline; NULL with err when it cannot be created. */
+static struct pipeline *open_pipeline(struct params *p, struct grid *g, int n, int octaves, char *err, size_t errlen)
+{
+	params_defaults(p);
+	if (octaves)
+		p->octaves = octaves;
+	p->grid = n;
+	grid_from_params(g, p);
+	return pipeline_create(g, p, err, errlen);
+}
+
+/* Fixed field at grid size n: density pass, full pipeline and, from one
+ * profiled run, where the time goes (written to breakdown). */
+static void measure_size(int n, double budget, char *breakdown, size_t len)
+{
+	char err[512];
+	struct params p;
+	struct grid g;
+	struct pipeline *pl = open_pipeline(&p, &g, n, 7, err, sizeof(err));
+	if (!pl) {
+		printf("%-6d n/a: %s\n", n, err);
+		return;
+	}
+	double td = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
+	double tf = time_runs(pl, &p, FULL, 3, budget);
+	/* one profiled run: where the time goes */
+	double ms[PASS_COUNT];
+	pipeline_profile(pl, true, NULL);
+	pipeline_run(pl, &p);
+	glFinish();
+	pipeline_profile(pl, false, ms);
+	snprintf(breakdown, len, "%-6d density %8.2f  classify %8.2f  reduce+setup %8.2f  vertices %8.2f  indices %8.2f",
+		 n, ms[PASS_DENSITY], ms[PASS_CLASSIFY], ms[PASS_REDUCE], ms[PASS_VERTICES], ms[PASS_INDICES]);
+	struct extract_stats st;
+	pipeline_read_stats(pl, &st);
+	double vox = (double)g.nx * g.ny * g.nz;
+	printf("%-6d %12.2f %12.2f %8.3f %10.1f %12.2f %10u%s\n", n, td, tf, tf / td, vox / (tf * 1e3),
+	       st.triangles / (tf * 1e3), st.triangles, st.overflow ? " (overflow)" : "");
+	pipeline_destroy(pl);
+}
+
+/* The same field at grid gsz through the three compaction methods. */
+static void measure_compaction(int gsz, double budget)
+{
+	char err[512];
+	struct params p;
+	struct grid g;
+	struct pipeline *pl = open_pipeline(&p, &g, gsz, 7, err, sizeof(err));
+	if (!pl) {
+		printf("  %d^3: n/a: %s\n", gsz, err);
+		return;
+	}
+	double base = 0;
+	const char *names[] = { "histopyramid", "atomic-append", "none (15 verts/cell)" };
+	for (int m = 0; m < 3; m++) {
+		p.compaction = m;
+		double t = time_runs(pl, &p, FULL, 3, budget);
+		struct extract_stats st;
+		pipeline_read_stats(pl, &st);
+		if (t < 0) {
+			printf("  %d^3 %-22s n/a (buffer over the GL limit)\n", gsz, names[m]);
+			continue;
+		}
+		if (m == 0)
+			base = t;
+		printf("  %d^3 %-22s %10.2f ms  ratio %6.3f  drawn triangles %u\n", gsz, names[m], t, t / base,
+		       st.triangles);
+	}
+	pipeline_destroy(pl);
+}
+
+/* The density pass with ALU noise and with 16^3 noise textures. */
+static void measure_noise(int n, double budget)
+{
+	char err[512];
+	struct params p;
+	struct grid g;
+	struct pipeline *pl = open_pipeline(&p, &g, n, 0, err, sizeof(err));
+	if (!pl)
+		return;
+	double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
+	p.noise = 1;
+	double tt = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
+	printf("  alu (improved Perlin)   %10.2f ms  ratio 1.000\n", ta);
+	printf("  texture (16^3 volumes)  %10.2f ms  ratio %.3f\n", tt, tt / ta);
+	pipeline_destroy(pl);
+}
+
 int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
@@ -66,7 +155,6 @@ int main(int argc, char **argv)
 	struct platform *plat = bench_open(plat_name, 64, 64);
 	if (!plat)
 		return 1;
-	char err[512];
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 
@@ -74,36 +162,8 @@ int main(int argc, char **argv)
 	memset(breakdown, 0, sizeof(breakdown));
 	printf("%-6s %12s %12s %8s %10s %12s %10s\n", "grid", "density ms", "full ms", "ratio", "Mvox/s", "Mtris/s",
 	       "triangles");
-	for (int s = 0; s < nsizes; s++) {
-		struct params p;
-		params_defaults(&p);
-		p.octaves = 7;
-		p.grid = sizes[s];
-		struct grid g;
-		grid_from_params(&g, &p);
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
-		if (!pl) {
-			printf("%-6d n/a: %s\n", sizes[s], err);
-			continue;
-		}
-		double td = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-		double tf = time_runs(pl, &p, FULL, 3, budget);
-		/* one profiled run: where the time goes */
-		double ms[PASS_COUNT];
-		pipeline_profile(pl, true, NULL);
-		pipeline_run(pl, &p);
-		glFinish();
-		pipeline_profile(pl, false, ms);
-		snprintf(breakdown[s], sizeof(breakdown[s]),
-			 "%-6d density %8.2f  classify %8.2f  reduce+setup %8.2f  vertices %8.2f  indices %8.2f", sizes[s],
-			 ms[PASS_DENSITY], ms[PASS_CLASSIFY], ms[PASS_REDUCE], ms[PASS_VERTICES], ms[PASS_INDICES]);
-		struct extract_stats st;
-		pipeline_read_stats(pl, &st);
-		double vox = (double)g.nx * g.ny * g.nz;
-		printf("%-6d %12.2f %12.2f %8.3f %10.1f %12.2f %10u%s\n", sizes[s], td, tf, tf / td, vox / (tf * 1e3),
-		       st.triangles / (tf * 1e3), st.triangles, st.overflow ? " (overflow)" : "");
-		pipeline_destroy(pl);
-	}
+	for (int s = 0; s < nsizes; s++)
+		measure_size(sizes[s], budget, breakdown[s], sizeof(breakdown[s]));
 
 	printf("\nper pass (ms, one run with glFinish after every pass):\n");
 	for (int s = 0; s < nsizes; s++)
@@ -112,54 +172,11 @@ int main(int argc, char **argv)
 
 	int cmp_grid = quick ? 64 : 128;
 	printf("\ncompaction methods, same field, grid %d^3 (ratio = time / HistoPyramid time):\n", cmp_grid);
-	for (int gsz = 64; gsz <= cmp_grid; gsz *= 2) {
-		struct params p;
-		params_defaults(&p);
-		p.octaves = 7;
-		p.grid = gsz;
-		struct grid g;
-		grid_from_params(&g, &p);
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
-		if (!pl) {
-			printf("  %d^3: n/a: %s\n", gsz, err);
-			continue;
-		}
-		double base = 0;
-		const char *names[] = { "histopyramid", "atomic-append", "none (15 verts/cell)" };
-		for (int m = 0; m < 3; m++) {
-			p.compaction = m;
-			double t = time_runs(pl, &p, FULL, 3, budget);
-			struct extract_stats st;
-			pipeline_read_stats(pl, &st);
-			if (t < 0) {
-				printf("  %d^3 %-22s n/a (buffer over the GL limit)\n", gsz, names[m]);
-				continue;
-			}
-			if (m == 0)
-				base = t;
-			printf("  %d^3 %-22s %10.2f ms  ratio %6.3f  drawn triangles %u\n", gsz, names[m], t, t / base,
-			       st.triangles);
-		}
-		pipeline_destroy(pl);
-	}
+	for (int gsz = 64; gsz <= cmp_grid; gsz *= 2)
+		measure_compaction(gsz, budget);
 
 	printf("\nnoise source, density pass, grid %d^3, 9 octaves (ratio = time / ALU time):\n", cmp_grid);
-	{
-		struct params p;
-		params_defaults(&p);
-		p.grid = cmp_grid;
-		struct grid g;
-		grid_from_params(&g, &p);
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
-		if (pl) {
-			double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-			p.noise = 1;
-			double tt = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-			printf("  alu (improved Perlin)   %10.2f ms  ratio 1.000\n", ta);
-			printf("  texture (16^3 volumes)  %10.2f ms  ratio %.3f\n", tt, tt / ta);
-			pipeline_destroy(pl);
-		}
-	}
+	measure_noise(cmp_grid, budget);
 	platform_close(plat);
 	return 0;
 }

@@ -1,18 +1,18 @@
 /* isoterra — GBM/KMS display backend (kiosks, no window system).
  *
- * Opens a DRM card (given, or the first with a connected output), picks the
- * connector, mode and CRTC, renders through a gbm_surface with EGL's GBM
- * platform and scans the buffers out: atomic modesetting (TEST_ONLY first,
+ * Takes the output kms.c picks (a DRM card, its connector, mode and CRTC),
+ * renders through a gbm_surface with EGL's GBM platform and scans the
+ * buffers out: atomic modesetting (TEST_ONLY first,
  * then a real commit; page flips with DRM_MODE_PAGE_FLIP_EVENT) with a
  * legacy drmModeSetCrtc/drmModePageFlip fallback.  present() waits for the
  * flip event (vsync).  close() puts back the CRTC that was there before
  * (the console, usually).  Structure after kmscube (drm-common, drm-atomic,
  * drm-legacy). */
+#include "kms.h"
 #include "platform.h"
 #include "util.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <poll.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -26,7 +26,6 @@
 
 #include "log.h"
 
-#define MAX_CARDS 16
 #define FLIP_TIMEOUT_MS 5000
 
 struct gbm_props {
@@ -36,15 +35,11 @@ struct gbm_props {
 };
 
 struct gbm_state {
-	int fd;
-	char path[64];
+	struct kms_output kms;     /* card, connector, mode, CRTC */
 	struct gbm_device *gbm;
 	struct gbm_surface *surf;
 	struct gbm_bo *front;      /* on screen */
-	uint32_t conn_id, crtc_id, plane_id;
-	int crtc_index;
-	char conn_name[32];
-	drmModeModeInfo mode;
+	uint32_t plane_id;
 	drmModeCrtc *saved;        /* the CRTC as we found it, put back on close */
 	bool atomic, modeset_done, flip_pending, restore_done;
 	uint32_t mode_blob;
@@ -57,197 +52,9 @@ struct gbm_fb {
 	uint32_t fb_id;
 };
 
-static const char *conn_type_name(uint32_t type)
-{
-	switch (type) {
-	case DRM_MODE_CONNECTOR_VGA: return "VGA";
-	case DRM_MODE_CONNECTOR_DVII: return "DVI-I";
-	case DRM_MODE_CONNECTOR_DVID: return "DVI-D";
-	case DRM_MODE_CONNECTOR_DVIA: return "DVI-A";
-	case DRM_MODE_CONNECTOR_Composite: return "Composite";
-	case DRM_MODE_CONNECTOR_LVDS: return "LVDS";
-	case DRM_MODE_CONNECTOR_Component: return "Component";
-	case DRM_MODE_CONNECTOR_DisplayPort: return "DP";
-	case DRM_MODE_CONNECTOR_HDMIA: return "HDMI-A";
-	case DRM_MODE_CONNECTOR_HDMIB: return "HDMI-B";
-	case DRM_MODE_CONNECTOR_TV: return "TV";
-	case DRM_MODE_CONNECTOR_eDP: return "eDP";
-	case DRM_MODE_CONNECTOR_VIRTUAL: return "Virtual";
-	case DRM_MODE_CONNECTOR_DSI: return "DSI";
-	case DRM_MODE_CONNECTOR_DPI: return "DPI";
-	default: return "Unknown";
-	}
-}
-
-/* The first connected connector with modes, or NULL. */
-static drmModeConnector *find_connector(int fd, drmModeRes *res)
-{
-	for (int i = 0; i < res->count_connectors; i++) {
-		drmModeConnector *c = drmModeGetConnector(fd, res->connectors[i]);
-		if (!c)
-			continue;
-		if (c->connection == DRM_MODE_CONNECTED && c->count_modes > 0)
-			return c;
-		drmModeFreeConnector(c);
-	}
-	return NULL;
-}
-
-/* 1: the card has KMS and a connected output, 0: no connected output,
- * -1: not a KMS device (or cannot be opened). */
-static int card_state(const char *path, int *fd_out)
-{
-	int fd = open(path, O_RDWR | O_CLOEXEC);
-	if (fd < 0)
-		return -1;
-	drmModeRes *res = drmModeGetResources(fd);
-	if (!res) {
-		close(fd);
-		return -1;
-	}
-	drmModeConnector *c = find_connector(fd, res);
-	int rc = c ? 1 : 0;
-	drmModeFreeConnector(c);
-	drmModeFreeResources(res);
-	if (fd_out && rc == 1)
-		*fd_out = fd;
-	else
-		close(fd);
-	return rc;
-}
-
 static bool gbm_probe(void)
 {
-	char path[64];
-	for (int i = 0; i < MAX_CARDS; i++) {
-		snprintf(path, sizeof(path), "%s/card%d", DRM_DIR_NAME, i);
-		if (card_state(path, NULL) == 1)
-			return true;
-	}
-	return false;
-}
-
-static int open_card(struct gbm_state *g, const char *want, char *err, size_t errlen)
-{
-	if (want && want[0]) {
-		snprintf(g->path, sizeof(g->path), "%s", want);
-		int fd = open(want, O_RDWR | O_CLOEXEC);
-		if (fd < 0) {
-			snprintf(err, errlen, "cannot open %s: %s", want, strerror(errno));
-			return -1;
-		}
-		close(fd);
-		int st = card_state(want, &g->fd);
-		if (st < 0) {
-			snprintf(err, errlen, "%s is not a KMS display device (drmModeGetResources failed)", want);
-			return -1;
-		}
-		if (st == 0) {
-			snprintf(err, errlen, "no connected display on %s", want);
-			return -1;
-		}
-		return 0;
-	}
-	char first_kms[64] = "";
-	for (int i = 0; i < MAX_CARDS; i++) {
-		char path[64];
-		snprintf(path, sizeof(path), "%s/card%d", DRM_DIR_NAME, i);
-		int st = card_state(path, &g->fd);
-		if (st == 1) {
-			snprintf(g->path, sizeof(g->path), "%s", path);
-			return 0;
-		}
-		if (st == 0 && !first_kms[0])
-			snprintf(first_kms, sizeof(first_kms), "%s", path);
-	}
-	if (first_kms[0])
-		snprintf(err, errlen, "no connected display on %s", first_kms);
-	else
-		snprintf(err, errlen, "no DRM card with KMS in %s (give one with --drm-device)", DRM_DIR_NAME);
-	return -1;
-}
-
-/* "WxH" or "WxH@Hz" -> w, h, hz (0 = any).  0 or -1. */
-static int parse_mode(const char *s, int *w, int *h, int *hz)
-{
-	char tail = 0;
-	*hz = 0;
-	if (sscanf(s, "%dx%d%c", w, h, &tail) == 2)
-		return *w > 0 && *h > 0 ? 0 : -1;
-	if (sscanf(s, "%dx%d@%d%c", w, h, hz, &tail) == 3)
-		return *w > 0 && *h > 0 && *hz > 0 ? 0 : -1;
-	return -1;
-}
-
-static int choose_mode(struct gbm_state *g, drmModeConnector *c, const char *want, char *err, size_t errlen)
-{
-	if (want && want[0]) {
-		int w, h, hz;
-		if (parse_mode(want, &w, &h, &hz) < 0) {
-			snprintf(err, errlen, "--mode '%s' is not WxH or WxH@Hz", want);
-			return -1;
-		}
-		for (int i = 0; i < c->count_modes; i++) {
-			const drmModeModeInfo *m = &c->modes[i];
-			if (m->hdisplay == w && m->vdisplay == h && (!hz || (int)m->vrefresh == hz)) {
-				g->mode = *m;
-				return 0;
-			}
-		}
-		char list[256] = "";
-		size_t len = 0;
-		for (int i = 0; i < c->count_modes && len + 24 < sizeof(list); i++) {
-			int n = snprintf(list + len, sizeof(list) - len, "%s%dx%d@%u", i ? " " : "",
-			                 c->modes[i].hdisplay, c->modes[i].vdisplay, c->modes[i].vrefresh);
-			if (n > 0)
-				len += (size_t)n;
-		}
-		snprintf(err, errlen, "mode %s not offered by %s on %s (modes: %s)", want, g->conn_name, g->path, list);
-		return -1;
-	}
-	g->mode = c->modes[0];
-	for (int i = 0; i < c->count_modes; i++)
-		if (c->modes[i].type & DRM_MODE_TYPE_PREFERRED) {
-			g->mode = c->modes[i];
-			break;
-		}
-	return 0;
-}
-
-static int choose_crtc(struct gbm_state *g, drmModeRes *res, drmModeConnector *c, char *err, size_t errlen)
-{
-	g->crtc_id = 0;
-	if (c->encoder_id) {
-		drmModeEncoder *e = drmModeGetEncoder(g->fd, c->encoder_id);
-		if (e) {
-			g->crtc_id = e->crtc_id;
-			drmModeFreeEncoder(e);
-		}
-	}
-	for (int i = 0; i < c->count_encoders && !g->crtc_id; i++) {
-		drmModeEncoder *e = drmModeGetEncoder(g->fd, c->encoders[i]);
-		if (!e)
-			continue;
-		for (int k = 0; k < res->count_crtcs; k++)
-			if (e->possible_crtcs & (1u << k)) {
-				g->crtc_id = res->crtcs[k];
-				break;
-			}
-		drmModeFreeEncoder(e);
-	}
-	if (!g->crtc_id) {
-		snprintf(err, errlen, "no CRTC can drive %s on %s", g->conn_name, g->path);
-		return -1;
-	}
-	g->crtc_index = -1;
-	for (int k = 0; k < res->count_crtcs; k++)
-		if (res->crtcs[k] == g->crtc_id)
-			g->crtc_index = k;
-	if (g->crtc_index < 0) {
-		snprintf(err, errlen, "CRTC %u is not in the card's list", g->crtc_id);
-		return -1;
-	}
-	return 0;
+	return kms_probe();
 }
 
 /* ---- atomic -------------------------------------------------------------- */
@@ -275,17 +82,17 @@ static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name, u
 
 static uint32_t find_primary_plane(struct gbm_state *g)
 {
-	drmModePlaneRes *pr = drmModeGetPlaneResources(g->fd);
+	drmModePlaneRes *pr = drmModeGetPlaneResources(g->kms.fd);
 	uint32_t found = 0;
 	if (!pr)
 		return 0;
 	for (uint32_t i = 0; i < pr->count_planes && !found; i++) {
-		drmModePlane *pl = drmModeGetPlane(g->fd, pr->planes[i]);
+		drmModePlane *pl = drmModeGetPlane(g->kms.fd, pr->planes[i]);
 		if (!pl)
 			continue;
 		uint64_t type = 0;
-		if ((pl->possible_crtcs & (1u << g->crtc_index)) &&
-		    prop_id(g->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type", &type) &&
+		if ((pl->possible_crtcs & (1u << g->kms.crtc_index)) &&
+		    prop_id(g->kms.fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type", &type) &&
 		    type == DRM_PLANE_TYPE_PRIMARY)
 			found = pl->plane_id;
 		drmModeFreePlane(pl);
@@ -297,14 +104,14 @@ static uint32_t find_primary_plane(struct gbm_state *g)
 /* Atomic client cap, primary plane, property ids.  false: use legacy. */
 static bool atomic_init(struct gbm_state *g)
 {
-	if (drmSetClientCap(g->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
-	    drmSetClientCap(g->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
-		log_debug("gbm: no atomic modesetting on %s (%s); legacy", g->path, strerror(errno));
+	if (drmSetClientCap(g->kms.fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
+	    drmSetClientCap(g->kms.fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
+		log_debug("gbm: no atomic modesetting on %s (%s); legacy", g->kms.path, strerror(errno));
 		return false;
 	}
 	g->plane_id = find_primary_plane(g);
 	if (!g->plane_id) {
-		log_debug("gbm: no primary plane for CRTC %u; legacy", g->crtc_id);
+		log_debug("gbm: no primary plane for CRTC %u; legacy", g->kms.crtc_id);
 		return false;
 	}
 	struct gbm_props *pp = &g->props;
@@ -313,9 +120,9 @@ static bool atomic_init(struct gbm_state *g)
 		uint32_t obj, type;
 		const char *name;
 	} want[] = {
-		{ &pp->conn_crtc_id, g->conn_id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID" },
-		{ &pp->crtc_mode_id, g->crtc_id, DRM_MODE_OBJECT_CRTC, "MODE_ID" },
-		{ &pp->crtc_active, g->crtc_id, DRM_MODE_OBJECT_CRTC, "ACTIVE" },
+		{ &pp->conn_crtc_id, g->kms.conn_id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID" },
+		{ &pp->crtc_mode_id, g->kms.crtc_id, DRM_MODE_OBJECT_CRTC, "MODE_ID" },
+		{ &pp->crtc_active, g->kms.crtc_id, DRM_MODE_OBJECT_CRTC, "ACTIVE" },
 		{ &pp->fb_id, g->plane_id, DRM_MODE_OBJECT_PLANE, "FB_ID" },
 		{ &pp->crtc_id, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_ID" },
 		{ &pp->src_x, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_X" },
@@ -328,13 +135,13 @@ static bool atomic_init(struct gbm_state *g)
 		{ &pp->crtc_h, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_H" },
 	};
 	for (size_t i = 0; i < ARRAY_SIZE(want); i++) {
-		*want[i].id = prop_id(g->fd, want[i].obj, want[i].type, want[i].name, NULL);
+		*want[i].id = prop_id(g->kms.fd, want[i].obj, want[i].type, want[i].name, NULL);
 		if (!*want[i].id) {
 			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
 			return false;
 		}
 	}
-	if (drmModeCreatePropertyBlob(g->fd, &g->mode, sizeof(g->mode), &g->mode_blob) != 0) {
+	if (drmModeCreatePropertyBlob(g->kms.fd, &g->kms.mode, sizeof(g->kms.mode), &g->mode_blob) != 0) {
 		log_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
 		return false;
 	}
@@ -350,16 +157,16 @@ static int atomic_commit(struct gbm_state *g, uint32_t fb, bool modeset, uint32_
 		return -1;
 	}
 	const struct gbm_props *pp = &g->props;
-	uint32_t w = g->mode.hdisplay, h = g->mode.vdisplay;
+	uint32_t w = g->kms.mode.hdisplay, h = g->kms.mode.vdisplay;
 	int ok = 1;
 	if (modeset) {
-		ok &= drmModeAtomicAddProperty(req, g->conn_id, pp->conn_crtc_id, g->crtc_id) > 0;
-		ok &= drmModeAtomicAddProperty(req, g->crtc_id, pp->crtc_mode_id, g->mode_blob) > 0;
-		ok &= drmModeAtomicAddProperty(req, g->crtc_id, pp->crtc_active, 1) > 0;
+		ok &= drmModeAtomicAddProperty(req, g->kms.conn_id, pp->conn_crtc_id, g->kms.crtc_id) > 0;
+		ok &= drmModeAtomicAddProperty(req, g->kms.crtc_id, pp->crtc_mode_id, g->mode_blob) > 0;
+		ok &= drmModeAtomicAddProperty(req, g->kms.crtc_id, pp->crtc_active, 1) > 0;
 		flags |= DRM_MODE_ATOMIC_ALLOW_MODESET;
 	}
 	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->fb_id, fb) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_id, g->crtc_id) > 0;
+	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_id, g->kms.crtc_id) > 0;
 	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_x, 0) > 0;
 	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_y, 0) > 0;
 	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
@@ -373,7 +180,7 @@ static int atomic_commit(struct gbm_state *g, uint32_t fb, bool modeset, uint32_
 		errno = ENOMEM;
 		rc = -1;
 	} else {
-		rc = drmModeAtomicCommit(g->fd, req, flags, g);
+		rc = drmModeAtomicCommit(g->kms.fd, req, flags, g);
 	}
 	drmModeAtomicFree(req);
 	return rc;
@@ -401,7 +208,7 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 		log_error("gbm: out of memory");
 		return 0;
 	}
-	fb->fd = g->fd;
+	fb->fd = g->kms.fd;
 	uint32_t w = gbm_bo_get_width(bo), h = gbm_bo_get_height(bo), format = gbm_bo_get_format(bo);
 	uint32_t handles[4] = { 0 }, strides[4] = { 0 }, offsets[4] = { 0 };
 	int planes = gbm_bo_get_plane_count(bo);
@@ -410,9 +217,9 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 		strides[i] = gbm_bo_get_stride_for_plane(bo, i);
 		offsets[i] = gbm_bo_get_offset(bo, i);
 	}
-	if (drmModeAddFB2(g->fd, w, h, format, handles, strides, offsets, &fb->fb_id, 0) != 0) {
+	if (drmModeAddFB2(g->kms.fd, w, h, format, handles, strides, offsets, &fb->fb_id, 0) != 0) {
 		int e = errno;
-		if (drmModeAddFB(g->fd, w, h, 24, 32, strides[0], handles[0], &fb->fb_id) != 0) {
+		if (drmModeAddFB(g->kms.fd, w, h, 24, 32, strides[0], handles[0], &fb->fb_id) != 0) {
 			log_error("gbm: cannot create a %ux%u framebuffer: drmModeAddFB2: %s, drmModeAddFB: %s",
 			          w, h, strerror(e), strerror(errno));
 			free(fb);
@@ -443,19 +250,19 @@ static int wait_flip(struct gbm_state *g)
 		.page_flip_handler = flip_handler,
 	};
 	while (g->flip_pending) {
-		struct pollfd pfd = { .fd = g->fd, .events = POLLIN };
+		struct pollfd pfd = { .fd = g->kms.fd, .events = POLLIN };
 		int n = poll(&pfd, 1, FLIP_TIMEOUT_MS);
 		if (n < 0) {
 			if (errno == EINTR)
 				continue; /* a signal: the flip still completes */
-			log_error("gbm: poll on %s: %s", g->path, strerror(errno));
+			log_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
 			return -1;
 		}
 		if (n == 0) {
-			log_error("gbm: no page-flip event from %s within %d ms", g->path, FLIP_TIMEOUT_MS);
+			log_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
 			return -1;
 		}
-		if (drmHandleEvent(g->fd, &ev) != 0) {
+		if (drmHandleEvent(g->kms.fd, &ev) != 0) {
 			log_error("gbm: drmHandleEvent: %s", strerror(errno));
 			return -1;
 		}
@@ -465,7 +272,7 @@ static int wait_flip(struct gbm_state *g)
 
 static void hide_cursor(struct gbm_state *g)
 {
-	if (drmModeSetCursor(g->fd, g->crtc_id, 0, 0, 0) != 0)
+	if (drmModeSetCursor(g->kms.fd, g->kms.crtc_id, 0, 0, 0) != 0)
 		log_debug("gbm: hiding the cursor: %s", strerror(errno));
 }
 
@@ -476,19 +283,20 @@ static int modeset(struct gbm_state *g, uint32_t fb)
 			log_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
 			g->atomic = false;
 		} else if (atomic_commit(g, fb, true, 0) != 0) {
-			log_error("gbm: atomic modeset %ux%u on %s: %s", g->mode.hdisplay, g->mode.vdisplay, g->path,
-			          strerror(errno));
+			log_error("gbm: atomic modeset %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+			          g->kms.path, strerror(errno));
 			return -1;
 		}
 	}
-	if (!g->atomic && drmModeSetCrtc(g->fd, g->crtc_id, fb, 0, 0, &g->conn_id, 1, &g->mode) != 0) {
-		log_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->mode.hdisplay, g->mode.vdisplay, g->path,
-		          strerror(errno));
+	if (!g->atomic &&
+	    drmModeSetCrtc(g->kms.fd, g->kms.crtc_id, fb, 0, 0, &g->kms.conn_id, 1, &g->kms.mode) != 0) {
+		log_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+		          g->kms.path, strerror(errno));
 		return -1;
 	}
 	hide_cursor(g);
-	log_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->path, g->conn_name, g->mode.hdisplay,
-	         g->mode.vdisplay, g->mode.vrefresh, g->atomic ? "atomic" : "legacy");
+	log_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->kms.path, g->kms.conn_name, g->kms.mode.hdisplay,
+	         g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->atomic ? "atomic" : "legacy");
 	g->modeset_done = true;
 	g->p->shown++;
 	return 0;
@@ -515,10 +323,10 @@ static int gbm_present(struct platform *p)
 		if (g->atomic)
 			rc = atomic_commit(g, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK);
 		else
-			rc = drmModePageFlip(g->fd, g->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, g);
+			rc = drmModePageFlip(g->kms.fd, g->kms.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, g);
 		if (rc != 0) {
 			g->flip_pending = false;
-			log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->path,
+			log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
 			          strerror(errno));
 		} else {
 			rc = wait_flip(g);
@@ -546,13 +354,13 @@ static void restore_crtc(struct gbm_state *g)
 	drmModeCrtc *s = g->saved;
 	int rc;
 	if (s && s->mode_valid && s->buffer_id)
-		rc = drmModeSetCrtc(g->fd, s->crtc_id, s->buffer_id, s->x, s->y, &g->conn_id, 1, &s->mode);
+		rc = drmModeSetCrtc(g->kms.fd, s->crtc_id, s->buffer_id, s->x, s->y, &g->kms.conn_id, 1, &s->mode);
 	else
-		rc = drmModeSetCrtc(g->fd, g->crtc_id, 0, 0, 0, NULL, 0, NULL);
+		rc = drmModeSetCrtc(g->kms.fd, g->kms.crtc_id, 0, 0, 0, NULL, 0, NULL);
 	if (rc != 0)
-		log_warn("gbm: restoring CRTC %u on %s: %s", g->crtc_id, g->path, strerror(errno));
+		log_warn("gbm: restoring CRTC %u on %s: %s", g->kms.crtc_id, g->kms.path, strerror(errno));
 	else
-		log_debug("gbm: CRTC %u restored (fb %u)", g->crtc_id, s ? s->buffer_id : 0);
+		log_debug("gbm: CRTC %u restored (fb %u)", g->kms.crtc_id, s ? s->buffer_id : 0);
 }
 
 static void gbm_close(struct platform *p)
@@ -569,12 +377,12 @@ static void gbm_close(struct platform *p)
 		gbm_surface_destroy(g->surf); /* frees the bos: fb_destroy removes the FBs */
 	if (g->gbm)
 		gbm_device_destroy(g->gbm);
-	if (g->mode_blob && drmModeDestroyPropertyBlob(g->fd, g->mode_blob) != 0)
+	if (g->mode_blob && drmModeDestroyPropertyBlob(g->kms.fd, g->mode_blob) != 0)
 		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
 	if (g->saved)
 		drmModeFreeCrtc(g->saved);
-	if (g->fd >= 0)
-		close(g->fd);
+	if (g->kms.fd >= 0)
+		close(g->kms.fd);
 	free(g);
 	p->priv = NULL;
 }
@@ -591,45 +399,34 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
-	g->fd = -1;
+	g->kms.fd = -1;
 	g->p = p;
 	p->priv = g;
-	drmModeRes *res = NULL;
-	drmModeConnector *conn = NULL;
-	if (open_card(g, opt->drm_device, err, errlen) < 0)
+	if (kms_output_open(&g->kms, opt->drm_device, opt->mode, err, errlen) < 0)
 		goto fail;
-	res = drmModeGetResources(g->fd);
-	conn = res ? find_connector(g->fd, res) : NULL;
-	if (!res || !conn) {
-		snprintf(err, errlen, "no connected display on %s", g->path);
-		goto fail;
-	}
-	g->conn_id = conn->connector_id;
-	snprintf(g->conn_name, sizeof(g->conn_name), "%s-%u", conn_type_name(conn->connector_type),
-	         conn->connector_type_id);
-	if (choose_mode(g, conn, opt->mode, err, errlen) < 0 || choose_crtc(g, res, conn, err, errlen) < 0)
-		goto fail;
-	if (!drmIsMaster(g->fd) && drmSetMaster(g->fd) != 0) {
+	if (!drmIsMaster(g->kms.fd) && drmSetMaster(g->kms.fd) != 0) {
 		snprintf(err, errlen, "%s: cannot become DRM master (%s): another program (a compositor, "
-		         "an X server) drives the display", g->path, strerror(errno));
+		         "an X server) drives the display", g->kms.path, strerror(errno));
 		goto fail;
 	}
-	g->saved = drmModeGetCrtc(g->fd, g->crtc_id);
+	g->saved = drmModeGetCrtc(g->kms.fd, g->kms.crtc_id);
 	if (!g->saved)
-		log_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->crtc_id, strerror(errno));
+		log_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->kms.crtc_id,
+		         strerror(errno));
 	g->atomic = !opt->kms_legacy && atomic_init(g);
 
-	g->gbm = gbm_create_device(g->fd);
+	g->gbm = gbm_create_device(g->kms.fd);
 	if (!g->gbm) {
-		snprintf(err, errlen, "gbm_create_device(%s) failed", g->path);
+		snprintf(err, errlen, "gbm_create_device(%s) failed", g->kms.path);
 		goto fail;
 	}
-	p->width = g->mode.hdisplay;
-	p->height = g->mode.vdisplay;
+	p->width = g->kms.mode.hdisplay;
+	p->height = g->kms.mode.vdisplay;
 	g->surf = gbm_surface_create(g->gbm, (uint32_t)p->width, (uint32_t)p->height, GBM_FORMAT_XRGB8888,
 	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
 	if (!g->surf) {
-		snprintf(err, errlen, "gbm_surface_create %dx%d XRGB8888 on %s failed", p->width, p->height, g->path);
+		snprintf(err, errlen, "gbm_surface_create %dx%d XRGB8888 on %s failed", p->width, p->height,
+		         g->kms.path);
 		goto fail;
 	}
 	if (egl_common_open_display(p, EGL_PLATFORM_GBM_KHR, g->gbm, err, errlen) < 0 ||
@@ -637,24 +434,15 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	    egl_common_make_window_context(p, opt, GBM_FORMAT_XRGB8888, g->surf, err, errlen) < 0)
 		goto fail;
 	size_t len = strlen(p->device_desc);
-	if (len + strlen(g->path) + 4 < sizeof(p->device_desc))
-		snprintf(p->device_desc + len, sizeof(p->device_desc) - len, " (%s)", g->path);
-	log_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->path, g->conn_name, g->mode.hdisplay,
-	          g->mode.vdisplay, g->mode.vrefresh, g->crtc_id, g->atomic ? "atomic" : "legacy");
-	drmModeFreeConnector(conn);
-	drmModeFreeResources(res);
+	if (len + strlen(g->kms.path) + 4 < sizeof(p->device_desc))
+		snprintf(p->device_desc + len, sizeof(p->device_desc) - len, " (%s)", g->kms.path);
+	log_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->kms.path, g->kms.conn_name,
+	          g->kms.mode.hdisplay, g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->kms.crtc_id,
+	          g->atomic ? "atomic" : "legacy");
 	return 0;
 fail:
-	drmModeFreeConnector(conn);
-	drmModeFreeResources(res);
 	gbm_close(p);
 	return -1;
-}
-
-static int gbm_dispatch(struct platform *p)
-{
-	(void)p;
-	return 0;
 }
 
 const struct platform_backend platform_backend_gbm = {
@@ -663,5 +451,5 @@ const struct platform_backend platform_backend_gbm = {
 	.open = gbm_open,
 	.close = gbm_close,
 	.present = gbm_present,
-	.dispatch = gbm_dispatch,
+	/* no window system: no events (dispatch NULL) */
 };

@@ -129,28 +129,20 @@ static xcb_cursor_t blank_cursor(xcb_connection_t *c, xcb_window_t root)
 	return cur;
 }
 
-static int x11_open(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
+/* Xlib display (for EGL), its xcb connection (for everything else) and the
+ * default screen. */
+static int x11_connect(struct x11_state *x, char *err, size_t errlen)
 {
-	if (!x11_probe()) {
-		snprintf(err, errlen, "EGL_KHR_platform_x11 not supported by this EGL");
-		return -1;
-	}
-	struct x11_state *x = calloc(1, sizeof(*x));
-	if (!x) {
-		snprintf(err, errlen, "out of memory");
-		return -1;
-	}
-	p->priv = x;
 	const char *name = getenv("DISPLAY");
 	x->xdpy = XOpenDisplay(NULL);
 	if (!x->xdpy) {
 		snprintf(err, errlen, "cannot connect to the X server '%s'", name && name[0] ? name : "(DISPLAY unset)");
-		goto fail;
+		return -1;
 	}
 	x->conn = XGetXCBConnection(x->xdpy);
 	if (!x->conn || xcb_connection_has_error(x->conn)) {
 		snprintf(err, errlen, "no xcb connection to the X server '%s'", name ? name : "");
-		goto fail;
+		return -1;
 	}
 	XSetEventQueueOwner(x->xdpy, XCBOwnsEventQueue);
 	int screen_no = DefaultScreen(x->xdpy);
@@ -159,30 +151,37 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 		xcb_screen_next(&si);
 	if (!si.rem) {
 		snprintf(err, errlen, "X server '%s' has no screen %d", name ? name : "", screen_no);
-		goto fail;
+		return -1;
 	}
 	x->screen = si.data;
+	return 0;
+}
 
+/* The EGL display and config; the X visual of that config and its depth. */
+static int x11_egl_visual(struct platform *p, struct x11_state *x, const struct platform_options *opt, EGLint *vid,
+                          uint8_t *depth, char *err, size_t errlen)
+{
 	if (egl_common_open_display(p, EGL_PLATFORM_X11_KHR, x->xdpy, err, errlen) < 0 ||
 	    egl_common_make_window_context(p, opt, 0, NULL, err, errlen) < 0)
-		goto fail;
-	EGLint vid = 0;
-	if (!eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, &vid) || vid == 0) {
+		return -1;
+	*vid = 0;
+	if (!eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, vid) || *vid == 0) {
 		snprintf(err, errlen, "the EGLConfig has no X visual");
-		goto fail;
+		return -1;
 	}
-	uint8_t depth = visual_depth(x->screen, (xcb_visualid_t)vid);
-	if (!depth) {
-		snprintf(err, errlen, "X visual 0x%x of the EGLConfig is not on the screen", (unsigned)vid);
-		goto fail;
+	*depth = visual_depth(x->screen, (xcb_visualid_t)*vid);
+	if (!*depth) {
+		snprintf(err, errlen, "X visual 0x%x of the EGLConfig is not on the screen", (unsigned)*vid);
+		return -1;
 	}
+	return 0;
+}
 
-	int w = opt->width, h = opt->height, px = 0, py = 0;
-	if (opt->fullscreen) {
-		/* the window manager maximises it; without one, this size is it */
-		w = x->screen->width_in_pixels;
-		h = x->screen->height_in_pixels;
-	}
+/* The window (w x h, with its colormap and optional blank cursor). */
+static int x11_create_window(struct x11_state *x, const struct platform_options *opt, EGLint vid, uint8_t depth,
+                             int w, int h, char *err, size_t errlen)
+{
+	int px = 0, py = 0;
 	x->cmap = xcb_generate_id(x->conn);
 	xcb_create_colormap(x->conn, XCB_COLORMAP_ALLOC_NONE, x->cmap, x->screen->root, (xcb_visualid_t)vid);
 	if (opt->hide_cursor)
@@ -202,8 +201,14 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 		snprintf(err, errlen, "xcb_create_window %dx%d failed: X error %u", w, h, xe->error_code);
 		free(xe);
 		x->win = 0;
-		goto fail;
+		return -1;
 	}
+	return 0;
+}
+
+/* Title, class, WM_DELETE_WINDOW and, when asked, _NET_WM_STATE_FULLSCREEN. */
+static int x11_set_properties(struct x11_state *x, const struct platform_options *opt, char *err, size_t errlen)
+{
 	static const char title[] = "isoterra";
 	static const char wm_class[] = "isoterra\0isoterra";
 	xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, XCB_ATOM_WM_NAME, XCB_ATOM_STRING, 8,
@@ -214,7 +219,7 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 	x->wm_delete = intern(x->conn, "WM_DELETE_WINDOW");
 	if (!x->wm_protocols || !x->wm_delete) {
 		snprintf(err, errlen, "cannot intern WM_PROTOCOLS / WM_DELETE_WINDOW");
-		goto fail;
+		return -1;
 	}
 	xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, x->wm_protocols, XCB_ATOM_ATOM, 32, 1,
 	                    &x->wm_delete);
@@ -224,28 +229,61 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 		if (state && full)
 			xcb_change_property(x->conn, XCB_PROP_MODE_REPLACE, x->win, state, XCB_ATOM_ATOM, 32, 1, &full);
 	}
+	return 0;
+}
+
+/* Maps the window and waits until it is on screen: a first frame drawn
+ * before that would be lost (and --count 1 would show nothing). */
+static int x11_map(struct platform *p, struct x11_state *x, int w, int h, char *err, size_t errlen)
+{
 	xcb_map_window(x->conn, x->win);
 	if (xcb_flush(x->conn) <= 0) {
 		snprintf(err, errlen, "x11: flushing the requests failed");
-		goto fail;
+		return -1;
 	}
 	p->width = w;
 	p->height = h;
-	/* Wait until the window is on screen: a first frame drawn before that
-	 * would be lost (and --count 1 would show nothing). */
 	while (!x->mapped) {
 		xcb_generic_event_t *ev = xcb_wait_for_event(x->conn);
 		if (!ev) {
 			snprintf(err, errlen, "x11: connection lost while mapping the window");
-			goto fail;
+			return -1;
 		}
 		int q = handle_event(p, x, ev);
 		free(ev);
 		if (q) {
 			snprintf(err, errlen, "x11: window closed before it was shown");
-			goto fail;
+			return -1;
 		}
 	}
+	return 0;
+}
+
+static int x11_open(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
+{
+	if (!x11_probe()) {
+		snprintf(err, errlen, "EGL_KHR_platform_x11 not supported by this EGL");
+		return -1;
+	}
+	struct x11_state *x = calloc(1, sizeof(*x));
+	if (!x) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	p->priv = x;
+	EGLint vid;
+	uint8_t depth;
+	if (x11_connect(x, err, errlen) < 0 || x11_egl_visual(p, x, opt, &vid, &depth, err, errlen) < 0)
+		goto fail;
+	int w = opt->width, h = opt->height;
+	if (opt->fullscreen) {
+		/* the window manager maximises it; without one, this size is it */
+		w = x->screen->width_in_pixels;
+		h = x->screen->height_in_pixels;
+	}
+	if (x11_create_window(x, opt, vid, depth, w, h, err, errlen) < 0 || x11_set_properties(x, opt, err, errlen) < 0 ||
+	    x11_map(p, x, w, h, err, errlen) < 0)
+		goto fail;
 	x->native = (Window)x->win;
 	if (egl_common_make_window_context(p, opt, vid, &x->native, err, errlen) < 0)
 		goto fail;

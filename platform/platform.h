@@ -39,7 +39,8 @@ struct platform_backend {
 	/* Show the frame drawn into the default framebuffer; no-op headless. */
 	int (*present)(struct platform *p);
 	/* Handle pending window-system events without blocking (configure /
-	 * resize -> p->width/height, close); NULL for headless backends.
+	 * resize -> p->width/height, close); NULL for backends without a
+	 * window system (headless ones, gbm).
 	 * Returns 1 when the window was closed, 0 to go on, -1 on error. */
 	int (*dispatch)(struct platform *p);
 };

@@ -1,5 +1,6 @@
 /* isoterra — the curve pipeline (CPU): polyline -> cubic Béziers ->
- * quadratic Béziers -> inclination -> spatial hash.  See curves.h. */
+ * quadratic Béziers -> inclination (the spatial hash: curve_hash.c).  See
+ * curves.h. */
 #include "curves.h"
 
 #include <float.h>
@@ -329,9 +330,67 @@ static void quad_box(const float p0[3], const float p1[3], const float p2[3], fl
 	}
 }
 
-int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, size_t errlen)
+/* (w/2, λ, kind, path) of path pi's control points. */
+static void set_prm(float prm[4], const struct curve_path *p, int pi)
 {
-	memset(q, 0, sizeof(*q));
+	prm[0] = 0.5f * p->width;
+	prm[1] = p->falloff;
+	prm[2] = (float)p->kind;
+	prm[3] = (float)pi;
+}
+
+/* Appends path pi's quadratics (two per cubic, split at its XZ inflection or
+ * at t = 0.5) from control point q->nctrl on; returns its last anchor. */
+static int add_path_quads(struct curve_quads *q, const struct curve_path *p, int pi, const struct cubic3 *cubics)
+{
+	int c = q->nctrl;
+	memcpy(q->ctrl[c], p->pts, sizeof(float) * 3);
+	for (int k = 0; k < p->npts - 1; k++) {
+		struct cubic3 l, r;
+		float t = cubic_xz_inflection(&cubics[k]);
+		cubic_split(&cubics[k], t > 0.0f ? t : 0.5f, &l, &r);
+		struct quad3 ql, qr;
+		cubic_to_quad(&l, &ql);
+		cubic_to_quad(&r, &qr);
+		const struct quad3 *qq[2] = { &ql, &qr };
+		for (int h = 0; h < 2; h++) {
+			int qi = q->nquads++;
+			q->first[qi] = c;
+			q->path[qi] = pi;
+			memcpy(q->ctrl[c + 1], qq[h]->p[1], sizeof(float) * 3);
+			memcpy(q->ctrl[c + 2], qq[h]->p[2], sizeof(float) * 3);
+			set_prm(q->prm[c], p, pi);
+			c += 2;
+		}
+	}
+	return c;
+}
+
+/* Lateral inclination (§7.2) of the nqp quadratics from control point base
+ * on: gain · curvature at t = 0, 0.5, 1; shared anchors average their two
+ * curves; the middle control value is chosen so the quadratic
+ * interpolation hits I(0.5). */
+static void path_inclination(struct curve_quads *q, const struct curve_path *p, int base, int nqp)
+{
+	for (int k = 0; k < nqp; k++) {
+		int f = base + 2 * k;
+		const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
+		float i0 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.0f));
+		float i2 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 1.0f));
+		q->ctrl[f][3] = k == 0 ? i0 : 0.5f * (q->ctrl[f][3] + i0);
+		q->ctrl[f + 2][3] = i2;
+	}
+	for (int k = 0; k < nqp; k++) {
+		int f = base + 2 * k;
+		const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
+		float im = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.5f));
+		q->ctrl[f + 1][3] = clamp_incl(2.0f * im - 0.5f * (q->ctrl[f][3] + q->ctrl[f + 2][3]));
+	}
+}
+
+/* Cubics of the whole set (one per segment), or -1 with err. */
+static int count_cubics(const struct curve_set *s, char *err, size_t errlen)
+{
 	int total_cubics = 0;
 	for (int i = 0; i < s->npaths; i++) {
 		if (s->paths[i].npts < 2) {
@@ -344,6 +403,15 @@ int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, si
 		snprintf(err, errlen, "too many curve segments (%d, at most %d)", total_cubics, 1 << 24);
 		return -1;
 	}
+	return total_cubics;
+}
+
+int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, size_t errlen)
+{
+	memset(q, 0, sizeof(*q));
+	int total_cubics = count_cubics(s, err, errlen);
+	if (total_cubics < 0)
+		return -1;
 	size_t nq = 2 * (size_t)total_cubics + 1, nc = 4 * (size_t)total_cubics + (size_t)s->npaths + 1;
 	q->ctrl = calloc(nc, sizeof(*q->ctrl));
 	q->prm = calloc(nc, sizeof(*q->prm));
@@ -362,51 +430,9 @@ int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, si
 		cubics = nb;
 		curve_path_cubics(p, cubics);
 		int base = q->nctrl;
-		memcpy(q->ctrl[base], p->pts, sizeof(float) * 3);
-		int c = base;
-		for (int k = 0; k < ncub; k++) {
-			struct cubic3 l, r;
-			float t = cubic_xz_inflection(&cubics[k]);
-			cubic_split(&cubics[k], t > 0.0f ? t : 0.5f, &l, &r);
-			struct quad3 ql, qr;
-			cubic_to_quad(&l, &ql);
-			cubic_to_quad(&r, &qr);
-			const struct quad3 *qq[2] = { &ql, &qr };
-			for (int h = 0; h < 2; h++) {
-				int qi = q->nquads++;
-				q->first[qi] = c;
-				q->path[qi] = pi;
-				memcpy(q->ctrl[c + 1], qq[h]->p[1], sizeof(float) * 3);
-				memcpy(q->ctrl[c + 2], qq[h]->p[2], sizeof(float) * 3);
-				q->prm[c][0] = 0.5f * p->width;
-				q->prm[c][1] = p->falloff;
-				q->prm[c][2] = (float)p->kind;
-				q->prm[c][3] = (float)pi;
-				c += 2;
-			}
-		}
-		/* lateral inclination (§7.2): gain · curvature at t = 0, 0.5, 1;
-		 * shared anchors average their two curves; the middle control value
-		 * is chosen so the quadratic interpolation hits I(0.5). */
-		int nqp = 2 * ncub;
-		for (int k = 0; k < nqp; k++) {
-			int f = base + 2 * k;
-			const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
-			float i0 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.0f));
-			float i2 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 1.0f));
-			q->ctrl[f][3] = k == 0 ? i0 : 0.5f * (q->ctrl[f][3] + i0);
-			q->ctrl[f + 2][3] = i2;
-		}
-		for (int k = 0; k < nqp; k++) {
-			int f = base + 2 * k;
-			const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
-			float im = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.5f));
-			q->ctrl[f + 1][3] = clamp_incl(2.0f * im - 0.5f * (q->ctrl[f][3] + q->ctrl[f + 2][3]));
-		}
-		q->prm[c][0] = 0.5f * p->width; /* last anchor: same parameters */
-		q->prm[c][1] = p->falloff;
-		q->prm[c][2] = (float)p->kind;
-		q->prm[c][3] = (float)pi;
+		int c = add_path_quads(q, p, pi, cubics);
+		path_inclination(q, p, base, 2 * ncub);
+		set_prm(q->prm[c], p, pi); /* last anchor: same parameters */
 		q->nctrl = c + 1;
 	}
 	for (int k = 0; k < q->nquads; k++) {
@@ -419,129 +445,6 @@ oom:
 	free(cubics);
 	curve_quads_free(q);
 	snprintf(err, errlen, "out of memory building the curves");
-	return -1;
-}
-
-/* ---- spatial hash ------------------------------------------------------------ */
-
-void curve_hash_padded_box(const struct curve_quads *q, int k, float box[4])
-{
-	float pad = q->prm[q->first[k]][0] + q->prm[q->first[k]][1];
-	for (int i = 0; i < 2; i++) {
-		float span = fmaxf(fabsf(q->box[k][i]), fabsf(q->box[k][i + 2]));
-		float eps = 1e-5f * fmaxf(span, 1.0f) + 1e-4f * pad; /* rounding margin */
-		box[i] = q->box[k][i] - pad - eps;
-		box[i + 2] = q->box[k][i + 2] + pad + eps;
-	}
-}
-
-void curve_hash_free(struct curve_hash *h)
-{
-	free(h->pivot);
-	free(h->index);
-	memset(h, 0, sizeof(*h));
-}
-
-static int cell_coord(float v, float origin, float cell, int dim)
-{
-	int c = (int)floorf((v - origin) / cell);
-	return c < 0 ? 0 : (c >= dim ? dim - 1 : c);
-}
-
-int curve_hash_cell(const struct curve_hash *h, float x, float z)
-{
-	if (h->nall == 0)
-		return -1;
-	float lx = x - h->origin[0], lz = z - h->origin[1];
-	if (!(lx >= 0.0f && lz >= 0.0f && lx < h->size[0] && lz < h->size[1]))
-		return -1;
-	int cx = (int)floorf(lx / h->cell[0]), cz = (int)floorf(lz / h->cell[1]);
-	cx = cx >= h->dim ? h->dim - 1 : cx;
-	cz = cz >= h->dim ? h->dim - 1 : cz;
-	return cx + cz * h->dim;
-}
-
-int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen)
-{
-	memset(h, 0, sizeof(*h));
-	if (dim < 1)
-		dim = 1;
-	h->dim = dim;
-	h->nall = q->nquads;
-	size_t ncell = (size_t)dim * (size_t)dim;
-	h->pivot = calloc(2 * ncell, sizeof(int32_t));
-	if (!h->pivot)
-		goto oom;
-	if (q->nquads == 0) {
-		h->index = calloc(1, sizeof(int32_t));
-		if (!h->index)
-			goto oom;
-		h->size[0] = h->size[1] = 1.0f;
-		h->cell[0] = h->cell[1] = 1.0f / (float)dim;
-		return 0;
-	}
-	float lo[2] = { FLT_MAX, FLT_MAX }, hi[2] = { -FLT_MAX, -FLT_MAX };
-	for (int k = 0; k < q->nquads; k++) {
-		float b[4];
-		curve_hash_padded_box(q, k, b);
-		for (int i = 0; i < 2; i++) {
-			lo[i] = fminf(lo[i], b[i]);
-			hi[i] = fmaxf(hi[i], b[i + 2]);
-		}
-	}
-	for (int i = 0; i < 2; i++) {
-		h->origin[i] = lo[i];
-		h->size[i] = fmaxf(hi[i] - lo[i], 1e-3f);
-		h->cell[i] = h->size[i] / (float)dim;
-	}
-	/* two passes: count, then fill */
-	int32_t *count = h->pivot; /* (start, count) pairs; count first */
-	long total = 0;
-	for (int pass = 0; pass < 2; pass++) {
-		if (pass == 1) {
-			long start = 0;
-			for (size_t c = 0; c < ncell; c++) {
-				count[2 * c] = (int32_t)start;
-				start += count[2 * c + 1];
-				count[2 * c + 1] = 0;
-			}
-			total = start;
-			if (total > 0x3fffffffL) {
-				snprintf(err, errlen, "curve hash too large (%ld entries); lower curve_hash_dim", total);
-				curve_hash_free(h);
-				return -1;
-			}
-			h->index = malloc(sizeof(int32_t) * (size_t)(total + q->nquads));
-			if (!h->index)
-				goto oom;
-		}
-		for (int k = 0; k < q->nquads; k++) {
-			float b[4];
-			curve_hash_padded_box(q, k, b);
-			int x0 = cell_coord(b[0], h->origin[0], h->cell[0], dim);
-			int x1 = cell_coord(b[2], h->origin[0], h->cell[0], dim);
-			int z0 = cell_coord(b[1], h->origin[1], h->cell[1], dim);
-			int z1 = cell_coord(b[3], h->origin[1], h->cell[1], dim);
-			for (int cz = z0; cz <= z1; cz++)
-				for (int cx = x0; cx <= x1; cx++) {
-					size_t c = (size_t)cx + (size_t)cz * (size_t)dim;
-					if (pass == 1)
-						h->index[count[2 * c] + count[2 * c + 1]] = q->first[k];
-					count[2 * c + 1]++;
-				}
-		}
-	}
-	h->nindex = (int)total;
-	h->all_offset = (int)total;
-	for (int k = 0; k < q->nquads; k++)
-		h->index[total + k] = q->first[k];
-	for (size_t c = 0; c < ncell; c++)
-		if (h->pivot[2 * c + 1] > h->max_per_cell)
-			h->max_per_cell = h->pivot[2 * c + 1];
-	return 0;
-oom:
-	curve_hash_free(h);
-	snprintf(err, errlen, "out of memory building the curve hash");
 	return -1;
 }
 

@@ -32,6 +32,41 @@ static int vmask(const struct grid *g, const float *dens, float iso, int x, int 
 	return m;
 }
 
+/* One vertex per edge marked in mask (bit s: the edge along axis s from
+ * each owner corner), position and normal interpolated, in owner order. */
+static void ref_vertices(const struct grid *g, const float *dens, float iso, const uint8_t *mask, struct mesh *out)
+{
+	const int ox = g->nx + 1, oy = g->ny + 1, oz = g->nz + 1;
+	uint32_t v = 0;
+	for (int z = 0; z < oz; z++)
+		for (int y = 0; y < oy; y++)
+			for (int x = 0; x < ox; x++) {
+				size_t c = (size_t)x + (size_t)ox * ((size_t)y + (size_t)oy * z);
+				for (int s = 0; s < 3; s++) {
+					if (!(mask[c] & (1 << s)))
+						continue;
+					int x1 = x + (s == 0), y1 = y + (s == 1), z1 = z + (s == 2);
+					float d0 = D(g, dens, x, y, z), d1 = D(g, dens, x1, y1, z1);
+					float tt = (d0 - iso) / (d0 - d1);
+					float p0[3] = { (float)x, (float)y, (float)z };
+					float g0[3], g1[3];
+					gradient(g, dens, x, y, z, g0);
+					gradient(g, dens, x1, y1, z1, g1);
+					float n[3], len = 0.0f;
+					for (int a = 0; a < 3; a++) {
+						float pa = p0[a] + (a == s ? tt : 0.0f);
+						out->pos[3 * v + a] = g->origin[a] + pa * g->cell;
+						n[a] = g0[a] + (g1[a] - g0[a]) * tt;
+						len += n[a] * n[a];
+					}
+					len = sqrtf(len);
+					for (int a = 0; a < 3; a++)
+						out->nrm[3 * v + a] = len > 1e-20f ? -n[a] / len : (a == 1 ? 1.0f : 0.0f);
+					v++;
+				}
+			}
+}
+
 int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct mesh *out)
 {
 	const struct mc_tables *t = mc_get_tables();
@@ -67,34 +102,7 @@ int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct me
 		return -1;
 	}
 	/* pass 2: vertices */
-	uint32_t v = 0;
-	for (int z = 0; z < oz; z++)
-		for (int y = 0; y < oy; y++)
-			for (int x = 0; x < ox; x++) {
-				size_t c = (size_t)x + (size_t)ox * ((size_t)y + (size_t)oy * z);
-				for (int s = 0; s < 3; s++) {
-					if (!(mask[c] & (1 << s)))
-						continue;
-					int x1 = x + (s == 0), y1 = y + (s == 1), z1 = z + (s == 2);
-					float d0 = D(g, dens, x, y, z), d1 = D(g, dens, x1, y1, z1);
-					float tt = (d0 - iso) / (d0 - d1);
-					float p0[3] = { (float)x, (float)y, (float)z };
-					float g0[3], g1[3];
-					gradient(g, dens, x, y, z, g0);
-					gradient(g, dens, x1, y1, z1, g1);
-					float n[3], len = 0.0f;
-					for (int a = 0; a < 3; a++) {
-						float pa = p0[a] + (a == s ? tt : 0.0f);
-						out->pos[3 * v + a] = g->origin[a] + pa * g->cell;
-						n[a] = g0[a] + (g1[a] - g0[a]) * tt;
-						len += n[a] * n[a];
-					}
-					len = sqrtf(len);
-					for (int a = 0; a < 3; a++)
-						out->nrm[3 * v + a] = len > 1e-20f ? -n[a] / len : (a == 1 ? 1.0f : 0.0f);
-					v++;
-				}
-			}
+	ref_vertices(g, dens, iso, mask, out);
 	/* pass 3: triangles */
 	uint32_t tri = 0;
 	for (int z = 0; z < g->nz; z++)

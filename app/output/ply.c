@@ -221,6 +221,43 @@ static int read_header(FILE *f, const char *path, uint32_t *nv, uint32_t *nf, ch
 	return 0;
 }
 
+/* The nf triangles of the body into m->idx: 0, -1 on a short read, -2 (with
+ * err) on a face that is not a triangle or names a vertex past nv. */
+static int read_faces(FILE *f, struct mesh *m, uint32_t nv, uint32_t nf, const char *path, char *err, size_t errlen)
+{
+	uint8_t buf[CHUNK * FACE_BYTES];
+	int rc = 0;
+	for (uint32_t t = 0; t < nf && rc == 0;) {
+		uint32_t chunk = nf - t < CHUNK ? nf - t : CHUNK;
+		if (fread(buf, FACE_BYTES, chunk, f) != chunk) {
+			rc = -1;
+			break;
+		}
+		for (uint32_t i = 0; i < chunk; i++, t++) {
+			const uint8_t *b = buf + i * FACE_BYTES;
+			if (b[0] != 3) {
+				snprintf(err, errlen, "'%s': face %" PRIu32 " has %u vertices (only triangles supported)",
+				         path, t, (unsigned)b[0]);
+				rc = -2;
+				break;
+			}
+			for (int k = 0; k < 3; k++) {
+				uint32_t idx = get_u32(b + 1 + 4 * k);
+				if (idx >= nv) {
+					snprintf(err, errlen, "'%s': face %" PRIu32 " references vertex %" PRIu32
+					         " of %" PRIu32, path, t, idx, nv);
+					rc = -2;
+					break;
+				}
+				m->idx[3 * (size_t)t + k] = idx;
+			}
+			if (rc)
+				break;
+		}
+	}
+	return rc;
+}
+
 int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 {
 	memset(m, 0, sizeof(*m));
@@ -269,34 +306,8 @@ int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 				m->nrm[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 12 + 4 * k);
 			}
 	}
-	for (uint32_t t = 0; t < nf && rc == 0;) {
-		uint32_t chunk = nf - t < CHUNK ? nf - t : CHUNK;
-		if (fread(buf, FACE_BYTES, chunk, f) != chunk) {
-			rc = -1;
-			break;
-		}
-		for (uint32_t i = 0; i < chunk; i++, t++) {
-			const uint8_t *b = buf + i * FACE_BYTES;
-			if (b[0] != 3) {
-				snprintf(err, errlen, "'%s': face %" PRIu32 " has %u vertices (only triangles supported)",
-				         path, t, (unsigned)b[0]);
-				rc = -2;
-				break;
-			}
-			for (int k = 0; k < 3; k++) {
-				uint32_t idx = get_u32(b + 1 + 4 * k);
-				if (idx >= nv) {
-					snprintf(err, errlen, "'%s': face %" PRIu32 " references vertex %" PRIu32
-					         " of %" PRIu32, path, t, idx, nv);
-					rc = -2;
-					break;
-				}
-				m->idx[3 * (size_t)t + k] = idx;
-			}
-			if (rc)
-				break;
-		}
-	}
+	if (rc == 0)
+		rc = read_faces(f, m, nv, nf, path, err, errlen);
 	if (rc == -1)
 		snprintf(err, errlen, "cannot read '%s': %s", path, ferror(f) ? strerror(errno) : "unexpected end of file");
 	fclose(f);

@@ -1,0 +1,148 @@
+/* isoterra — the uniform 2D spatial hash over the curves' quadratics
+ * (thesis ch. 6): which quadratics can reach each cell.  See curves.h. */
+#include "curves.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void curve_hash_padded_box(const struct curve_quads *q, int k, float box[4])
+{
+	float pad = q->prm[q->first[k]][0] + q->prm[q->first[k]][1];
+	for (int i = 0; i < 2; i++) {
+		float span = fmaxf(fabsf(q->box[k][i]), fabsf(q->box[k][i + 2]));
+		float eps = 1e-5f * fmaxf(span, 1.0f) + 1e-4f * pad; /* rounding margin */
+		box[i] = q->box[k][i] - pad - eps;
+		box[i + 2] = q->box[k][i + 2] + pad + eps;
+	}
+}
+
+void curve_hash_free(struct curve_hash *h)
+{
+	free(h->pivot);
+	free(h->index);
+	memset(h, 0, sizeof(*h));
+}
+
+static int cell_coord(float v, float origin, float cell, int dim)
+{
+	int c = (int)floorf((v - origin) / cell);
+	return c < 0 ? 0 : (c >= dim ? dim - 1 : c);
+}
+
+int curve_hash_cell(const struct curve_hash *h, float x, float z)
+{
+	if (h->nall == 0)
+		return -1;
+	float lx = x - h->origin[0], lz = z - h->origin[1];
+	if (!(lx >= 0.0f && lz >= 0.0f && lx < h->size[0] && lz < h->size[1]))
+		return -1;
+	int cx = (int)floorf(lx / h->cell[0]), cz = (int)floorf(lz / h->cell[1]);
+	cx = cx >= h->dim ? h->dim - 1 : cx;
+	cz = cz >= h->dim ? h->dim - 1 : cz;
+	return cx + cz * h->dim;
+}
+
+/* The grid: the minimal rectangle around every padded box, dim x dim cells. */
+static void hash_grid(const struct curve_quads *q, struct curve_hash *h)
+{
+	float lo[2] = { FLT_MAX, FLT_MAX }, hi[2] = { -FLT_MAX, -FLT_MAX };
+	for (int k = 0; k < q->nquads; k++) {
+		float b[4];
+		curve_hash_padded_box(q, k, b);
+		for (int i = 0; i < 2; i++) {
+			lo[i] = fminf(lo[i], b[i]);
+			hi[i] = fmaxf(hi[i], b[i + 2]);
+		}
+	}
+	for (int i = 0; i < 2; i++) {
+		h->origin[i] = lo[i];
+		h->size[i] = fmaxf(hi[i] - lo[i], 1e-3f);
+		h->cell[i] = h->size[i] / (float)h->dim;
+	}
+}
+
+/* Every quadratic into every cell its padded box overlaps: counts the
+ * entries of each cell in pivot[2 c + 1] and, with fill, writes them to
+ * index[] from each cell's start pivot[2 c]. */
+static void hash_insert(const struct curve_quads *q, struct curve_hash *h, bool fill)
+{
+	int32_t *count = h->pivot; /* (start, count) pairs */
+	int dim = h->dim;
+	for (int k = 0; k < q->nquads; k++) {
+		float b[4];
+		curve_hash_padded_box(q, k, b);
+		int x0 = cell_coord(b[0], h->origin[0], h->cell[0], dim);
+		int x1 = cell_coord(b[2], h->origin[0], h->cell[0], dim);
+		int z0 = cell_coord(b[1], h->origin[1], h->cell[1], dim);
+		int z1 = cell_coord(b[3], h->origin[1], h->cell[1], dim);
+		for (int cz = z0; cz <= z1; cz++)
+			for (int cx = x0; cx <= x1; cx++) {
+				size_t c = (size_t)cx + (size_t)cz * (size_t)dim;
+				if (fill)
+					h->index[count[2 * c] + count[2 * c + 1]] = q->first[k];
+				count[2 * c + 1]++;
+			}
+	}
+}
+
+/* Counts -> each cell's start (prefix sum), counts back to 0; the total. */
+static long hash_starts(struct curve_hash *h, size_t ncell)
+{
+	int32_t *count = h->pivot;
+	long start = 0;
+	for (size_t c = 0; c < ncell; c++) {
+		count[2 * c] = (int32_t)start;
+		start += count[2 * c + 1];
+		count[2 * c + 1] = 0;
+	}
+	return start;
+}
+
+int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen)
+{
+	memset(h, 0, sizeof(*h));
+	if (dim < 1)
+		dim = 1;
+	h->dim = dim;
+	h->nall = q->nquads;
+	size_t ncell = (size_t)dim * (size_t)dim;
+	h->pivot = calloc(2 * ncell, sizeof(int32_t));
+	if (!h->pivot)
+		goto oom;
+	if (q->nquads == 0) {
+		h->index = calloc(1, sizeof(int32_t));
+		if (!h->index)
+			goto oom;
+		h->size[0] = h->size[1] = 1.0f;
+		h->cell[0] = h->cell[1] = 1.0f / (float)dim;
+		return 0;
+	}
+	hash_grid(q, h);
+	/* two passes: count, then fill */
+	hash_insert(q, h, false);
+	long total = hash_starts(h, ncell);
+	if (total > 0x3fffffffL) {
+		snprintf(err, errlen, "curve hash too large (%ld entries); lower curve_hash_dim", total);
+		curve_hash_free(h);
+		return -1;
+	}
+	h->index = malloc(sizeof(int32_t) * (size_t)(total + q->nquads));
+	if (!h->index)
+		goto oom;
+	hash_insert(q, h, true);
+	h->nindex = (int)total;
+	h->all_offset = (int)total;
+	for (int k = 0; k < q->nquads; k++)
+		h->index[total + k] = q->first[k];
+	for (size_t c = 0; c < ncell; c++)
+		if (h->pivot[2 * c + 1] > h->max_per_cell)
+			h->max_per_cell = h->pivot[2 * c + 1];
+	return 0;
+oom:
+	curve_hash_free(h);
+	snprintf(err, errlen, "out of memory building the curve hash");
+	return -1;
+}

@@ -1,0 +1,21 @@
+/* isoterra — what the curve file readers (geojson.c, csv_curves.c) share:
+ * kinds and per-path parameters by name, with the same range checks in
+ * both formats.  Defined in curves_io.c; not part of the curves API. */
+#ifndef ISOTERRA_CURVES_INTERNAL_H
+#define ISOTERRA_CURVES_INTERNAL_H
+
+#include "curves.h"
+
+/* The per-path parameters in file order: "width", "falloff", "inclination",
+ * "smoothing". */
+#define CURVE_NPARAMS 4
+extern const char *const curve_param_names[CURVE_NPARAMS];
+
+/* enum curve_kind of "road", "river" or "railway"; -1 for anything else. */
+int curve_kind_parse(const char *s);
+/* Range check of parameter `name`; NULL when fine, else the reason. */
+const char *curve_param_check(const char *name, double v);
+/* The field of p that parameter i (curve_param_names order) sets. */
+float *curve_param_slot(struct curve_path *p, int i);
+
+#endif

@@ -1,0 +1,30 @@
+/* isoterra — KMS output selection for the GBM backend: which DRM card,
+ * which connected connector, which mode and which CRTC drives it. */
+#ifndef ISOTERRA_KMS_H
+#define ISOTERRA_KMS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <xf86drmMode.h>
+
+struct kms_output {
+	int fd;                /* the card, read-write; -1 when not open */
+	char path[64];         /* e.g. "/dev/dri/card0" */
+	uint32_t conn_id, crtc_id;
+	int crtc_index;        /* of crtc_id in the card's CRTC list */
+	char conn_name[32];    /* e.g. "HDMI-A-1" */
+	drmModeModeInfo mode;
+};
+
+/* True when a DRM card with KMS has a connected output. */
+bool kms_probe(void);
+/* Opens the card (`device`, or the first card with a connected output) and
+ * picks its first connected connector, the mode (`mode`: "WxH" or
+ * "WxH@Hz"; NULL or "": the connector's preferred mode) and a CRTC that can
+ * drive the connector.  0, or -1 with err; o->fd stays open either way when
+ * the card could be opened (the caller closes it). */
+int kms_output_open(struct kms_output *o, const char *device, const char *mode, char *err, size_t errlen);
+
+#endif
