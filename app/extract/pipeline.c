@@ -188,7 +188,9 @@ static void plan_levels(uint32_t words, int *top, uint32_t *n, uint32_t *pad, ui
 
 static int upload_tables(struct pipeline *pl)
 {
-	const struct mc_tables *t = mc_get_tables();
+	struct mc_tables tables;
+	mc_tables_build(&tables);
+	const struct mc_tables *t = &tables;
 	/* std430: uint[256], int[256*15], ivec4[12], ivec4[8] */
 	int32_t buf[256 + 256 * 15 + 12 * 4 + 8 * 4];
 	int32_t *w = buf;
