@@ -69,7 +69,8 @@ struct pipeline_draw {
 };
 void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d);
 
-/* ---- read-back (tests, export, reports; never in the frame loop) ------- */
+/* ---- read-back (readback.c; tests, export, reports; never in the frame
+ * loop).  Each waits for the GPU. ------------------------------------------ */
 /* (nx+3)*(ny+3)*(nz+3) densities, one-sample margin, x fastest. */
 int pipeline_read_density(struct pipeline *pl, float *out);
 /* 0 when the canaries after the output buffers are intact, 1 when
@@ -78,13 +79,14 @@ int pipeline_check_guards(struct pipeline *pl);
 int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st);
 /* The extracted mesh (indexed; for atomic/none the triangles are unshared). */
 int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
-/* HistoPyramid test hook: builds the pyramid over n level-0 cell bytes
- * (bits 0..2 triangle count, bits 3..5 vertex mask) with the same shaders,
- * returns the totals (triangles, vertices), the (cell, rank) of every output
- * key of component comp (0 triangles, 1 vertices) and every cell's prefix
- * sum, read bottom-up (prefix) and from the down-swept prefix sums
- * (prefix_fast, may be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
- * context.  0 or -1 with err. */
+/* HistoPyramid test hook (histopyramid.c): builds the pyramid over n
+ * level-0 cell bytes (bits 0..2 triangle count, bits 3..5 vertex mask) with
+ * the extraction's own reduction and down-sweep, returns the totals
+ * (triangles, vertices), the (cell, rank) of every output key of component
+ * comp (0 triangles, 1 vertices) and every cell's prefix sum, read
+ * bottom-up (prefix) and from the down-swept prefix sums (prefix_fast, may
+ * be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries,
+ * prefix n.  Needs a current context.  0 or -1 with err. */
 int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
 		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen);
 
