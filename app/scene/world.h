@@ -36,7 +36,7 @@ int world_fill(struct world *w, const struct params *p, const struct camera *c, 
 int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now);
 void world_get_stats(const struct world *w, struct world_stats *st);
 
-/* Terrain edits (curves, heightmap; app/edits.h): marks every known block
+/* Terrain edits (curves, heightmap; app/edit/edits.h): marks every known block
  * whose density samples (the block, its sample margin and the reach of its
  * ambient-occlusion rays) overlap the world XZ box (xmin, zmin, xmax, zmax)
  * for regeneration.  A drawable block keeps its mesh until the new one
