@@ -11,6 +11,7 @@
  * Times are wall-clock around glFinish(), median of repeated runs. */
 #include "app.h"
 #include "bench.h"
+#include "terrain.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,6 +68,8 @@ int main(int argc, char **argv)
 	if (!plat)
 		return 1;
 	char err[512];
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 
@@ -81,7 +84,7 @@ int main(int argc, char **argv)
 		p.grid = sizes[s];
 		struct grid g;
 		grid_from_params(&g, &p);
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 		if (!pl) {
 			printf("%-6d n/a: %s\n", sizes[s], err);
 			continue;
@@ -119,7 +122,7 @@ int main(int argc, char **argv)
 		p.grid = gsz;
 		struct grid g;
 		grid_from_params(&g, &p);
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 		if (!pl) {
 			printf("  %d^3: n/a: %s\n", gsz, err);
 			continue;
@@ -150,7 +153,7 @@ int main(int argc, char **argv)
 		p.grid = cmp_grid;
 		struct grid g;
 		grid_from_params(&g, &p);
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 		if (pl) {
 			double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
 			p.noise = 1;
@@ -160,6 +163,8 @@ int main(int argc, char **argv)
 			pipeline_destroy(pl);
 		}
 	}
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	platform_close(plat);
 	return 0;
 }

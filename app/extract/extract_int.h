@@ -10,7 +10,6 @@
 #include <GLES3/gl31.h>
 
 #include "pipeline.h"
-#include "noise.h"
 
 #define GUARD_BYTES 1024u      /* canary after every output buffer */
 #define GUARD_WORD 0xa5c3e1f7u
@@ -55,14 +54,12 @@ struct program_variant {
 
 struct pipeline {
 	struct grid g;
+	const struct field *field;     /* borrowed */
 	struct program_variant variants[PROGRAM_VARIANTS];
 	int next_variant;
 	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
-	struct noise_set *ns;
-	struct noise_gl ng;
-	bool noise_ready;
 	uint32_t owners, words;        /* owner cells, level-0 words */
 	struct hp_levels hp;
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */

@@ -1,13 +1,16 @@
-/* isoterra — host side of the GPU terrain pipeline: buffers, capacities,
+/* isoterra — the extraction engine's host side: buffers, capacities,
  * programs and the passes.
  *
- *   density.comp      density at (n+3)^3 corners (one-sample margin)
+ *   field program     density at every corner + margin (FIELD_PASS_DENSITY;
+ *                     the field's file, main() in common.glsl)
  *   mc_classify.comp  per owner cell: triangle count + owned-vertex mask
  *                     -> HistoPyramid level 0 (bytes) and level 1 (sums)
  *   hp_reduce.comp    level k = sums of four level k-1 nodes, to the top
  *   hp_downsweep.comp every node's prefix sum, top down (histopyramid.c)
  *   mc_setup.comp     totals -> clamp to capacity -> indirect commands
- *   mc_vertices.comp  one invocation per shared vertex (indirect dispatch)
+ *   mc_vertices.comp  one invocation per shared vertex (indirect dispatch;
+ *                     with ambient occlusion the field's program,
+ *                     FIELD_PASS_VERTICES)
  *   mc_indices.comp   one invocation per triangle (indirect dispatch)
  *   -> glDrawElementsIndirect by the renderer.
  * Comparison methods: mc_atomic.comp (atomic append, unshared vertices)
@@ -20,7 +23,6 @@
 #include "clock.h"
 #include "log.h"
 #include "mc.h"
-#include "edits.h" /* curves + heightmap */
 
 #include <math.h>
 #include <stdio.h>
@@ -169,15 +171,31 @@ static GLuint variant_program(struct pipeline *pl, const char *file, const char 
 	return prog;
 }
 
+/* The density pass: the field's program. */
 static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	return variant_program(pl, "density.comp", "", p, err, errlen);
+	return variant_program(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, err, errlen);
 }
 
-/* The vertex pass, with ambient occlusion or without. */
+/* The vertex pass: with ambient occlusion its rays read the field, so it is
+ * the field's program; without, the engine's own. */
 static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	return variant_program(pl, "mc_vertices.comp", p->ao_rays > 0 ? "#define WITH_AO 1\n" : "", p, err, errlen);
+	if (p->ao_rays > 0)
+		return variant_program(pl, pl->field->program, "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n", p,
+				       err, errlen);
+	return variant_program(pl, "mc_vertices.comp", "", p, err, errlen);
+}
+
+/* The field's resources and uniforms for prog; logs what went wrong. */
+static int bind_field(struct pipeline *pl, GLuint prog, const struct params *p)
+{
+	char err[512] = "";
+	if (pl->field->bind(pl->field->ctx, prog, p, err, sizeof(err)) == 0)
+		return 0;
+	if (err[0])
+		log_error("%s", err);
+	return -1;
 }
 
 static int ensure_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen)
@@ -262,14 +280,20 @@ static int create_buffers(struct pipeline *pl, char *err, size_t errlen)
 	return 0;
 }
 
-struct pipeline *pipeline_create(const struct grid *g, const struct params *p, char *err, size_t errlen)
+struct pipeline *pipeline_create(const struct grid *g, const struct params *p, const struct field *f, char *err,
+				 size_t errlen)
 {
+	if (!f || !f->program || !f->bind) {
+		snprintf(err, errlen, "no density field to extract (out of memory?)");
+		return NULL;
+	}
 	struct pipeline *pl = calloc(1, sizeof(*pl));
 	if (!pl) {
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
 	pl->g = *g;
+	pl->field = f;
 	pl->last_mode = -1;
 	glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &pl->max_groups);
 	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &pl->max_ssbo);
@@ -290,12 +314,6 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	pl->words = div_up(owners, 4);
 	hp_plan(&pl->hp, pl->words);
 	plan_capacities(pl, p);
-	pl->ns = malloc(sizeof(*pl->ns));
-	if (!pl->ns) {
-		snprintf(err, errlen, "out of memory");
-		free(pl);
-		return NULL;
-	}
 	if (create_programs(pl, p, err, errlen) < 0 || create_buffers(pl, err, errlen) < 0) {
 		pipeline_destroy(pl);
 		return NULL;
@@ -321,10 +339,6 @@ void pipeline_destroy(struct pipeline *pl)
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
-	if (pl->noise_ready)
-		noise_gl_destroy(&pl->ng);
-	edits_gl_release(); /* curves + heightmap; uploaded again on the next bind */
-	free(pl->ns);
 	free(pl);
 }
 
@@ -342,17 +356,6 @@ static void bind_all(const struct pipeline *pl)
 int pipeline_density(struct pipeline *pl, const struct params *p)
 {
 	char err[512] = "";
-	if (!pl->noise_ready || pl->ng.seed != p->seed) {
-		if (pl->noise_ready)
-			noise_gl_destroy(&pl->ng);
-		noise_set_init(pl->ns, p->seed);
-		if (noise_gl_init(&pl->ng, pl->ns, err, sizeof(err)) < 0) {
-			log_error("%s", err);
-			pl->noise_ready = false;
-			return -1;
-		}
-		pl->noise_ready = true;
-	}
 	pl->p_density = density_program(pl, p, err, sizeof(err));
 	if (!pl->p_density) {
 		log_error("%s", err);
@@ -360,9 +363,8 @@ int pipeline_density(struct pipeline *pl, const struct params *p)
 	}
 	double t = clock_ms();
 	bind_all(pl);
-	noise_gl_bind(&pl->ng);
 	set_common(pl, pl->p_density, p);
-	if (edits_gl_bind(pl->p_density, p) < 0) /* curves + heightmap */
+	if (bind_field(pl, pl->p_density, p) < 0)
 		return -1;
 	glUseProgram(pl->p_density);
 	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
@@ -414,7 +416,7 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 	}
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
-	if (edits_gl_bind(pl->p_vertices, p) < 0) /* normals and AO read density() */
+	if (p->ao_rays > 0 && bind_field(pl, pl->p_vertices, p) < 0) /* the AO rays read the field */
 		return -1;
 	glUseProgram(pl->p_vertices);
 	glDispatchComputeIndirect(status_off + ST_DISPATCH_VERTS * 4);

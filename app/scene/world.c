@@ -51,8 +51,8 @@ static void plan_strides(struct world *w)
 		w->vstride += VERTEX_BYTES;
 }
 
-/* The pipeline that extracts every block: one block's grid, its own
- * buffers sized for one block (world_block_mesh). */
+/* The pipeline that extracts every block: one block's grid, the world's
+ * terrain, its own buffers sized for one block (world_block_mesh). */
 static int create_pipeline(struct world *w, const struct params *p, char *err, size_t errlen)
 {
 	struct grid g;
@@ -64,7 +64,8 @@ static int create_pipeline(struct world *w, const struct params *p, char *err, s
 	q.closed = false;
 	q.max_triangles = p->block_tris; /* its own buffers serve world_block_mesh */
 	q.max_vertices = p->block_tris;
-	w->pl = pipeline_create(&g, &q, err, errlen);
+	w->terrain = terrain_create(w->ed);
+	w->pl = pipeline_create(&g, &q, terrain_field(w->terrain), err, errlen);
 	return w->pl ? 0 : -1;
 }
 
@@ -97,13 +98,14 @@ static int create_pool(struct world *w, char *err, size_t errlen)
 	return 0;
 }
 
-struct world *world_create(const struct params *p, char *err, size_t errlen)
+struct world *world_create(const struct params *p, struct edits *ed, char *err, size_t errlen)
 {
 	struct world *w = calloc(1, sizeof(*w));
 	if (!w) {
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
+	w->ed = ed;
 	w->n = p->block_cells;
 	w->slots = p->block_pool;
 	w->tcap = (uint32_t)p->block_tris;
@@ -136,6 +138,7 @@ void world_destroy(struct world *w)
 	if (!w)
 		return;
 	pipeline_destroy(w->pl);
+	terrain_destroy(w->terrain);
 	if (w->vbo)
 		glDeleteBuffers(1, &w->vbo);
 	if (w->ibo)
@@ -161,12 +164,12 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	/* terrain edits (curves / heightmap files changed, or set through the
 	 * API): only the blocks under the changed region are generated again */
 	char err[512];
-	if (edits_load(p, err, sizeof(err)) < 0) {
+	if (edits_load(w->ed, p, err, sizeof(err)) < 0) {
 		log_error("%s", err);
 		return -1;
 	}
 	float xz[4];
-	if (edits_take_changes(xz))
+	if (edits_take_changes(w->ed, xz))
 		world_invalidate(w, p, xz);
 	collect_results(w, false);
 	if (plan_blocks(w, p, c) < 0)

@@ -14,6 +14,7 @@
 #include "abi.h"
 #include "edits.h"
 #include "pipeline.h"
+#include "terrain.h"
 
 enum bstate { B_FREE = 0, B_PENDING, B_READY, B_EMPTY };
 
@@ -52,6 +53,8 @@ struct want_key {
 };
 
 struct world {
+	struct edits *ed;          /* borrowed: the terrain edits */
+	struct terrain *terrain;   /* the field the blocks are extracted from */
 	struct pipeline *pl;
 	int n;               /* cells per block edge */
 	GLuint vbo, ibo, status;

@@ -166,7 +166,7 @@ static void height_band(const struct world *w, const struct params *p, const flo
 		*ylo = fminf(*ylo, p->heightmap_base - extra);
 		*yhi = fmaxf(*yhi, p->heightmap_base + p->heightmap_height + extra);
 	}
-	const struct curve_quads *q = &edits_get()->quads;
+	const struct curve_quads *q = &w->ed->quads;
 	for (int i = 0; i < q->nctrl; i++) {
 		*ylo = fminf(*ylo, q->ctrl[i][1] - 1.0f);
 		*yhi = fmaxf(*yhi, q->ctrl[i][1] + 1.0f);
