@@ -329,6 +329,28 @@ static void quad_box(const float p0[3], const float p1[3], const float p2[3], fl
 	}
 }
 
+/* Lateral inclination (§7.2) of the nqp quadratics of path p from control
+ * point base on: gain · curvature at t = 0, 0.5, 1; shared anchors average
+ * their two curves; the middle control value is chosen so the quadratic
+ * interpolation hits I(0.5). */
+static void path_inclination(struct curve_quads *q, const struct curve_path *p, int base, int nqp)
+{
+	for (int k = 0; k < nqp; k++) {
+		int f = base + 2 * k;
+		const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
+		float i0 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.0f));
+		float i2 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 1.0f));
+		q->ctrl[f][3] = k == 0 ? i0 : 0.5f * (q->ctrl[f][3] + i0);
+		q->ctrl[f + 2][3] = i2;
+	}
+	for (int k = 0; k < nqp; k++) {
+		int f = base + 2 * k;
+		const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
+		float im = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.5f));
+		q->ctrl[f + 1][3] = clamp_incl(2.0f * im - 0.5f * (q->ctrl[f][3] + q->ctrl[f + 2][3]));
+	}
+}
+
 int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, size_t errlen)
 {
 	memset(q, 0, sizeof(*q));
@@ -385,24 +407,7 @@ int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, si
 				c += 2;
 			}
 		}
-		/* lateral inclination (§7.2): gain · curvature at t = 0, 0.5, 1;
-		 * shared anchors average their two curves; the middle control value
-		 * is chosen so the quadratic interpolation hits I(0.5). */
-		int nqp = 2 * ncub;
-		for (int k = 0; k < nqp; k++) {
-			int f = base + 2 * k;
-			const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
-			float i0 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.0f));
-			float i2 = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 1.0f));
-			q->ctrl[f][3] = k == 0 ? i0 : 0.5f * (q->ctrl[f][3] + i0);
-			q->ctrl[f + 2][3] = i2;
-		}
-		for (int k = 0; k < nqp; k++) {
-			int f = base + 2 * k;
-			const float *p0 = q->ctrl[f], *p1 = q->ctrl[f + 1], *p2 = q->ctrl[f + 2];
-			float im = clamp_incl(p->inclination * quad_xz_curvature(p0, p1, p2, 0.5f));
-			q->ctrl[f + 1][3] = clamp_incl(2.0f * im - 0.5f * (q->ctrl[f][3] + q->ctrl[f + 2][3]));
-		}
+		path_inclination(q, p, base, 2 * ncub);
 		q->prm[c][0] = 0.5f * p->width; /* last anchor: same parameters */
 		q->prm[c][1] = p->falloff;
 		q->prm[c][2] = (float)p->kind;

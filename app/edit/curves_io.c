@@ -1,6 +1,8 @@
-/* isoterra — curve input: GeoJSON (a small strict JSON parser that keeps
- * line numbers, so errors name the line and the feature) and CSV. */
+/* isoterra — curve input: GeoJSON (through the strict JSON parser of
+ * curves_json.c, which keeps line numbers, so errors name the line and the
+ * feature) and CSV. */
 #include "curves.h"
+#include "curves_json.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -12,333 +14,6 @@
 #include <strings.h>
 
 #define MAX_FILE_BYTES (64u << 20)
-#define MAX_DEPTH 64
-
-/* ---- JSON DOM --------------------------------------------------------------- */
-
-enum jtype { J_NULL, J_BOOL, J_NUM, J_STR, J_ARR, J_OBJ };
-static const char *const jtype_names[] = { "null", "a boolean", "a number", "a string", "an array", "an object" };
-
-struct jval {
-	enum jtype type;
-	int line;
-	double num;
-	char *str;            /* J_STR */
-	struct jval *items;   /* J_ARR, J_OBJ values */
-	char **keys;          /* J_OBJ */
-	int n;
-};
-
-struct jparser {
-	const char *s, *end;
-	int line;
-	const char *fname;
-	char *err;
-	size_t errlen;
-	bool failed;
-};
-
-static void jfail(struct jparser *jp, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void jfail(struct jparser *jp, const char *fmt, ...)
-{
-	if (jp->failed)
-		return;
-	jp->failed = true;
-	char msg[256];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
-	va_end(ap);
-	snprintf(jp->err, jp->errlen, "%s:%d: invalid JSON: %s", jp->fname, jp->line, msg);
-}
-
-static void jfree(struct jval *v)
-{
-	if (v->type == J_STR)
-		free(v->str);
-	if (v->type == J_ARR || v->type == J_OBJ) {
-		for (int i = 0; i < v->n; i++) {
-			jfree(&v->items[i]);
-			if (v->keys)
-				free(v->keys[i]);
-		}
-		free(v->items);
-		free(v->keys);
-	}
-	memset(v, 0, sizeof(*v));
-}
-
-static void jskip(struct jparser *jp)
-{
-	while (jp->s < jp->end) {
-		char c = *jp->s;
-		if (c == '\n')
-			jp->line++;
-		else if (c != ' ' && c != '\t' && c != '\r')
-			break;
-		jp->s++;
-	}
-}
-
-static void describe(const struct jparser *jp, char *buf, size_t len)
-{
-	if (jp->s >= jp->end)
-		snprintf(buf, len, "end of file");
-	else if (isprint((unsigned char)*jp->s))
-		snprintf(buf, len, "'%c'", *jp->s);
-	else
-		snprintf(buf, len, "byte 0x%02x", (unsigned char)*jp->s);
-}
-
-static char *jstring(struct jparser *jp)
-{
-	/* at the opening quote */
-	jp->s++;
-	size_t cap = 32, n = 0;
-	char *out = malloc(cap);
-	if (!out) {
-		jfail(jp, "out of memory");
-		return NULL;
-	}
-	while (jp->s < jp->end && *jp->s != '"') {
-		unsigned char c = (unsigned char)*jp->s++;
-		if (c < 0x20) {
-			jfail(jp, "control character in a string (unterminated string?)");
-			free(out);
-			return NULL;
-		}
-		if (c == '\\') {
-			if (jp->s >= jp->end)
-				break;
-			char e = *jp->s++;
-			switch (e) {
-			case '"': c = '"'; break;
-			case '\\': c = '\\'; break;
-			case '/': c = '/'; break;
-			case 'b': c = '\b'; break;
-			case 'f': c = '\f'; break;
-			case 'n': c = '\n'; break;
-			case 'r': c = '\r'; break;
-			case 't': c = '\t'; break;
-			case 'u':
-				for (int i = 0; i < 4; i++)
-					if (jp->s + i >= jp->end || !isxdigit((unsigned char)jp->s[i])) {
-						jfail(jp, "bad \\u escape in a string");
-						free(out);
-						return NULL;
-					}
-				jp->s += 4;
-				c = '?'; /* names and kinds are ASCII; others are not used */
-				break;
-			default:
-				jfail(jp, "bad escape '\\%c' in a string", isprint((unsigned char)e) ? e : '?');
-				free(out);
-				return NULL;
-			}
-		}
-		if (n + 2 > cap) {
-			cap *= 2;
-			char *no = realloc(out, cap);
-			if (!no) {
-				free(out);
-				jfail(jp, "out of memory");
-				return NULL;
-			}
-			out = no;
-		}
-		out[n++] = (char)c;
-	}
-	if (jp->s >= jp->end) {
-		jfail(jp, "unterminated string");
-		free(out);
-		return NULL;
-	}
-	jp->s++;
-	out[n] = 0;
-	return out;
-}
-
-static bool jvalue(struct jparser *jp, struct jval *v, int depth);
-
-static bool jappend(struct jparser *jp, struct jval *v, int *cap, char *key)
-{
-	if (v->n + 1 > *cap) {
-		int nc = *cap ? *cap * 2 : 4;
-		struct jval *ni = realloc(v->items, sizeof(*ni) * (size_t)nc);
-		if (!ni) {
-			jfail(jp, "out of memory");
-			return false;
-		}
-		v->items = ni;
-		if (v->type == J_OBJ) {
-			char **nk = realloc(v->keys, sizeof(*nk) * (size_t)nc);
-			if (!nk) {
-				jfail(jp, "out of memory");
-				return false;
-			}
-			v->keys = nk;
-		}
-		*cap = nc;
-	}
-	memset(&v->items[v->n], 0, sizeof(struct jval));
-	if (v->type == J_OBJ)
-		v->keys[v->n] = key;
-	v->n++;
-	return true;
-}
-
-static bool jvalue(struct jparser *jp, struct jval *v, int depth)
-{
-	memset(v, 0, sizeof(*v));
-	jskip(jp);
-	v->line = jp->line;
-	if (depth > MAX_DEPTH) {
-		jfail(jp, "nested deeper than %d levels", MAX_DEPTH);
-		return false;
-	}
-	if (jp->s >= jp->end) {
-		jfail(jp, "unexpected end of file, expected a value");
-		return false;
-	}
-	char c = *jp->s;
-	char what[32];
-	if (c == '{' || c == '[') {
-		bool obj = c == '{';
-		v->type = obj ? J_OBJ : J_ARR;
-		jp->s++;
-		int cap = 0;
-		jskip(jp);
-		if (jp->s < jp->end && *jp->s == (obj ? '}' : ']')) {
-			jp->s++;
-			return true;
-		}
-		for (;;) {
-			char *key = NULL;
-			jskip(jp);
-			if (obj) {
-				if (jp->s >= jp->end || *jp->s != '"') {
-					describe(jp, what, sizeof(what));
-					jfail(jp, "expected a quoted member name, got %s", what);
-					return false;
-				}
-				key = jstring(jp);
-				if (!key)
-					return false;
-				jskip(jp);
-				if (jp->s >= jp->end || *jp->s != ':') {
-					describe(jp, what, sizeof(what));
-					jfail(jp, "expected ':' after member \"%s\", got %s", key, what);
-					free(key);
-					return false;
-				}
-				jp->s++;
-			}
-			if (!jappend(jp, v, &cap, key)) {
-				free(key);
-				return false;
-			}
-			if (!jvalue(jp, &v->items[v->n - 1], depth + 1))
-				return false;
-			jskip(jp);
-			if (jp->s < jp->end && *jp->s == ',') {
-				jp->s++;
-				jskip(jp);
-				if (jp->s < jp->end && (*jp->s == '}' || *jp->s == ']')) {
-					jfail(jp, "trailing comma");
-					return false;
-				}
-				continue;
-			}
-			if (jp->s < jp->end && *jp->s == (obj ? '}' : ']')) {
-				jp->s++;
-				return true;
-			}
-			describe(jp, what, sizeof(what));
-			jfail(jp, "expected ',' or '%c', got %s", obj ? '}' : ']', what);
-			return false;
-		}
-	}
-	if (c == '"') {
-		v->type = J_STR;
-		v->str = jstring(jp);
-		return v->str != NULL;
-	}
-	static const char *const words[] = { "true", "false", "null" };
-	for (int i = 0; i < 3; i++) {
-		size_t l = strlen(words[i]);
-		if ((size_t)(jp->end - jp->s) >= l && !strncmp(jp->s, words[i], l)) {
-			jp->s += l;
-			v->type = i < 2 ? J_BOOL : J_NULL;
-			v->num = i == 0;
-			return true;
-		}
-	}
-	if (c == '-' || isdigit((unsigned char)c)) {
-		/* JSON number grammar: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)? */
-		const char *p = jp->s;
-		if (*p == '-')
-			p++;
-		if (p < jp->end && *p == '0')
-			p++;
-		else if (p < jp->end && isdigit((unsigned char)*p))
-			while (p < jp->end && isdigit((unsigned char)*p))
-				p++;
-		else {
-			jfail(jp, "malformed number");
-			return false;
-		}
-		if (p < jp->end && *p == '.') {
-			p++;
-			if (p >= jp->end || !isdigit((unsigned char)*p)) {
-				jfail(jp, "malformed number (digits expected after '.')");
-				return false;
-			}
-			while (p < jp->end && isdigit((unsigned char)*p))
-				p++;
-		}
-		if (p < jp->end && (*p == 'e' || *p == 'E')) {
-			p++;
-			if (p < jp->end && (*p == '+' || *p == '-'))
-				p++;
-			if (p >= jp->end || !isdigit((unsigned char)*p)) {
-				jfail(jp, "malformed number (exponent digits expected)");
-				return false;
-			}
-			while (p < jp->end && isdigit((unsigned char)*p))
-				p++;
-		}
-		char buf[64];
-		size_t l = (size_t)(p - jp->s);
-		if (l >= sizeof(buf)) {
-			jfail(jp, "number too long");
-			return false;
-		}
-		memcpy(buf, jp->s, l);
-		buf[l] = 0;
-		errno = 0;
-		v->num = strtod(buf, NULL);
-		if (errno == ERANGE && fabs(v->num) > 1.0) {
-			jfail(jp, "number %s out of range", buf);
-			return false;
-		}
-		v->type = J_NUM;
-		jp->s = p;
-		return true;
-	}
-	describe(jp, what, sizeof(what));
-	jfail(jp, "unexpected %s, expected a value", what);
-	return false;
-}
-
-static const struct jval *jget(const struct jval *o, const char *key)
-{
-	if (o->type != J_OBJ)
-		return NULL;
-	for (int i = 0; i < o->n; i++)
-		if (!strcmp(o->keys[i], key))
-			return &o->items[i];
-	return NULL;
-}
 
 /* ---- GeoJSON --------------------------------------------------------------- */
 
@@ -520,17 +195,8 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 			 size_t errlen)
 {
 	memset(s, 0, sizeof(*s));
-	struct jparser jp = { text, text + len, 1, fname, err, errlen, false };
 	struct jval root;
-	bool ok = jvalue(&jp, &root, 0);
-	if (ok) {
-		jskip(&jp);
-		if (jp.s < jp.end) {
-			jfail(&jp, "text after the end of the top-level value");
-			ok = false;
-		}
-	}
-	if (!ok) {
+	if (!json_parse(text, len, fname, &root, err, errlen)) {
 		jfree(&root);
 		return -1;
 	}
@@ -603,172 +269,224 @@ static bool parse_num(const char *s, double *v)
 	return *s && !*end && !errno && isfinite(*v);
 }
 
+/* The CSV reader's state: the header's columns, the path being read. */
+struct csv {
+	const char *fname;
+	char *err;
+	size_t errlen;
+	int lineno;
+	int col[NCOL], nhead;      /* column of each field (-1 none), header fields */
+	bool have_header;
+	struct curve_path cur;     /* the path being read */
+	int cap, cur_line;         /* cur.pts capacity (points); the line it began on */
+	char cur_id[64];
+	bool set_prop[4];          /* width, falloff, inclination, smoothing given */
+	char (*ids)[64];           /* the ids of the paths begun so far */
+	int nids, ids_cap;
+};
+
+static int cfail(struct csv *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int cfail(struct csv *c, const char *fmt, ...)
+{
+	char m[256];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(m, sizeof(m), fmt, ap);
+	va_end(ap);
+	snprintf(c->err, c->errlen, "%s:%d: %s", c->fname, c->lineno, m);
+	return -1;
+}
+
+static int csv_header(struct csv *c, char **f, int nf)
+{
+	for (int i = 0; i < nf; i++) {
+		int k = -1;
+		for (int j = 0; j < NCOL; j++)
+			if (!strcasecmp(f[i], col_names[j]))
+				k = j;
+		if (k < 0)
+			return cfail(c, "unknown column '%s' in the header (path,x,y,z[,kind,width,falloff,"
+				     "inclination,smoothing])", f[i]);
+		if (c->col[k] >= 0)
+			return cfail(c, "column '%s' appears twice in the header", f[i]);
+		c->col[k] = i;
+	}
+	for (int k = 0; k <= COL_Z; k++)
+		if (c->col[k] < 0)
+			return cfail(c, "the header has no '%s' column (needs path,x,y,z)", col_names[k]);
+	c->nhead = nf;
+	c->have_header = true;
+	return 0;
+}
+
+/* The path read so far, if any, into s. */
+static int csv_finish_path(struct csv *c, struct curve_set *s)
+{
+	if (c->cur.npts == 0)
+		return 0;
+	if (curve_path_dedup(&c->cur) < 2) {
+		c->lineno = c->cur_line;
+		return cfail(c, "path '%s' needs at least 2 distinct points", c->cur_id);
+	}
+	if (curve_set_add(s, &c->cur) < 0)
+		return cfail(c, "out of memory");
+	c->cur.npts = 0;
+	return 0;
+}
+
+/* A new path begins at this row (its id, kind and label). */
+static int csv_start_path(struct csv *c, char **f)
+{
+	const char *id = f[c->col[COL_PATH]];
+	if (!*id)
+		return cfail(c, "empty path id");
+	if (strlen(id) >= sizeof(c->cur_id))
+		return cfail(c, "path id longer than %zu characters", sizeof(c->cur_id) - 1);
+	/* ids seen before (a path's rows are consecutive) */
+	for (int i = 0; i < c->nids; i++)
+		if (!strcmp(c->ids[i], id))
+			return cfail(c, "rows of path '%s' continue after another path (a path's rows must be consecutive)",
+				     id);
+	if (c->nids + 1 > c->ids_cap) {
+		c->ids_cap = c->ids_cap ? 2 * c->ids_cap : 16;
+		char(*ni)[64] = realloc(c->ids, sizeof(*c->ids) * (size_t)c->ids_cap);
+		if (!ni)
+			return cfail(c, "out of memory");
+		c->ids = ni;
+	}
+	snprintf(c->ids[c->nids++], sizeof(c->ids[0]), "%s", id);
+	snprintf(c->cur_id, sizeof(c->cur_id), "%s", id);
+	c->cur_line = c->lineno;
+	int kind = CURVE_ROAD;
+	const char *ks = c->col[COL_KIND] >= 0 ? f[c->col[COL_KIND]] : "";
+	if (*ks) {
+		kind = parse_kind(ks);
+		if (kind < 0)
+			return cfail(c, "kind '%s' is not road, river or railway", ks);
+	}
+	float *pts = c->cur.pts;
+	curve_path_defaults(&c->cur, kind);
+	c->cur.pts = pts;
+	c->cur.npts = 0;
+	snprintf(c->cur.label, sizeof(c->cur.label), "%.80s:%d: path '%.63s'", c->fname, c->lineno, id);
+	memset(c->set_prop, 0, sizeof(c->set_prop));
+	return 0;
+}
+
+/* One row of the current path: its properties (first non-empty value wins,
+ * the rest must agree) and its point. */
+static int csv_row(struct csv *c, char **f)
+{
+	for (int i = 0; i < 4; i++) {
+		int k = c->col[COL_WIDTH + i];
+		if (k < 0 || !*f[k])
+			continue;
+		double v;
+		if (!parse_num(f[k], &v))
+			return cfail(c, "%s '%s' is not a number", param_names[i], f[k]);
+		const char *why = check_param(param_names[i], v);
+		if (why)
+			return cfail(c, "%s = %s %s", param_names[i], f[k], why);
+		if (c->set_prop[i] && *param_slot(&c->cur, i) != (float)v)
+			return cfail(c, "%s of path '%s' changes along the path (%g, then %s)", param_names[i], c->cur_id,
+				     (double)*param_slot(&c->cur, i), f[k]);
+		*param_slot(&c->cur, i) = (float)v;
+		c->set_prop[i] = true;
+	}
+	if (c->col[COL_KIND] >= 0 && *f[c->col[COL_KIND]] && parse_kind(f[c->col[COL_KIND]]) != c->cur.kind)
+		return cfail(c, "kind of path '%s' changes along the path", c->cur_id);
+	double xyz[3];
+	for (int a = 0; a < 3; a++)
+		if (!parse_num(f[c->col[COL_X + a]], &xyz[a]) || fabs(xyz[a]) > 1e7)
+			return cfail(c, "%s '%s' is not a number within +-1e7", col_names[COL_X + a], f[c->col[COL_X + a]]);
+	if (c->cur.npts + 1 > c->cap) {
+		c->cap = c->cap ? c->cap * 2 : 16;
+		float *np = realloc(c->cur.pts, sizeof(float) * 3 * (size_t)c->cap);
+		if (!np)
+			return cfail(c, "out of memory");
+		c->cur.pts = np;
+	}
+	for (int a = 0; a < 3; a++)
+		c->cur.pts[3 * c->cur.npts + a] = (float)xyz[a];
+	c->cur.npts++;
+	return 0;
+}
+
+/* The next line (a copy in *line, NUL-checked) of [*p, end).  1, 0 at the
+ * end, -1 with the message. */
+static int csv_line(struct csv *c, const char **p, const char *end, char **line)
+{
+	if (*p >= end)
+		return 0;
+	const char *nl = memchr(*p, '\n', (size_t)(end - *p));
+	size_t n = nl ? (size_t)(nl - *p) : (size_t)(end - *p);
+	c->lineno++;
+	free(*line);
+	*line = malloc(n + 1);
+	if (!*line)
+		return cfail(c, "out of memory");
+	memcpy(*line, *p, n);
+	(*line)[n] = 0;
+	*p = nl ? nl + 1 : end;
+	if (strlen(*line) != n)
+		return cfail(c, "NUL byte in the file (not a text CSV)");
+	return 1;
+}
+
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen)
 {
 	memset(s, 0, sizeof(*s));
-	int col[NCOL];
+	struct csv c;
+	memset(&c, 0, sizeof(c));
+	c.fname = fname;
+	c.err = err;
+	c.errlen = errlen;
 	for (int i = 0; i < NCOL; i++)
-		col[i] = -1;
-	int nhead = 0, lineno = 0;
-	bool have_header = false;
-	struct curve_path cur;
-	memset(&cur, 0, sizeof(cur));
-	int cap = 0, cur_line = 0;
-	char cur_id[64] = "";
-	bool set_prop[5] = { false };
-	char(*ids)[64] = NULL;
-	int nids = 0, ids_cap = 0;
+		c.col[i] = -1;
 	char *line = NULL;
-	int rc = -1;
+	int rc = -1, more;
 	const char *p = text, *end = text + len;
-#define CFAIL(...)                                                       \
-	do {                                                             \
-		char m_[256];                                            \
-		snprintf(m_, sizeof(m_), __VA_ARGS__);                   \
-		snprintf(err, errlen, "%s:%d: %s", fname, lineno, m_);   \
-		goto out;                                                \
-	} while (0)
-	for (;;) {
-		/* finish the current path at a new id or at the end */
-		const char *nl = p < end ? memchr(p, '\n', (size_t)(end - p)) : NULL;
-		size_t n = p < end ? (nl ? (size_t)(nl - p) : (size_t)(end - p)) : 0;
+	while ((more = csv_line(&c, &p, end, &line)) >= 0) {
 		char *f[MAX_FIELDS];
 		int nf = 0;
-		bool eof = p >= end;
-		if (!eof) {
-			lineno++;
-			free(line);
-			line = malloc(n + 1);
-			if (!line)
-				CFAIL("out of memory");
-			memcpy(line, p, n);
-			line[n] = 0;
-			p = nl ? nl + 1 : end;
-			if (strlen(line) != n)
-				CFAIL("NUL byte in the file (not a text CSV)");
+		if (more) {
 			char *t = trim(line);
 			if (!*t || *t == '#')
 				continue;
 			nf = split(t, f);
-			if (nf < 0)
-				CFAIL("more than %d columns", MAX_FIELDS);
-			if (!have_header) {
-				for (int i = 0; i < nf; i++) {
-					int c = -1;
-					for (int k = 0; k < NCOL; k++)
-						if (!strcasecmp(f[i], col_names[k]))
-							c = k;
-					if (c < 0)
-						CFAIL("unknown column '%s' in the header (path,x,y,z[,kind,width,falloff,"
-						      "inclination,smoothing])", f[i]);
-					if (col[c] >= 0)
-						CFAIL("column '%s' appears twice in the header", f[i]);
-					col[c] = i;
-				}
-				for (int k = 0; k <= COL_Z; k++)
-					if (col[k] < 0)
-						CFAIL("the header has no '%s' column (needs path,x,y,z)", col_names[k]);
-				nhead = nf;
-				have_header = true;
+			if (nf < 0) {
+				cfail(&c, "more than %d columns", MAX_FIELDS);
+				break;
+			}
+			if (!c.have_header) {
+				if (csv_header(&c, f, nf) < 0)
+					break;
 				continue;
 			}
-			if (nf != nhead)
-				CFAIL("%d fields, the header has %d", nf, nhead);
+			if (nf != c.nhead) {
+				cfail(&c, "%d fields, the header has %d", nf, c.nhead);
+				break;
+			}
 		}
-		bool new_path = eof || strcmp(f[col[COL_PATH]], cur_id) != 0 || cur.npts == 0;
-		if (new_path && cur.npts > 0) {
-			int at = lineno;
-			lineno = cur_line;
-			if (curve_path_dedup(&cur) < 2)
-				CFAIL("path '%s' needs at least 2 distinct points", cur_id);
-			lineno = at;
-			if (curve_set_add(s, &cur) < 0)
-				CFAIL("out of memory");
-			cur.npts = 0;
-		}
-		if (eof)
+		/* finish the current path at a new id or at the end */
+		bool new_path = !more || strcmp(f[c.col[COL_PATH]], c.cur_id) != 0 || c.cur.npts == 0;
+		if (new_path && csv_finish_path(&c, s) < 0)
 			break;
-		if (new_path) {
-			const char *id = f[col[COL_PATH]];
-			if (!*id)
-				CFAIL("empty path id");
-			if (strlen(id) >= sizeof(cur_id))
-				CFAIL("path id longer than %zu characters", sizeof(cur_id) - 1);
-			/* ids seen before (a path's rows are consecutive) */
-			for (int i = 0; i < nids; i++)
-				if (!strcmp(ids[i], id))
-					CFAIL("rows of path '%s' continue after another path (a path's rows must be consecutive)", id);
-			if (nids + 1 > ids_cap) {
-				ids_cap = ids_cap ? 2 * ids_cap : 16;
-				char(*ni)[64] = realloc(ids, sizeof(*ids) * (size_t)ids_cap);
-				if (!ni)
-					CFAIL("out of memory");
-				ids = ni;
-			}
-			snprintf(ids[nids++], sizeof(ids[0]), "%s", id);
-			snprintf(cur_id, sizeof(cur_id), "%s", id);
-			cur_line = lineno;
-			int kind = CURVE_ROAD;
-			if (col[COL_KIND] >= 0 && *f[col[COL_KIND]]) {
-				kind = parse_kind(f[col[COL_KIND]]);
-				if (kind < 0)
-					CFAIL("kind '%s' is not road, river or railway", f[col[COL_KIND]]);
-			}
-			float *pts = cur.pts;
-			curve_path_defaults(&cur, kind);
-			cur.pts = pts;
-			cur.npts = 0;
-			snprintf(cur.label, sizeof(cur.label), "%.80s:%d: path '%.63s'", fname, lineno, id);
-			memset(set_prop, 0, sizeof(set_prop));
+		if (!more) {
+			if (!c.have_header)
+				cfail(&c, "empty CSV (needs a header line path,x,y,z[,...])");
+			else if (s->npaths == 0)
+				cfail(&c, "no points after the header");
+			else
+				rc = 0;
+			break;
 		}
-		/* per-path properties: first non-empty value wins, later ones must agree */
-		for (int i = 0; i < 4; i++) {
-			int c = col[COL_WIDTH + i];
-			if (c < 0 || !*f[c])
-				continue;
-			double v;
-			if (!parse_num(f[c], &v))
-				CFAIL("%s '%s' is not a number", param_names[i], f[c]);
-			const char *why = check_param(param_names[i], v);
-			if (why)
-				CFAIL("%s = %s %s", param_names[i], f[c], why);
-			if (set_prop[i] && *param_slot(&cur, i) != (float)v)
-				CFAIL("%s of path '%s' changes along the path (%g, then %s)", param_names[i], cur_id,
-				      (double)*param_slot(&cur, i), f[c]);
-			*param_slot(&cur, i) = (float)v;
-			set_prop[i] = true;
-		}
-		if (col[COL_KIND] >= 0 && *f[col[COL_KIND]] && parse_kind(f[col[COL_KIND]]) != cur.kind)
-			CFAIL("kind of path '%s' changes along the path", cur_id);
-		double xyz[3];
-		for (int a = 0; a < 3; a++)
-			if (!parse_num(f[col[COL_X + a]], &xyz[a]) || fabs(xyz[a]) > 1e7)
-				CFAIL("%s '%s' is not a number within +-1e7", col_names[COL_X + a], f[col[COL_X + a]]);
-		if (cur.npts + 1 > cap) {
-			cap = cap ? cap * 2 : 16;
-			float *np = realloc(cur.pts, sizeof(float) * 3 * (size_t)cap);
-			if (!np)
-				CFAIL("out of memory");
-			cur.pts = np;
-		}
-		for (int a = 0; a < 3; a++)
-			cur.pts[3 * cur.npts + a] = (float)xyz[a];
-		cur.npts++;
+		if ((new_path && csv_start_path(&c, f) < 0) || csv_row(&c, f) < 0)
+			break;
 	}
-	if (!have_header) {
-		snprintf(err, errlen, "%s:%d: empty CSV (needs a header line path,x,y,z[,...])", fname, lineno);
-		goto out;
-	}
-	if (s->npaths == 0) {
-		snprintf(err, errlen, "%s:%d: no points after the header", fname, lineno);
-		goto out;
-	}
-	rc = 0;
-out:
-#undef CFAIL
-	free(ids);
+	free(c.ids);
 	free(line);
-	free(cur.pts);
+	free(c.cur.pts);
 	if (rc < 0)
 		curve_set_free(s);
 	return rc;
