@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "world.h"
+#include "terrain.h"
 #include "y4m.h"
 
 static volatile sig_atomic_t quit_requested;
@@ -188,9 +189,13 @@ static int run_volume(struct params *p, struct frame_out *o)
 	char err[512] = "";
 	struct grid g;
 	grid_from_params(&g, p);
-	struct pipeline *pl = pipeline_create(&g, p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, p, terrain_field(tr), err, sizeof(err));
 	if (!pl) {
 		log_error("%s", err);
+		terrain_destroy(tr);
+		edits_destroy(ed);
 		return 1;
 	}
 	int rc = 1;
@@ -240,6 +245,8 @@ static int run_volume(struct params *p, struct frame_out *o)
 	rc = 0;
 out:
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	return rc;
 }
 
@@ -248,14 +255,17 @@ static int run_world(struct params *p, struct frame_out *o)
 	char err[512] = "";
 	if (p->export_mesh[0])
 		log_warn("--export-mesh exports the volume scene's mesh; ignored with --scene world");
-	struct world *wd = world_create(p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *wd = world_create(p, ed, err, sizeof(err));
 	if (!wd) {
 		log_error("%s", err);
+		edits_destroy(ed);
 		return 1;
 	}
 	struct autopilot ap;
-	if (autopilot_init(&ap, p) < 0) {
+	if (autopilot_init(&ap, p, ed) < 0) {
 		world_destroy(wd);
+		edits_destroy(ed);
 		log_error("out of memory");
 		return 1;
 	}
@@ -305,6 +315,7 @@ static int run_world(struct params *p, struct frame_out *o)
 out:
 	autopilot_free(&ap);
 	world_destroy(wd);
+	edits_destroy(ed);
 	return rc;
 }
 
@@ -395,9 +406,14 @@ int render_to_image(const struct params *p_in, struct image *img, char *err, siz
 	}
 	struct grid g;
 	grid_from_params(&g, &p);
-	struct pipeline *pl = pipeline_create(&g, &p, err, errlen);
-	if (!pl)
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, errlen);
+	if (!pl) {
+		terrain_destroy(tr);
+		edits_destroy(ed);
 		return -1;
+	}
 	struct renderer *r = renderer_create(w, h, err, errlen);
 	int rc = -1;
 	if (r) {
@@ -421,5 +437,7 @@ int render_to_image(const struct params *p_in, struct image *img, char *err, siz
 	}
 	renderer_destroy(r);
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	return rc;
 }

@@ -81,12 +81,12 @@ static void dataset(char which, struct curve_set *s)
 
 /* best (minimum) ms of repeated bakes (at least min_reps, until ~budget ms):
  * the machine may be shared, the minimum is the least disturbed run */
-static double time_bake(const struct params *p, const struct bake_opts *o, int min_reps, double budget)
+static double time_bake(struct edits *ed, const struct params *p, const struct bake_opts *o, int min_reps, double budget)
 {
 	char err[512];
 	double t[64];
 	int n = 0;
-	if (curves_bake(p, o, NULL, err, sizeof(err)) < 0) { /* warm-up: compile, upload, first touch */
+	if (curves_bake(ed, p, o, NULL, err, sizeof(err)) < 0) { /* warm-up: compile, upload, first touch */
 		fprintf(stderr, "bench: %s\n", err);
 		return -1;
 	}
@@ -96,7 +96,7 @@ static double time_bake(const struct params *p, const struct bake_opts *o, int m
 	last_cpu = 0;
 	while (n < 64 && (n < min_reps || clock_ms() - start < budget)) {
 		double t0 = clock_ms(), c0 = bench_cpu_ms();
-		int rc = curves_bake(p, o, NULL, err, sizeof(err));
+		int rc = curves_bake(ed, p, o, NULL, err, sizeof(err));
 		glFinish();
 		if (rc < 0) {
 			fprintf(stderr, "bench: %s\n", err);
@@ -119,26 +119,26 @@ static const char *const shapes[3] = { "3 paths dispersed", "3 paths concentrate
 /* Dataset 'A' + d: building the curves, then analytic (with its CPU time),
  * dense and iterative bakes; one table row.  -1 when the curves cannot be
  * built, 1 when a bake failed, else 0. */
-static int measure_dataset(int d, const struct params *p, struct bake_opts *o, double budget)
+static int measure_dataset(struct edits *ed, int d, const struct params *p, struct bake_opts *o, double budget)
 {
 	char err[512];
 	struct curve_set s;
 	dataset((char)('A' + d), &s);
 	double t0 = clock_ms();
-	if (edits_set_curves(&s, 16, err, sizeof(err)) < 0) {
+	if (edits_set_curves(ed, &s, 16, err, sizeof(err)) < 0) {
 		fprintf(stderr, "bench: %s\n", err);
 		return -1;
 	}
 	double build_ms = clock_ms() - t0;
-	const struct edits *e = edits_get();
+	const struct edits *e = ed;
 	o->iterative = false;
-	double ta = time_bake(p, o, 3, budget);
+	double ta = time_bake(ed, p, o, 3, budget);
 	double ca = last_cpu;
 	o->dense = true;
-	double td = time_bake(p, o, 2, budget / 3);
+	double td = time_bake(ed, p, o, 2, budget / 3);
 	o->dense = false;
 	o->iterative = true;
-	double ti = time_bake(p, o, 1, 0);
+	double ti = time_bake(ed, p, o, 1, 0);
 	o->iterative = false;
 	printf("%-3c %-40s %6d %9.2f %9d %12.1f %9.1f %10.1f %14.1f %7.1fx\n", 'A' + d, shapes[d], e->quads.nquads,
 	       build_ms, e->hash.nindex, ta, ca, td, ti, ti / ta);
@@ -148,7 +148,7 @@ static int measure_dataset(int d, const struct params *p, struct bake_opts *o, d
 
 /* Dataset C, analytic, through hashes of 1 (not above 512^2 texels) to 64^2
  * cells.  0, or -1 when the curves cannot be built. */
-static int measure_hash_sizes(const struct params *p, struct bake_opts *o, int res, double budget)
+static int measure_hash_sizes(struct edits *ed, const struct params *p, struct bake_opts *o, int res, double budget)
 {
 	char err[512];
 	struct curve_set s;
@@ -158,12 +158,12 @@ static int measure_hash_sizes(const struct params *p, struct bake_opts *o, int r
 	for (int i = 0; i < 5; i++) {
 		if (dims[i] == 1 && res > 512)
 			continue; /* every curve at every texel: minutes at 2048^2 on llvmpipe */
-		if (edits_set_curves(&s, dims[i], err, sizeof(err)) < 0) {
+		if (edits_set_curves(ed, &s, dims[i], err, sizeof(err)) < 0) {
 			fprintf(stderr, "bench: %s\n", err);
 			return -1;
 		}
-		const struct edits *e = edits_get();
-		double t = time_bake(p, o, 3, budget / 2);
+		const struct edits *e = ed;
+		double t = time_bake(ed, p, o, 3, budget / 2);
 		printf("  hash %2dx%-2d  %8.1f ms (cpu %7.1f)   entries %5d   max per cell %3d\n", dims[i], dims[i], t,
 		       last_cpu, e->hash.nindex, e->hash.max_per_cell);
 	}
@@ -197,6 +197,7 @@ int main(int argc, char **argv)
 	if (!plat)
 		return 1;
 	char err[512];
+	struct edits *ed = edits_create();
 	printf("displacement map %dx%d over %gx%g world units, w = 15, lambda = 15, hash 16x16, iterative baseline: 32 "
 	       "line segments per curve, no hash\n\n",
 	       res, res, (double)TERRAIN, (double)TERRAIN);
@@ -208,8 +209,8 @@ int main(int argc, char **argv)
 
 	{
 		struct curve_set none = { NULL, 0 };
-		edits_set_curves(&none, 16, err, sizeof(err));
-		printf("floor: the same dispatch with no curves: %.1f ms\n\n", time_bake(&p, &o, 3, budget / 2));
+		edits_set_curves(ed, &none, 16, err, sizeof(err));
+		printf("floor: the same dispatch with no curves: %.1f ms\n\n", time_bake(ed, &p, &o, 3, budget / 2));
 	}
 	printf("analytic = closed form + hash over the 8x8 tiles that overlap a padded box; dense = the same, every texel;\n"
 	       "ratio = iterative / analytic\n");
@@ -217,20 +218,20 @@ int main(int argc, char **argv)
 	       " llvmpipe's threads included: on an idle machine wall ~ cpu / cores)\n");
 	printf("%-3s %-40s %6s %9s %9s %12s %9s %10s %14s %8s\n", "set", "shape", "quads", "build ms", "entries",
 	       "analytic ms", "(cpu)", "dense ms", "iterative ms", "ratio");
+	int rc = 0;
 	for (int d = 0; d < 3; d++) {
-		int rc = measure_dataset(d, &p, &o, budget);
+		rc = measure_dataset(ed, d, &p, &o, budget);
 		if (rc < 0)
-			return 1;
+			break;
 		if (rc > 0)
 			status = 1;
 	}
 
 	printf("\ndataset C, analytic, by hash size (entries = cell list length; max = longest cell list):\n");
-	if (measure_hash_sizes(&p, &o, res, budget) < 0)
-		return 1;
+	if (rc < 0 || measure_hash_sizes(ed, &p, &o, res, budget) < 0)
+		status = 1;
 	printf("\nload average %.2f at the end\n", bench_loadavg());
-	edits_gl_release();
-	edits_clear();
+	edits_destroy(ed);
 	platform_close(plat);
 	return status;
 }

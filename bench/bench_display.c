@@ -13,6 +13,7 @@
  *                      [--rounds N] [--grid N] */
 #include "app.h"
 #include "bench.h"
+#include "terrain.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,7 +90,9 @@ int main(int argc, char **argv)
 	grid_from_params(&g, &p);
 	int rc = 1;
 	struct renderer *r = NULL;
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 	if (!pl || !(r = renderer_create(w, h, err, sizeof(err))) || pipeline_run(pl, &p) < 0) {
 		fprintf(stderr, "bench_display: %s\n", err);
 		goto out;
@@ -126,6 +129,8 @@ fail:
 out:
 	renderer_destroy(r);
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	platform_close(plat);
 	return rc;
 }

@@ -11,6 +11,7 @@
  * Times are wall-clock around glFinish(), median of repeated runs. */
 #include "app.h"
 #include "bench.h"
+#include "terrain.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,24 +47,25 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 
 /* Default parameters at grid size n (octaves: 0 keeps the default's) and
  * their pipeline; NULL with err when it cannot be created. */
-static struct pipeline *open_pipeline(struct params *p, struct grid *g, int n, int octaves, char *err, size_t errlen)
+static struct pipeline *open_pipeline(struct params *p, struct grid *g, int n, int octaves, const struct field *f,
+				      char *err, size_t errlen)
 {
 	params_defaults(p);
 	if (octaves)
 		p->octaves = octaves;
 	p->grid = n;
 	grid_from_params(g, p);
-	return pipeline_create(g, p, err, errlen);
+	return pipeline_create(g, p, f, err, errlen);
 }
 
 /* Fixed field at grid size n: density pass, full pipeline and, from one
  * profiled run, where the time goes (written to breakdown). */
-static void measure_size(int n, double budget, char *breakdown, size_t len)
+static void measure_size(const struct field *f, int n, double budget, char *breakdown, size_t len)
 {
 	char err[512];
 	struct params p;
 	struct grid g;
-	struct pipeline *pl = open_pipeline(&p, &g, n, 7, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(&p, &g, n, 7, f, err, sizeof(err));
 	if (!pl) {
 		printf("%-6d n/a: %s\n", n, err);
 		return;
@@ -87,12 +89,12 @@ static void measure_size(int n, double budget, char *breakdown, size_t len)
 }
 
 /* The same field at grid gsz through the three compaction methods. */
-static void measure_compaction(int gsz, double budget)
+static void measure_compaction(const struct field *f, int gsz, double budget)
 {
 	char err[512];
 	struct params p;
 	struct grid g;
-	struct pipeline *pl = open_pipeline(&p, &g, gsz, 7, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(&p, &g, gsz, 7, f, err, sizeof(err));
 	if (!pl) {
 		printf("  %d^3: n/a: %s\n", gsz, err);
 		return;
@@ -117,16 +119,16 @@ static void measure_compaction(int gsz, double budget)
 }
 
 /* The density pass with ALU noise and with 16^3 noise textures. */
-static void measure_noise(int n, double budget)
+static void measure_noise(const struct field *f, int n, double budget)
 {
 	char err[512];
 	struct params p;
 	struct grid g;
-	struct pipeline *pl = open_pipeline(&p, &g, n, 0, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(&p, &g, n, 0, f, err, sizeof(err));
 	if (!pl)
 		return;
 	double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-	p.noise = 1;
+	p.noise = NOISE_TEXTURE;
 	double tt = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
 	printf("  alu (improved Perlin)   %10.2f ms  ratio 1.000\n", ta);
 	printf("  texture (16^3 volumes)  %10.2f ms  ratio %.3f\n", tt, tt / ta);
@@ -155,6 +157,9 @@ int main(int argc, char **argv)
 	struct platform *plat = bench_open(plat_name, 64, 64);
 	if (!plat)
 		return 1;
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	const struct field *f = terrain_field(tr);
 	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
 	double budget = quick ? 300 : 2000;
 
@@ -163,7 +168,7 @@ int main(int argc, char **argv)
 	printf("%-6s %12s %12s %8s %10s %12s %10s\n", "grid", "density ms", "full ms", "ratio", "Mvox/s", "Mtris/s",
 	       "triangles");
 	for (int s = 0; s < nsizes; s++)
-		measure_size(sizes[s], budget, breakdown[s], sizeof(breakdown[s]));
+		measure_size(f, sizes[s], budget, breakdown[s], sizeof(breakdown[s]));
 
 	printf("\nper pass (ms, one run with glFinish after every pass):\n");
 	for (int s = 0; s < nsizes; s++)
@@ -173,10 +178,12 @@ int main(int argc, char **argv)
 	int cmp_grid = quick ? 64 : 128;
 	printf("\ncompaction methods, same field, grid %d^3 (ratio = time / HistoPyramid time):\n", cmp_grid);
 	for (int gsz = 64; gsz <= cmp_grid; gsz *= 2)
-		measure_compaction(gsz, budget);
+		measure_compaction(f, gsz, budget);
 
 	printf("\nnoise source, density pass, grid %d^3, 9 octaves (ratio = time / ALU time):\n", cmp_grid);
-	measure_noise(cmp_grid, budget);
+	measure_noise(f, cmp_grid, budget);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	platform_close(plat);
 	return 0;
 }

@@ -13,6 +13,7 @@
 #include "app.h"
 #include "hal.h"
 #include "v4l2_out.h"
+#include "terrain.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -127,7 +128,9 @@ int main(int argc, char **argv)
 	params_defaults(&s.p);
 	s.p.grid = 48; /* the terrain is extracted every frame, as in the app: a grid that leaves the frame rate to rendering */
 	grid_from_params(&s.g, &s.p);
-	s.pl = pipeline_create(&s.g, &s.p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	s.pl = pipeline_create(&s.g, &s.p, terrain_field(tr), err, sizeof(err));
 	s.r = s.pl ? renderer_create(s.w, s.h, err, sizeof(err)) : NULL;
 	if (!s.r) {
 		fprintf(stderr, "bench: %s\n", err);
@@ -229,6 +232,8 @@ int main(int argc, char **argv)
 		close(sink_fd);
 	renderer_destroy(s.r);
 	pipeline_destroy(s.pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	platform_close(plat);
 	return 0;
 }

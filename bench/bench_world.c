@@ -10,6 +10,7 @@
 #include "app.h"
 #include "bench.h"
 #include "world.h"
+#include "terrain.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,9 +31,13 @@ static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
 	struct params q = *p;
 	q.closed = false;
 	q.max_triangles = q.max_vertices = p->block_tris;
-	struct pipeline *pl = pipeline_create(&g, &q, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &q, terrain_field(tr), err, sizeof(err));
 	if (!pl) {
 		fprintf(stderr, "bench: %s\n", err);
+		terrain_destroy(tr);
+		edits_destroy(ed);
 		return -1;
 	}
 	pipeline_run(pl, &q); /* warm-up: shader compilation */
@@ -54,6 +59,8 @@ static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
 	pipeline_read_stats(pl, &st);
 	*tris = st.triangles;
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	return done / (t / 1e3);
 }
 
@@ -63,12 +70,14 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 	struct params p = *p_in;
 	snprintf(p.size, sizeof(p.size), "%dx%d", w, h);
 	struct renderer *r = renderer_create(w, h, err, sizeof(err));
-	struct world *wd = world_create(&p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *wd = world_create(&p, ed, err, sizeof(err));
 	struct autopilot ap;
-	if (!r || !wd || autopilot_init(&ap, &p) < 0) {
+	if (!r || !wd || autopilot_init(&ap, &p, ed) < 0) {
 		fprintf(stderr, "bench: %s\n", err);
 		renderer_destroy(r);
 		world_destroy(wd);
+		edits_destroy(ed);
 		return;
 	}
 	struct camera c;
@@ -107,6 +116,7 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 	free(ft);
 	autopilot_free(&ap);
 	world_destroy(wd);
+	edits_destroy(ed);
 	renderer_destroy(r);
 }
 

@@ -7,6 +7,8 @@
 // Rays: a spherical Fibonacci set of u_ao_rays directions, the same for
 // every vertex.
 
+float density_far(vec3 ws); // the field's, without its finest detail (app/extract/field.h)
+
 vec3 ao_dir(int i, int n)
 {
 	float y = 1.0 - (2.0 * float(i) + 1.0) / float(n);
@@ -33,12 +35,10 @@ float ao_visibility(vec3 ws, vec3 nrm)
 			c = clamp(c, lo, hi);
 			v *= clamp(1.0 - (D(c) - u_iso) * u_ao_short_k, 0.0, 1.0);
 		}
-		g_octave_drop = 3;
 		for (int s = 1; s <= u_ao_long_steps; s++) {
-			float d = density(ws + dir * (float(s) * u_ao_long_step));
+			float d = density_far(ws + dir * (float(s) * u_ao_long_step));
 			v *= clamp(1.0 - (d - u_iso) * u_ao_long_k, 0.0, 1.0);
 		}
-		g_octave_drop = 0;
 		vis += v;
 	}
 	return vis / float(n);

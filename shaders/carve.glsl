@@ -1,6 +1,6 @@
 // isoterra — terrain editing in the density function: the curves' cut and
 // fill (Nascimento 2020, for a volume instead of a displacement map) and
-// the heightmap base terrain.  Mirrored in app/carve_ref.c.
+// the heightmap base terrain.  Mirrored in app/edit/carve_ref.c.
 //
 // Inside a curve's profile the density is pulled toward that of a flat
 // ground at the curve's (blended, inclined) height h:

@@ -1,15 +1,15 @@
 // isoterra — 3D quadratic Bézier curves (roads, rivers, railways) looked up
 // through a uniform 2D spatial hash, after Nascimento (2020) ch. 6-7.
-// Mirrored term by term in app/carve_ref.c; change both together.
+// Mirrored term by term in app/edit/carve_ref.c; change both together.
 //
-// Resources (app/curves_gl.c; built on the CPU by app/curves.c):
-//   binding 8  CurvePivot: per hash cell (start, count) into curve_index
-//   binding 9  CurveIndex: per cell entry the first control point of a
-//              quadratic; from u_curve_all_offset on, every quadratic once
-//              (the no-hash baseline of the benchmark)
-//   binding 10 CurveCtrl:  control points (x, y, z, inclination tan α);
-//              quadratic f is curve_ctrl[f], [f+1], [f+2]
-//   binding 11 CurvePrm:   curve_prm[f] = (w/2, λ, kind, path)
+// Resources (app/edit/curves_gl.c; built on the CPU by app/edit/curves.c):
+//   BIND_CURVE_PIVOT  CurvePivot: per hash cell (start, count) into curve_index
+//   BIND_CURVE_INDEX  CurveIndex: per cell entry the first control point of a
+//                     quadratic; from u_curve_all_offset on, every quadratic
+//                     once (the no-hash baseline of the benchmark)
+//   BIND_CURVE_CTRL   CurveCtrl:  control points (x, y, z, inclination tan α);
+//                     quadratic f is curve_ctrl[f], [f+1], [f+2]
+//   BIND_CURVE_PRM    CurvePrm:   curve_prm[f] = (w/2, λ, kind, path)
 //
 //   vec4 curve_eval(vec2 xz);   // (height, Θ of the closest curve, |d| closest, Σ Θ)
 

@@ -1,14 +1,16 @@
 // isoterra — the density function (GLSL ES 3.10): positive in rock, negative
 // in air, zero on the surface; roughly a distance in world units near the
 // surface.  After Geiss, "Generating Complex Procedural Terrains Using the
-// GPU", GPU Gems 3 ch.1.  Mirrored term by term in app/density_ref.c.
+// GPU", GPU Gems 3 ch.1.  Mirrored term by term in app/terrain/density_ref.c.
 //
 // Needs (from the host prelude): the u_* parameter uniforms and the enum
 // #defines (FIELD_*, SHAPE_*, NOISE_*, FRACTAL_*, TERRACE_*, SHELF_*).
-// Resources: NoiseTables UBO (binding 0), u_noise0..2 (texture units 0..2),
-// uploaded and bound by app/noise_gl.c.
+// Resources: NoiseTables UBO (UBIND_NOISE), u_noise0..2 (TEX_NOISE0..2),
+// uploaded by app/terrain/noise_gl.c; the curves and the heightmap
+// (app/edit/curves_gl.c); bound by the terrain field (app/terrain/terrain.c).
 //
 //   float density(vec3 ws);
+//   float density_far(vec3 ws);  // three octaves fewer (long AO rays)
 
 #include "noise.glsl"
 #include "fractal.glsl"
@@ -128,4 +130,14 @@ float density(vec3 ws)
 		d = d + amount * ((u_flat_y - ws_orig.y) - d);
 	}
 	return carve_density(ws_orig, d); // curves: cut and fill
+}
+
+// The field without its three finest octaves: the long ambient-occlusion
+// rays (ao.glsl) need the shape, not the detail.
+float density_far(vec3 ws)
+{
+	g_octave_drop = 3;
+	float d = density(ws);
+	g_octave_drop = 0;
+	return d;
 }

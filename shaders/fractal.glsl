@@ -1,5 +1,5 @@
 // isoterra — fractal sums of the noise basis (GLSL ES 3.10).  Mirrored in
-// app/density_ref.c (fractal_ref); change both together.
+// app/terrain/density_ref.c (fractal_ref); change both together.
 //
 // fractal(ws) returns a dimensionless height-like value h, roughly centred on
 // zero for every family (so switching families keeps the ground near y = 0);

@@ -1,6 +1,6 @@
-// isoterra — heightmap terrain (16-bit grayscale samples, texture unit 3,
-// app/curves_gl.c) with Clua's fractal interpolation (1999, §4.1.1).
-// Mirrored term by term in app/carve_ref.c; change both together.
+// isoterra — heightmap terrain (16-bit grayscale samples, TEX_HEIGHTMAP,
+// app/edit/curves_gl.c) with Clua's fractal interpolation (1999, §4.1.1).
+// Mirrored term by term in app/edit/carve_ref.c; change both together.
 //
 // The map is centred on x = z = 0, one sample every u_heightmap_scale world
 // units; sample value v (0..65535) is the world height

@@ -1,12 +1,13 @@
 // isoterra — generate each shared vertex once: traverse the vertex pyramid to
 // find the owner cell and which of its edges (3, 0, 8 = +x, +y, +z) it is.
+#ifndef FIELD_PASS_VERTICES // in a field's program common.glsl declares it first
 layout(local_size_x = 64) in;
+#endif
 #include "common.glsl"
 #include "hp.glsl"
 #include "mc_status.glsl"
 #ifdef WITH_AO
-#include "density.glsl"
-#include "ao.glsl"
+#include "ao.glsl" // reads the field: compiled as part of the field's program (FIELD_PASS_VERTICES)
 #endif
 struct Vertex { vec4 pos; vec4 nrm; }; // nrm.w = ambient visibility
 layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };

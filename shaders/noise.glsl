@@ -1,5 +1,5 @@
 // isoterra — noise sources (GLSL ES 3.10).  Mirrored operation by operation
-// in app/noise.c; change both together.
+// in app/terrain/noise.c; change both together.
 //
 //  * perlin(p): Ken Perlin's improved noise (2002): seeded permutation from
 //    the NoiseTables block, 16 gradients via the hash's low 4 bits, quintic

@@ -27,6 +27,7 @@
 #include "tcheck.h"
 #include "gpu_fixture.h"
 #include "world.h"
+#include "terrain.h"
 
 #include <float.h>
 #include <math.h>
@@ -487,7 +488,7 @@ static void test_hash_cpu(void)
 }
 
 /* carving with the hash == carving with one cell holding every curve */
-static void test_hash_vs_brute_eval(void)
+static void test_hash_vs_brute_eval(struct edits *ed)
 {
 	char err[256];
 	struct params p;
@@ -495,18 +496,18 @@ static void test_hash_vs_brute_eval(void)
 	struct curve_set s;
 	random_set(&s, 6, 120.0f);
 	int bad = 0, inside = 0;
-	CHECK(edits_set_curves(&s, 1, err, sizeof(err)) == 0, "set curves: %s", err);
+	CHECK(edits_set_curves(ed, &s, 1, err, sizeof(err)) == 0, "set curves: %s", err);
 	float (*ref)[4] = malloc(sizeof(*ref) * 3000);
 	float (*pt)[2] = malloc(sizeof(*pt) * 3000);
 	for (int i = 0; i < 3000; i++) {
 		pt[i][0] = frange(-160, 160);
 		pt[i][1] = frange(-160, 160);
-		carve_ref_eval(edits_get(), &p, pt[i][0], pt[i][1], false, ref[i]);
+		carve_ref_eval(ed, &p, pt[i][0], pt[i][1], false, ref[i]);
 	}
-	CHECK(edits_set_curves(&s, 23, err, sizeof(err)) == 0, "set curves: %s", err);
+	CHECK(edits_set_curves(ed, &s, 23, err, sizeof(err)) == 0, "set curves: %s", err);
 	for (int i = 0; i < 3000; i++) {
 		float e[4];
-		carve_ref_eval(edits_get(), &p, pt[i][0], pt[i][1], false, e);
+		carve_ref_eval(ed, &p, pt[i][0], pt[i][1], false, e);
 		if (ref[i][1] > 0.0f) {
 			inside++;
 			bad += fabsf(e[0] - ref[i][0]) > 1e-4f * (1.0f + fabsf(ref[i][0])) || e[1] != ref[i][1];
@@ -523,7 +524,7 @@ static void test_hash_vs_brute_eval(void)
 
 /* ---- affected region ------------------------------------------------------------------ */
 
-static void test_affected(void)
+static void test_affected(struct edits *ed)
 {
 	char err[256];
 	float a[3 * 3] = { -100, 0, -100, -80, 1, -90, -60, 0, -100 };
@@ -564,34 +565,34 @@ static void test_affected(void)
 	set(&p, "octaves=3");
 	static struct noise_set ns;
 	noise_set_init(&ns, p.seed);
-	CHECK(edits_set_curves(&s0, 16, err, sizeof(err)) == 0, "set: %s", err);
+	CHECK(edits_set_curves(ed, &s0, 16, err, sizeof(err)) == 0, "set: %s", err);
 	float dummy[4];
-	edits_take_changes(dummy);
+	edits_take_changes(ed, dummy);
 	int N = 64;
 	float *d0 = malloc(sizeof(float) * (size_t)(N * N));
 	for (int j = 0; j < N; j++)
 		for (int i = 0; i < N; i++)
-			d0[j * N + i] = density_ref(&p, &ns, -150.0f + 300.0f * (float)i / (float)(N - 1), 0.5f,
+			d0[j * N + i] = density_ref(&p, &ns, ed, -150.0f + 300.0f * (float)i / (float)(N - 1), 0.5f,
 						    -150.0f + 300.0f * (float)j / (float)(N - 1));
-	CHECK(edits_set_curves(&s1, 16, err, sizeof(err)) == 0, "set: %s", err);
+	CHECK(edits_set_curves(ed, &s1, 16, err, sizeof(err)) == 0, "set: %s", err);
 	float tb[4];
-	CHECK(edits_take_changes(tb), "edits_take_changes reports the change");
+	CHECK(edits_take_changes(ed, tb), "edits_take_changes reports the change");
 	int outside = 0, changed = 0;
 	for (int j = 0; j < N; j++)
 		for (int i = 0; i < N; i++) {
 			float x = -150.0f + 300.0f * (float)i / (float)(N - 1), z = -150.0f + 300.0f * (float)j / (float)(N - 1);
-			float d = density_ref(&p, &ns, x, 0.5f, z);
+			float d = density_ref(&p, &ns, ed, x, 0.5f, z);
 			if (d != d0[j * N + i]) {
 				changed++;
 				outside += !(x >= tb[0] && x <= tb[2] && z >= tb[1] && z <= tb[3]);
 			}
 		}
 	CHECK(changed > 0 && outside == 0, "%d density changes, %d outside the reported box", changed, outside);
-	CHECK(!edits_take_changes(tb), "changes cleared after taking them");
+	CHECK(!edits_take_changes(ed, tb), "changes cleared after taking them");
 	free(d0);
 	curve_set_free(&s0);
 	curve_set_free(&s1);
-	edits_clear();
+	edits_clear(ed);
 }
 
 /* ---- input files ----------------------------------------------------------------------- */
@@ -741,7 +742,7 @@ static void test_geotiff(void)
 }
 #endif
 
-static void test_heightmap_cpu(struct params *p, const struct noise_set *ns)
+static void test_heightmap_cpu(struct edits *ed, struct params *p, const struct noise_set *ns)
 {
 	char path[256], err[512];
 	for (int i = 0; i < HM_W * HM_H; i++)
@@ -766,8 +767,8 @@ static void test_heightmap_cpu(struct params *p, const struct noise_set *ns)
 	snprintf(kv, sizeof(kv), "field=heightmap;heightmap=%s;heightmap_scale=2;heightmap_height=50;heightmap_base=-10;"
 		 "heightmap_detail=0", path);
 	set(p, kv);
-	CHECK(edits_load(p, err, sizeof(err)) == 0, "edits_load: %s", err);
-	const struct edits *e = edits_get();
+	CHECK(edits_load(ed, p, err, sizeof(err)) == 0, "edits_load: %s", err);
+	const struct edits *e = ed;
 	/* exact at samples, with and without detail */
 	p->heightmap_detail = 3.0f;
 	double worst = 0;
@@ -811,11 +812,11 @@ static void test_heightmap_cpu(struct params *p, const struct noise_set *ns)
 
 /* ---- GPU ------------------------------------------------------------------------------------ */
 
-static void test_closest_gpu(const struct params *p, const float *items, int n)
+static void test_closest_gpu(struct edits *ed, const struct params *p, const float *items, int n)
 {
 	char err[512];
 	float *out = malloc(sizeof(float) * 4 * (size_t)n);
-	int rc = curves_gpu_test(p, 0, items, n, out, err, sizeof(err));
+	int rc = curves_gpu_test(ed, p, 0, items, n, out, err, sizeof(err));
 	CHECK(rc == 0, "curve_test mode 0: %s", err);
 	double worst = 0, worst_ref = 0;
 	int bad = 0, bad_ref = 0;
@@ -841,12 +842,12 @@ static void test_closest_gpu(const struct params *p, const float *items, int n)
 	free(out);
 }
 
-static void test_eval_gpu(struct params *p)
+static void test_eval_gpu(struct edits *ed, struct params *p)
 {
 	char err[512];
 	struct curve_set s;
 	random_set(&s, 5, 100.0f);
-	CHECK(edits_set_curves(&s, 16, err, sizeof(err)) == 0, "set: %s", err);
+	CHECK(edits_set_curves(ed, &s, 16, err, sizeof(err)) == 0, "set: %s", err);
 	set(p, "curve_incl_lo=0.3;curve_incl_hi=0.9;curve_incl_exp=2;curve_blend_lo=0.2;curve_blend_hi=0.8;curve_strength=0.9");
 	int n = 4000;
 	float *in = malloc(sizeof(float) * 4 * (size_t)n), *out = malloc(sizeof(float) * 4 * (size_t)n);
@@ -856,14 +857,14 @@ static void test_eval_gpu(struct params *p)
 		in[4 * i + 2] = frange(-10, 10);
 		in[4 * i + 3] = frange(-20, 20);
 	}
-	int rc = curves_gpu_test(p, 1, in, n, out, err, sizeof(err));
+	int rc = curves_gpu_test(ed, p, 1, in, n, out, err, sizeof(err));
 	CHECK(rc == 0, "curve_test mode 1: %s", err);
 	int bad = 0, influenced = 0;
 	double worst = 0;
 	for (int i = 0; rc == 0 && i < n; i++) {
 		float e[4];
-		carve_ref_eval(edits_get(), p, in[4 * i], in[4 * i + 1], false, e);
-		float d = carve_ref_density(edits_get(), p, in[4 * i], in[4 * i + 2], in[4 * i + 1], in[4 * i + 3]);
+		carve_ref_eval(ed, p, in[4 * i], in[4 * i + 1], false, e);
+		float d = carve_ref_density(ed, p, in[4 * i], in[4 * i + 2], in[4 * i + 1], in[4 * i + 3]);
 		if (e[1] > 0.0f) {
 			influenced++;
 			double err_h = fabs(out[4 * i] - e[0]), err_t = fabs(out[4 * i + 1] - e[1]);
@@ -881,17 +882,17 @@ static void test_eval_gpu(struct params *p)
 	/* displacement bake: GPU vs CPU, and the iterative baseline near it */
 	struct bake_opts o = { { 96, 80 }, { -120, -110 }, { 240, 220 }, false, false };
 	float *g = malloc(sizeof(float) * 96 * 80), *c = malloc(sizeof(float) * 96 * 80), *gi = malloc(sizeof(float) * 96 * 80);
-	rc = curves_bake(p, &o, g, err, sizeof(err));
+	rc = curves_bake(ed, p, &o, g, err, sizeof(err));
 	CHECK(rc == 0, "bake: %s", err);
-	carve_ref_bake(edits_get(), p, &o, c);
+	carve_ref_bake(ed, p, &o, c);
 	o.dense = true; /* every texel: the same map as the tiles over non-empty cells */
-	CHECK(curves_bake(p, &o, gi, err, sizeof(err)) == 0, "dense bake: %s", err);
+	CHECK(curves_bake(ed, p, &o, gi, err, sizeof(err)) == 0, "dense bake: %s", err);
 	int tdiff = 0;
 	for (int i = 0; i < 96 * 80; i++)
 		tdiff += gi[i] != g[i];
 	CHECK(tdiff == 0, "tiled bake vs dense bake: %d texels differ", tdiff);
 	o.iterative = true;
-	CHECK(curves_bake(p, &o, gi, err, sizeof(err)) == 0, "iterative bake: %s", err);
+	CHECK(curves_bake(ed, p, &o, gi, err, sizeof(err)) == 0, "iterative bake: %s", err);
 	double wb = 0, wi = 0, mean_i = 0;
 	int nz = 0;
 	for (int i = 0; i < 96 * 80; i++) {
@@ -914,7 +915,7 @@ static void test_eval_gpu(struct params *p)
 	params_defaults(p);
 }
 
-static void test_heightmap_gpu(struct params *p, const struct noise_set *ns)
+static void test_heightmap_gpu(struct edits *ed, struct params *p, const struct noise_set *ns)
 {
 	char err[512];
 	struct noise_gl ng;
@@ -927,12 +928,12 @@ static void test_heightmap_gpu(struct params *p, const struct noise_set *ns)
 		in[4 * i + 1] = frange(-9, 9);
 		in[4 * i + 2] = in[4 * i + 3] = 0;
 	}
-	int rc = curves_gpu_test(p, 2, in, n, out, err, sizeof(err));
+	int rc = curves_gpu_test(ed, p, 2, in, n, out, err, sizeof(err));
 	CHECK(rc == 0, "curve_test mode 2: %s", err);
 	double w = 0;
 	for (int i = 0; rc == 0 && i < n; i++) {
-		float hf = heightmap_ref_height(edits_get(), p, ns, in[4 * i], in[4 * i + 1], true);
-		float hb = heightmap_ref_height(edits_get(), p, ns, in[4 * i], in[4 * i + 1], false);
+		float hf = heightmap_ref_height(ed, p, ns, in[4 * i], in[4 * i + 1], true);
+		float hb = heightmap_ref_height(ed, p, ns, in[4 * i], in[4 * i + 1], false);
 		w = fmax(w, fmax(fabs(out[4 * i] - hf), fabs(out[4 * i + 1] - hb)));
 	}
 	CHECK(w < 1e-3, "GPU heightmap (fractal + bilinear) vs CPU: worst %g", w);
@@ -942,24 +943,27 @@ static void test_heightmap_gpu(struct params *p, const struct noise_set *ns)
 }
 
 /* density pass with curves (terrain) or heightmap vs density_ref_volume */
-static void check_density(const char *what, const struct params *p, int gridn)
+static void check_density(struct edits *ed, const char *what, const struct params *p, int gridn)
 {
 	char err[512] = "";
 	struct params q = *p;
 	q.grid = gridn;
 	struct grid g;
 	grid_from_params(&g, &q);
-	struct pipeline *pl = pipeline_create(&g, &q, err, sizeof(err));
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &q, terrain_field(tr), err, sizeof(err));
 	CHECK(pl != NULL, "%s: pipeline_create: %s", what, err);
-	if (!pl)
+	if (!pl) {
+		terrain_destroy(tr);
 		return;
+	}
 	CHECK(pipeline_density(pl, &q) == 0, "%s: density pass", what);
 	long nd = grid_dens_count(&g);
 	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
 	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read", what);
 	static struct noise_set ns;
 	noise_set_init(&ns, q.seed);
-	density_ref_volume(&q, &ns, g.origin, g.cell, g.nx, g.ny, g.nz, dc);
+	density_ref_volume(&q, &ns, ed, g.origin, g.cell, g.nx, g.ny, g.nz, dc);
 	double dmax = 0, scale = 0;
 	for (long i = 0; i < nd; i++) {
 		dmax = fmax(dmax, fabs((double)dg[i] - dc[i]));
@@ -970,6 +974,7 @@ static void check_density(const char *what, const struct params *p, int gridn)
 	free(dg);
 	free(dc);
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
 }
 
 /* Heights where a vertical line at (x, z) crosses the mesh. */
@@ -1005,7 +1010,7 @@ static float column_top(const struct grid *g, const float *dens, int i, int k, f
 	return NAN;
 }
 
-static void test_road_centreline(void)
+static void test_road_centreline(struct edits *ed)
 {
 	char err[512] = "";
 	struct params p;
@@ -1016,11 +1021,14 @@ static void test_road_centreline(void)
 	/* the road: an S across the volume; first the uncarved surface along it */
 	const int NP = 5;
 	float pts[5 * 3] = { -14, 0, -9, -5, 0, -3, 0, 0, 1, 6, 0, 2, 14, 0, 9 };
-	edits_clear();
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	edits_clear(ed);
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 	CHECK(pl != NULL, "pipeline: %s", err);
-	if (!pl)
+	if (!pl) {
+		terrain_destroy(tr);
 		return;
+	}
 	long nd = grid_dens_count(&g);
 	float *dens = malloc(sizeof(float) * (size_t)nd);
 	CHECK(pipeline_density(pl, &p) == 0 && pipeline_read_density(pl, dens) == 0, "uncarved density");
@@ -1042,13 +1050,13 @@ static void test_road_centreline(void)
 		pts[3 * v + 1] = sorted[NP / 2] + 0.15f * pts[3 * v];
 	struct curve_path rp = make_path(NP, pts, 4.0f, 3.0f, 0.0f, 0.5f);
 	struct curve_set rs = { &rp, 1 };
-	CHECK(edits_set_curves(&rs, 16, err, sizeof(err)) == 0, "road: %s", err);
+	CHECK(edits_set_curves(ed, &rs, 16, err, sizeof(err)) == 0, "road: %s", err);
 	CHECK(pipeline_run(pl, &p) == 0, "carved pipeline run");
 	struct mesh m;
 	CHECK(pipeline_read_mesh(pl, &m) == 0, "read mesh");
 	CHECK(pipeline_read_density(pl, dens) == 0, "carved density");
 	/* along the centre line, away from the closed volume's walls */
-	const struct edits *e = edits_get();
+	const struct edits *e = ed;
 	int n = 0, bad_mesh = 0, bad_col = 0, cut = 0, fill = 0;
 	double worst = 0;
 	for (int qi = 0; qi < e->quads.nquads; qi++) {
@@ -1100,7 +1108,8 @@ static void test_road_centreline(void)
 	mesh_free(&m);
 	free(dens);
 	pipeline_destroy(pl);
-	edits_clear();
+	terrain_destroy(tr);
+	edits_clear(ed);
 }
 
 /* ---- edits re-generate only the affected world blocks ------------------------ */
@@ -1127,9 +1136,9 @@ static void wb_snapshot(const struct world *w, struct wb_snap *s)
  * curve (Θ > 0 somewhere in the block's XZ footprint padded by its sample
  * margin), by sampling the CPU mirror of the carve on a fine XZ grid: the
  * blocks an edit of these curves must re-generate. */
-static void wb_touched(const struct params *p, const struct wb_snap *before, bool touched[WB_LODS][2 * WB_R][2 * WB_R])
+static void wb_touched(const struct edits *ed, const struct params *p, const struct wb_snap *before, bool touched[WB_LODS][2 * WB_R][2 * WB_R])
 {
-	const struct edits *e = edits_get();
+	const struct edits *e = ed;
 	memset(touched, 0, sizeof(bool) * WB_LODS * 4 * WB_R * WB_R);
 	const float step = 0.25f;
 	for (float z = -WB_R * p->block_size * 2; z < WB_R * p->block_size * 2; z += step)
@@ -1156,18 +1165,18 @@ static void wb_touched(const struct params *p, const struct wb_snap *before, boo
 /* One edit: the blocks re-generated must include every known block whose
  * samples the changed curves reach, and lie within the path's padded
  * bounding box (computed here from the input points). */
-static void wb_check_edit(const char *what, struct world *w, const struct params *p, const struct camera *c,
+static void wb_check_edit(struct edits *ed, const char *what, struct world *w, const struct params *p, const struct camera *c,
 			  const struct curve_set *next, const float *pts, int npts, float reach)
 {
 	static struct wb_snap before, after;
 	static bool touched_old[WB_LODS][2 * WB_R][2 * WB_R], touched_new[WB_LODS][2 * WB_R][2 * WB_R];
 	char err[256];
 	wb_snapshot(w, &before);
-	wb_touched(p, &before, touched_old);
+	wb_touched(ed, p, &before, touched_old);
 	struct world_stats s0, s1;
 	world_get_stats(w, &s0);
-	CHECK(edits_set_curves(next, 16, err, sizeof(err)) == 0, "%s: %s", what, err);
-	wb_touched(p, &before, touched_new);
+	CHECK(edits_set_curves(ed, next, 16, err, sizeof(err)) == 0, "%s: %s", what, err);
+	wb_touched(ed, p, &before, touched_new);
 	CHECK(world_fill(w, p, c, 1.0) == 0, "%s: world_fill", what);
 	world_get_stats(w, &s1);
 	wb_snapshot(w, &after);
@@ -1210,14 +1219,14 @@ static void wb_check_edit(const char *what, struct world *w, const struct params
 	      (unsigned long long)(s1.generated - s0.generated), regen);
 }
 
-static void test_world_edits(void)
+static void test_world_edits(struct edits *ed)
 {
 	struct params p;
 	params_defaults(&p);
 	set(&p, "scene=world;block_pool=200;view_distance=40;lod_levels=2;ao_rays=0;fade_time=0;gen_per_frame=64");
-	edits_clear();
+	edits_clear(ed);
 	char err[512] = "";
-	struct world *w = world_create(&p, err, sizeof(err));
+	struct world *w = world_create(&p, ed, err, sizeof(err));
 	CHECK(w != NULL, "world_create: %s", err);
 	if (!w)
 		return;
@@ -1237,16 +1246,16 @@ static void test_world_edits(void)
 	struct curve_path rp = make_path(3, a, 3.0f, 2.0f, 0.0f, 0.5f);
 	struct curve_set rs = { &rp, 1 };
 	float reach = 3.0f / 2 + 2.0f;
-	wb_check_edit("road added", w, &p, &c, &rs, a, 3, reach);
+	wb_check_edit(ed, "road added", w, &p, &c, &rs, a, 3, reach);
 	float b[3 * 3] = { -10, 0.5f, -2, -2, 3.0f, 2, 6, 1.5f, 0 }, ab[6 * 3];
 	memcpy(ab, a, sizeof(a));
 	memcpy(ab + 9, b, sizeof(b));
 	rp.pts = b;
-	wb_check_edit("road raised", w, &p, &c, &rs, ab, 6, reach);
+	wb_check_edit(ed, "road raised", w, &p, &c, &rs, ab, 6, reach);
 	struct curve_set none = { NULL, 0 };
-	wb_check_edit("road removed", w, &p, &c, &none, b, 3, reach);
+	wb_check_edit(ed, "road removed", w, &p, &c, &none, b, 3, reach);
 	world_destroy(w);
-	edits_clear();
+	edits_clear(ed);
 }
 
 int main(void)
@@ -1255,10 +1264,11 @@ int main(void)
 		perror("mkdtemp");
 		return 1;
 	}
+	struct edits *ed = edits_create();
 	test_pipeline_cpu();
 	test_hash_cpu();
-	test_hash_vs_brute_eval();
-	test_affected();
+	test_hash_vs_brute_eval(ed);
+	test_affected(ed);
 	test_io();
 	int ncases = 1200;
 	float *items = malloc(sizeof(float) * 16 * (size_t)ncases);
@@ -1271,10 +1281,10 @@ int main(void)
 	struct params p;
 	params_defaults(&p);
 	noise_set_init(&ns, p.seed);
-	test_heightmap_cpu(&p, &ns);
+	test_heightmap_cpu(ed, &p, &ns);
 
 	struct platform *plat = fixture_open();
-	test_heightmap_gpu(&p, &ns);
+	test_heightmap_gpu(ed, &p, &ns);
 	/* density pass: heightmap field with detail, 3D noise and a river */
 	{
 		float riv[4 * 3] = { -8, -6, -8, -2, -7, 0, 3, -8, 3, 8, -9, 9 };
@@ -1282,30 +1292,31 @@ int main(void)
 		rp.kind = CURVE_RIVER;
 		struct curve_set rs = { &rp, 1 };
 		char err[256];
-		CHECK(edits_set_curves(&rs, 8, err, sizeof(err)) == 0, "river: %s", err);
+		CHECK(edits_set_curves(ed, &rs, 8, err, sizeof(err)) == 0, "river: %s", err);
 		set(&p, "heightmap_noise=0.2;octaves=3;vol_size=16;vol_y=-2;closed=false");
-		check_density("heightmap + detail + noise + river", &p, 24);
+		check_density(ed, "heightmap + detail + noise + river", &p, 24);
 	}
-	edits_clear();
+	edits_clear(ed);
 	params_defaults(&p);
 	{
 		struct curve_set s;
 		random_set(&s, 4, 20.0f);
 		char err[256];
-		CHECK(edits_set_curves(&s, 16, err, sizeof(err)) == 0, "curves: %s", err);
+		CHECK(edits_set_curves(ed, &s, 16, err, sizeof(err)) == 0, "curves: %s", err);
 		set(&p, "octaves=4;curve_incl_lo=0.2;curve_incl_hi=0.8");
-		check_density("terrain + 4 random curves", &p, 24);
+		check_density(ed, "terrain + 4 random curves", &p, 24);
 		curve_set_free(&s);
-		edits_clear();
+		edits_clear(ed);
 		params_defaults(&p);
 	}
-	test_closest_gpu(&p, items, ncases);
-	test_eval_gpu(&p);
-	edits_gl_release();
-	test_road_centreline();
-	edits_gl_release();
-	test_world_edits();
+	test_closest_gpu(ed, &p, items, ncases);
+	test_eval_gpu(ed, &p);
+	edits_gl_release(ed);
+	test_road_centreline(ed);
+	edits_gl_release(ed);
+	test_world_edits(ed);
 	free(items);
+	edits_destroy(ed);
 	platform_close(plat);
 	char cmd[300];
 	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", tmpdir);

@@ -19,6 +19,7 @@
  *                  RGBA16F with fp32 weights: measured ~1e-5 * noise_amp.)
  */
 #include "density_ref.h"
+#include "terrain.h"
 #include "gpu.h"
 #include "noise.h"
 #include "params.h"
@@ -256,46 +257,46 @@ static void test_fields(void)
 	const double tol = 1e-5 * s;
 
 	set(&p, "field=torus");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0.6f * s, 0, 0), 0.16 * s, tol, "torus tube centre");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0.0f, -0.6f * s), 0.16 * s, tol, "torus tube centre (z)");
-	CHECK_NEAR(density_ref(&p, &ns_a, 1.0f * s, 0, 0), 0.0, tol, "torus outer surface");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0.6f * s, 0.4f * s, 0), 0.0, tol, "torus top surface");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), -0.2 * s, tol, "torus hole");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0.6f * s, 0, 0), 0.16 * s, tol, "torus tube centre");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0.0f, -0.6f * s), 0.16 * s, tol, "torus tube centre (z)");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1.0f * s, 0, 0), 0.0, tol, "torus outer surface");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0.6f * s, 0.4f * s, 0), 0.0, tol, "torus top surface");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0, 0), -0.2 * s, tol, "torus hole");
 
 	set(&p, "field=bumps");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0.3f * s, 0), -0.3 * s, tol, "bumps at x=z=0");
-	CHECK_NEAR(density_ref(&p, &ns_a, (float)M_PI / 10 * s, 0, 0), 0.2 * s, tol, "bumps crest");
-	CHECK_NEAR(density_ref(&p, &ns_a, (float)M_PI / 10 * s, 0, (float)M_PI / 5 * s), -0.2 * s, tol,
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0.3f * s, 0), -0.3 * s, tol, "bumps at x=z=0");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, (float)M_PI / 10 * s, 0, 0), 0.2 * s, tol, "bumps crest");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, (float)M_PI / 10 * s, 0, (float)M_PI / 5 * s), -0.2 * s, tol,
 		   "bumps trough");
 
 	set(&p, "field=ripple");
-	CHECK_NEAR(density_ref(&p, &ns_a, sqrtf((float)M_PI / 20) * s, 0, 0), 0.1 * s, tol, "ripple crest");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, sqrtf((float)M_PI / 10) * s), 0.0, tol, "ripple node");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, -0.5f * s, 0), 0.5 * s, tol, "ripple below");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, sqrtf((float)M_PI / 20) * s, 0, 0), 0.1 * s, tol, "ripple crest");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0, sqrtf((float)M_PI / 10) * s), 0.0, tol, "ripple node");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, -0.5f * s, 0), 0.5 * s, tol, "ripple below");
 
 	set(&p, "field=sphere");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), s, tol, "sphere centre");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, -s, 0), 0.0, tol, "sphere surface");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0.6f * s, 0, 0.8f * s), 0.0, tol, "sphere surface (diagonal)");
-	CHECK_NEAR(density_ref(&p, &ns_a, 3 * s, 0, 0), -2 * s, tol, "sphere outside");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0, 0), s, tol, "sphere centre");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, -s, 0), 0.0, tol, "sphere surface");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0.6f * s, 0, 0.8f * s), 0.0, tol, "sphere surface (diagonal)");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 3 * s, 0, 0), -2 * s, tol, "sphere outside");
 
 	set(&p, "field=checker");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), s, tol, "checker +");
-	CHECK_NEAR(density_ref(&p, &ns_a, s, 0, 0), -s, tol, "checker -");
-	CHECK_NEAR(density_ref(&p, &ns_a, s, s, 0), s, tol, "checker + (xy)");
-	CHECK_NEAR(density_ref(&p, &ns_a, s, -s, s), -s, tol, "checker - (xyz)");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0.5f * s, 0, 0), 0.0, tol, "checker zero between");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0, 0), s, tol, "checker +");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, s, 0, 0), -s, tol, "checker -");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, s, s, 0), s, tol, "checker + (xy)");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, s, -s, s), -s, tol, "checker - (xyz)");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0.5f * s, 0, 0), 0.0, tol, "checker zero between");
 
 	/* scrolling: time*scroll_speed shifts x, for test fields and terrain */
 	set(&p, "field=bumps;time=2;scroll_speed=0.75");
-	float a = density_ref(&p, &ns_a, 0.1f, 0.2f, 0.3f);
+	float a = density_ref(&p, &ns_a, NULL, 0.1f, 0.2f, 0.3f);
 	set(&p, "time=0");
-	CHECK_NEAR(a, density_ref(&p, &ns_a, 1.6f, 0.2f, 0.3f), 1e-6, "scroll (bumps)");
+	CHECK_NEAR(a, density_ref(&p, &ns_a, NULL, 1.6f, 0.2f, 0.3f), 1e-6, "scroll (bumps)");
 	params_defaults(&p);
 	set(&p, "time=3;scroll_speed=-2");
-	a = density_ref(&p, &ns_a, 4.0f, -1.0f, 2.0f);
+	a = density_ref(&p, &ns_a, NULL, 4.0f, -1.0f, 2.0f);
 	set(&p, "time=0");
-	CHECK_NEAR(a, density_ref(&p, &ns_a, -2.0f, -1.0f, 2.0f), 1e-5, "scroll (terrain)");
+	CHECK_NEAR(a, density_ref(&p, &ns_a, NULL, -2.0f, -1.0f, 2.0f), 1e-5, "scroll (terrain)");
 }
 
 static void test_terrain(void)
@@ -312,11 +313,11 @@ static void test_terrain(void)
 			int rock_deep = 0, air_high = 0, floor_rock = 0, pos = 0, neg = 0, bad = 0;
 			for (int i = 0; i < 64; i++) {
 				float x = -16.0f + (float)(i % 8) * 4.1f, z = -16.0f + (float)(i / 8) * 4.3f;
-				rock_deep += density_ref(&p, ns, x, -200.0f, z) > 0;
-				air_high += density_ref(&p, ns, x, 200.0f, z) < 0;
-				floor_rock += density_ref(&p, ns, x, p.floor_y - 1.0f, z) > 0;
+				rock_deep += density_ref(&p, ns, NULL, x, -200.0f, z) > 0;
+				air_high += density_ref(&p, ns, NULL, x, 200.0f, z) < 0;
+				floor_rock += density_ref(&p, ns, NULL, x, p.floor_y - 1.0f, z) > 0;
 				for (int j = 0; j < 16; j++) {
-					float d = density_ref(&p, ns, x, -18.0f + 2.0f * (float)j, z);
+					float d = density_ref(&p, ns, NULL, x, -18.0f + 2.0f * (float)j, z);
 					pos += d > 0;
 					neg += d < 0;
 					bad += !isfinite(d);
@@ -332,47 +333,47 @@ static void test_terrain(void)
 	/* hard floor alone: no ground, no noise */
 	params_defaults(&p);
 	set(&p, "shape=caves;cave_bias=-5;noise_amp=0;warp_amp=0");
-	CHECK_NEAR(density_ref(&p, &ns_a, 1, 0, 1), -5.0, 1e-6, "caves bias");
-	CHECK_NEAR(density_ref(&p, &ns_a, 1, p.floor_y - 1.0f, 1), -5.0 + p.floor_strength, 1e-4, "hard floor");
-	CHECK_NEAR(density_ref(&p, &ns_a, 1, p.floor_y + 0.1f, 1), -5.0, 1e-6, "above the hard floor");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1, 0, 1), -5.0, 1e-6, "caves bias");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1, p.floor_y - 1.0f, 1), -5.0 + p.floor_strength, 1e-4, "hard floor");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1, p.floor_y + 0.1f, 1), -5.0, 1e-6, "above the hard floor");
 	/* planet */
 	set(&p, "shape=planet;planet_radius=10;floor_strength=0");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, 0, 0), 0.0, 1e-5, "planet surface at the origin");
-	CHECK_NEAR(density_ref(&p, &ns_a, 0, -10, 0), 10.0, 1e-5, "planet centre");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, 0, 0), 0.0, 1e-5, "planet surface at the origin");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 0, -10, 0), 10.0, 1e-5, "planet centre");
 	/* flat spot: lerp(d, flat_y - y, 0.9) inside inner, untouched beyond outer */
 	params_defaults(&p);
-	float d0 = density_ref(&p, &ns_a, 1.0f, 2.5f, -1.0f);
-	float d_far = density_ref(&p, &ns_a, 30.0f, 2.5f, 0.0f);
+	float d0 = density_ref(&p, &ns_a, NULL, 1.0f, 2.5f, -1.0f);
+	float d_far = density_ref(&p, &ns_a, NULL, 30.0f, 2.5f, 0.0f);
 	set(&p, "flat_spot=true;flat_x=0;flat_z=0;flat_y=2;flat_inner=4;flat_outer=8");
-	CHECK_NEAR(density_ref(&p, &ns_a, 1.0f, 2.5f, -1.0f), d0 + 0.9f * ((2.0f - 2.5f) - d0), 1e-4, "flat spot inside");
-	CHECK_NEAR(density_ref(&p, &ns_a, 30.0f, 2.5f, 0.0f), d_far, 1e-6, "flat spot beyond outer radius");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1.0f, 2.5f, -1.0f), d0 + 0.9f * ((2.0f - 2.5f) - d0), 1e-4, "flat spot inside");
+	CHECK_NEAR(density_ref(&p, &ns_a, NULL, 30.0f, 2.5f, 0.0f), d_far, 1e-6, "flat spot beyond outer radius");
 	/* terraces and shelf are continuous in y */
 	static const char *terr[] = { "terrace=pre", "terrace=post", "shelf=pre", "shelf=post" };
 	for (int t = 0; t < 4; t++) {
 		params_defaults(&p);
 		set(&p, terr[t]);
 		/* above the hard floor (its ramp is floor_strength*floor_sharpness steep) */
-		float prev = density_ref(&p, &ns_a, 3.3f, -12.0f, 1.7f), jump = 0;
+		float prev = density_ref(&p, &ns_a, NULL, 3.3f, -12.0f, 1.7f), jump = 0;
 		for (int j = 1; j <= 2600; j++) {
-			float d = density_ref(&p, &ns_a, 3.3f, -12.0f + (float)j * 0.01f, 1.7f);
+			float d = density_ref(&p, &ns_a, NULL, 3.3f, -12.0f + (float)j * 0.01f, 1.7f);
 			jump = fmaxf(jump, fabsf(d - prev));
 			prev = d;
 		}
 		CHECK(jump < 0.5f, "%s: density continuous along y (max step %g over dy = 0.01)", terr[t], jump);
 	}
 	params_defaults(&p);
-	float plain = density_ref(&p, &ns_a, 3.3f, 0.3f, 1.7f);
+	float plain = density_ref(&p, &ns_a, NULL, 3.3f, 0.3f, 1.7f);
 	set(&p, "terrace=pre");
-	CHECK(density_ref(&p, &ns_a, 3.3f, 0.3f, 1.7f) != plain, "terraces change the density");
+	CHECK(density_ref(&p, &ns_a, NULL, 3.3f, 0.3f, 1.7f) != plain, "terraces change the density");
 
 	/* volume layout: (nx+3)(ny+3)(nz+3), one-sample margin, x fastest */
 	params_defaults(&p);
 	p.closed = false; /* raw samples (the closed volume is checked below) */
 	const float org[3] = { -1.0f, 2.0f, 3.0f };
 	float vol[6 * 5 * 4];
-	density_ref_volume(&p, &ns_a, org, 0.5f, 3, 2, 1, vol);
-	CHECK(vol[0] == density_ref(&p, &ns_a, -1.5f, 1.5f, 2.5f), "volume corner (-1,-1,-1)");
-	CHECK(vol[(2 * 5 + 3) * 6 + 4] == density_ref(&p, &ns_a, -1.0f + 3 * 0.5f, 2.0f + 2 * 0.5f, 3.0f + 1 * 0.5f),
+	density_ref_volume(&p, &ns_a, NULL, org, 0.5f, 3, 2, 1, vol);
+	CHECK(vol[0] == density_ref(&p, &ns_a, NULL, -1.5f, 1.5f, 2.5f), "volume corner (-1,-1,-1)");
+	CHECK(vol[(2 * 5 + 3) * 6 + 4] == density_ref(&p, &ns_a, NULL, -1.0f + 3 * 0.5f, 2.0f + 2 * 0.5f, 3.0f + 1 * 0.5f),
 	      "volume sample (4,3,2)");
 	/* closed volume: air on the border corners, more air in the margin,
 	 * the inside untouched */
@@ -380,9 +381,9 @@ static void test_terrain(void)
 		float raw[8 * 8 * 8], cl[8 * 8 * 8];
 		params_defaults(&p);
 		p.closed = false;
-		density_ref_volume(&p, &ns_a, org, 0.5f, 5, 5, 5, raw);
+		density_ref_volume(&p, &ns_a, NULL, org, 0.5f, 5, 5, 5, raw);
 		p.closed = true;
-		density_ref_volume(&p, &ns_a, org, 0.5f, 5, 5, 5, cl);
+		density_ref_volume(&p, &ns_a, NULL, org, 0.5f, 5, 5, 5, cl);
 		int bad = 0;
 		for (int k = 0; k < 8; k++)
 			for (int j = 0; j < 8; j++)
@@ -423,7 +424,9 @@ static void gpu_compare(const char *what, int n, const char *settings, bool text
 	size_t cnt = (size_t)(n + 3) * (size_t)(n + 3) * (size_t)(n + 3);
 	float *gv = calloc(cnt, sizeof(float)), *cv = calloc(cnt, sizeof(float));
 	char err[512] = "";
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 	CHECK(pl != NULL, "%s: pipeline_create: %s", what, err);
 	if (pl) {
 		int rc = pipeline_density(pl, &p);
@@ -433,7 +436,7 @@ static void gpu_compare(const char *what, int n, const char *settings, bool text
 		pipeline_destroy(pl);
 		static struct noise_set ns;
 		noise_set_init(&ns, p.seed);
-		density_ref_volume(&p, &ns, g.origin, g.cell, n, n, n, cv);
+		density_ref_volume(&p, &ns, ed, g.origin, g.cell, n, n, n, cv);
 		double err_max = 0, dmax = 0;
 		size_t at = 0;
 		for (size_t i = 0; i < cnt; i++) {
@@ -452,6 +455,8 @@ static void gpu_compare(const char *what, int n, const char *settings, bool text
 		CHECK(err_max <= tol, "%s grid %d: max |gpu - cpu| = %g at %zu (gpu %g, cpu %g), tol %g", what, n, err_max,
 		      at, (double)gv[at], (double)cv[at], tol);
 	}
+	terrain_destroy(tr);
+	edits_destroy(ed);
 	free(gv);
 	free(cv);
 }

@@ -7,6 +7,7 @@
 #include "tcheck.h"
 #include "gpu_fixture.h"
 #include "mesh_check.h"
+#include "terrain.h"
 
 #include <math.h>
 #include <string.h>
@@ -54,16 +55,21 @@ static double max_nrm_diff(const struct mesh *a, const struct mesh *b)
 static void check_field(const char *what, const struct params *p, const struct grid *g, int closed)
 {
 	char err[512] = "";
-	struct pipeline *pl = pipeline_create(g, p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(g, p, terrain_field(tr), err, sizeof(err));
 	CHECK(pl != NULL, "%s: pipeline_create: %s", what, err);
-	if (!pl)
+	if (!pl) {
+		terrain_destroy(tr);
+		edits_destroy(ed);
 		return;
+	}
 	CHECK(pipeline_run(pl, p) == 0, "%s: pipeline_run", what);
 	long nd = grid_dens_count(g);
 	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
 	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read density", what);
 	noise_set_init(&ns, p->seed);
-	density_ref_volume(p, &ns, g->origin, g->cell, g->nx, g->ny, g->nz, dc);
+	density_ref_volume(p, &ns, ed, g->origin, g->cell, g->nx, g->ny, g->nz, dc);
 	double dmax = 0, scale = 0;
 	for (long i = 0; i < nd; i++) {
 		dmax = fmax(dmax, fabs((double)dg[i] - dc[i]));
@@ -134,6 +140,8 @@ static void check_field(const char *what, const struct params *p, const struct g
 	free(dg);
 	free(dc);
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 }
 
 static void preset(struct params *p, const char *name)
@@ -162,13 +170,15 @@ static void check_worst_case(void)
 	struct grid g;
 	grid_from_params(&g, &p);
 	uint32_t caps[][2] = { { 0, 0 }, { 1000, 500 }, { 7, 100000 } };
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
 	for (int c = 0; c < 3; c++) {
 		p.max_triangles = (int)caps[c][0];
 		p.max_vertices = (int)caps[c][1];
-		struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+		struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 		CHECK(pl != NULL, "checker: %s", err);
 		if (!pl)
-			return;
+			break;
 		CHECK(pipeline_run(pl, &p) == 0, "checker run");
 		struct extract_stats st;
 		pipeline_read_stats(pl, &st);
@@ -198,6 +208,8 @@ static void check_worst_case(void)
 		CHECK(pipeline_check_guards(pl) == 0, "checker atomic: wrote past a capacity");
 		pipeline_destroy(pl);
 	}
+	terrain_destroy(tr);
+	edits_destroy(ed);
 }
 
 static void check_determinism(void)
@@ -208,10 +220,15 @@ static void check_determinism(void)
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[256];
-	struct pipeline *pl = pipeline_create(&g, &p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 	CHECK(pl != NULL, "determinism: %s", err);
-	if (!pl)
+	if (!pl) {
+		terrain_destroy(tr);
+		edits_destroy(ed);
 		return;
+	}
 	struct mesh a, b, c;
 	pipeline_run(pl, &p);
 	pipeline_read_mesh(pl, &a);
@@ -229,6 +246,8 @@ static void check_determinism(void)
 	mesh_free(&b);
 	mesh_free(&c);
 	pipeline_destroy(pl);
+	terrain_destroy(tr);
+	edits_destroy(ed);
 }
 
 int main(void)

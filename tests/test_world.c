@@ -87,11 +87,16 @@ static void check_seams(struct world *w, const struct params *p)
 static void check_no_holes(const struct params *p)
 {
 	char err[512] = "";
-	struct world *w = world_create(p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *w = world_create(p, ed, err, sizeof(err));
 	struct renderer *r = renderer_create(160, 160, err, sizeof(err));
 	CHECK(w && r, "world/renderer: %s", err);
-	if (!w || !r)
+	if (!w || !r) {
+		renderer_destroy(r);
+		world_destroy(w);
+		edits_destroy(ed);
 		return;
+	}
 	renderer_set_clear(r, 1.0f, 0.0f, 1.0f);
 	struct camera c;
 	/* straight down from above: every pixel must be terrain; the view spans
@@ -120,17 +125,21 @@ static void check_no_holes(const struct params *p)
 	image_free(&img);
 	renderer_destroy(r);
 	world_destroy(w);
+	edits_destroy(ed);
 }
 
 static void check_empty_not_regenerated(const struct params *p)
 {
 	char err[512] = "";
-	struct world *w = world_create(p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *w = world_create(p, ed, err, sizeof(err));
 	CHECK(w != NULL, "world: %s", err);
-	if (!w)
+	if (!w) {
+		edits_destroy(ed);
 		return;
+	}
 	struct autopilot ap;
-	autopilot_init(&ap, p);
+	autopilot_init(&ap, p, ed);
 	struct camera c;
 	autopilot_camera(&ap, &c, p->fov, 1.5f, 100.0f);
 	world_fill(w, p, &c, 0.0);
@@ -148,12 +157,13 @@ static void check_empty_not_regenerated(const struct params *p)
 	CHECK(b.empty_skipped - a.empty_skipped >= 5 * a.empty_found / 2, "known-empty blocks skipped each frame");
 	autopilot_free(&ap);
 	world_destroy(w);
+	edits_destroy(ed);
 }
 
 static void check_autopilot(const struct params *p)
 {
 	struct autopilot ap;
-	CHECK(autopilot_init(&ap, p) == 0, "autopilot");
+	CHECK(autopilot_init(&ap, p, NULL) == 0, "autopilot");
 	float start[3];
 	memcpy(start, ap.pos, sizeof(start));
 	autopilot_advance(&ap, 300.0); /* five minutes */
@@ -171,7 +181,7 @@ static void check_autopilot(const struct params *p)
 static void check_manual(const struct params *p)
 {
 	struct autopilot ap;
-	CHECK(autopilot_init(&ap, p) == 0, "autopilot (manual)");
+	CHECK(autopilot_init(&ap, p, NULL) == 0, "autopilot (manual)");
 	float start[3];
 	memcpy(start, ap.pos, sizeof(start));
 	const float dive[3] = { 1.0f, 0.0f, -1.0f }, turn_dn[2] = { 0.3f, -1.0f };
@@ -193,11 +203,12 @@ static void check_manual(const struct params *p)
 static int world_image(const struct params *p, double t, struct image *img)
 {
 	char err[512] = "";
-	struct world *w = world_create(p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *w = world_create(p, ed, err, sizeof(err));
 	struct renderer *r = renderer_create(160, 96, err, sizeof(err));
 	struct autopilot ap;
 	int rc = -1;
-	if (w && r && autopilot_init(&ap, p) == 0) {
+	if (w && r && autopilot_init(&ap, p, ed) == 0) {
 		struct camera c;
 		autopilot_advance(&ap, t);
 		autopilot_camera(&ap, &c, p->fov, 160.0f / 96.0f, p->view_distance * 1.2f);
@@ -207,6 +218,7 @@ static int world_image(const struct params *p, double t, struct image *img)
 	}
 	renderer_destroy(r);
 	world_destroy(w);
+	edits_destroy(ed);
 	return rc;
 }
 
@@ -240,12 +252,14 @@ int main(void)
 	struct params p;
 	small_world(&p);
 	char err[512] = "";
-	struct world *w = world_create(&p, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *w = world_create(&p, ed, err, sizeof(err));
 	CHECK(w != NULL, "world_create: %s", err);
 	if (w) {
 		check_seams(w, &p);
 		world_destroy(w);
 	}
+	edits_destroy(ed);
 	check_no_holes(&p);
 	check_empty_not_regenerated(&p);
 	check_autopilot(&p);

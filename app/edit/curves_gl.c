@@ -1,18 +1,17 @@
 /* isoterra — GL side of the terrain edits: the curve hash in SSBOs
- * (bindings 8..11), the heightmap as an R32F texture (unit 3), the
- * displacement-map bake and the shader test hook. */
+ * (BIND_CURVE_PIVOT..BIND_CURVE_PRM), the heightmap as an R32F texture
+ * (TEX_HEIGHTMAP), the displacement-map bake and the shader test hook.
+ * The GL objects belong to one edit state (struct edits_gl). */
 #include "edits.h"
 #include "gpu.h"
 #include "abi.h"
-#include "log.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-
-static struct {
+struct edits_gl {
 	bool ready;
 	GLuint buf[4];           /* pivot, index, ctrl, prm */
 	GLsizeiptr cap[4];       /* explicit capacities (bytes) */
@@ -23,34 +22,48 @@ static struct {
 	GLuint p_bake[8], p_test;     /* bake: [iterative | dense << 1 | heightmap << 2] */
 	GLuint b_bake, b_zero, b_tiles, b_in, b_out;
 	GLsizeiptr bake_cap, zero_cap, tiles_cap, in_cap, out_cap;
-} G;
+};
 
-void edits_gl_release(void)
+/* The edit state's GL side, made on first use; NULL when out of memory. */
+static struct edits_gl *gl_of(struct edits *ed, char *err, size_t errlen)
 {
-	if (G.ready)
-		glDeleteBuffers(4, G.buf);
-	if (G.hm_tex)
-		glDeleteTextures(1, &G.hm_tex);
+	if (!ed->gl && !(ed->gl = calloc(1, sizeof(*ed->gl))))
+		snprintf(err, errlen, "out of memory");
+	return ed->gl;
+}
+
+void edits_gl_release(struct edits *ed)
+{
+	struct edits_gl *G = ed->gl;
+	if (!G)
+		return;
+	if (G->ready)
+		glDeleteBuffers(4, G->buf);
+	if (G->hm_tex)
+		glDeleteTextures(1, &G->hm_tex);
 	for (int i = 0; i < 8; i++)
-		if (G.p_bake[i])
-			glDeleteProgram(G.p_bake[i]);
-	if (G.p_test)
-		glDeleteProgram(G.p_test);
-	GLuint bufs[5] = { G.b_bake, G.b_zero, G.b_tiles, G.b_in, G.b_out };
+		if (G->p_bake[i])
+			glDeleteProgram(G->p_bake[i]);
+	if (G->p_test)
+		glDeleteProgram(G->p_test);
+	GLuint bufs[5] = { G->b_bake, G->b_zero, G->b_tiles, G->b_in, G->b_out };
 	for (int i = 0; i < 5; i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
-	memset(&G, 0, sizeof(G));
+	free(G);
+	ed->gl = NULL;
 }
 
 /* (Re)allocates buffer b to hold size bytes (at least 16) and uploads data. */
-static int upload(GLuint b, GLsizeiptr *cap, const void *data, GLsizeiptr size, const char *what)
+static int upload(GLuint b, GLsizeiptr *cap, const void *data, GLsizeiptr size, const char *what, char *err,
+		  size_t errlen)
 {
 	GLint max_ssbo = 0;
 	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_ssbo);
 	GLsizeiptr want = size > 16 ? size : 16;
 	if (max_ssbo > 0 && want > max_ssbo) {
-		log_error("%s: %lld bytes exceed the GL storage block limit (%d)", what, (long long)want, max_ssbo);
+		snprintf(err, errlen, "%s: %lld bytes exceed the GL storage block limit (%d)", what, (long long)want,
+			 max_ssbo);
 		return -1;
 	}
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
@@ -64,15 +77,15 @@ static int upload(GLuint b, GLsizeiptr *cap, const void *data, GLsizeiptr size, 
 	return gpu_check(what);
 }
 
-static int upload_curves(const struct edits *e)
+static int upload_curves(struct edits_gl *G, const struct edits *e, char *err, size_t errlen)
 {
-	if (!G.ready) {
-		glGenBuffers(4, G.buf);
-		memset(G.cap, 0, sizeof(G.cap));
-		G.ready = true;
-		G.curves_gen = e->curves_gen - 1;
+	if (!G->ready) {
+		glGenBuffers(4, G->buf);
+		memset(G->cap, 0, sizeof(G->cap));
+		G->ready = true;
+		G->curves_gen = e->curves_gen - 1;
 	}
-	if (G.curves_gen == e->curves_gen)
+	if (G->curves_gen == e->curves_gen)
 		return 0;
 	const struct curve_hash *h = &e->hash;
 	const struct curve_quads *q = &e->quads;
@@ -80,31 +93,31 @@ static int upload_curves(const struct edits *e)
 	GLsizeiptr npiv = any ? (GLsizeiptr)h->dim * h->dim * 8 : 0;
 	GLsizeiptr nidx = any ? (GLsizeiptr)(h->nindex + h->nall) * 4 : 0;
 	GLsizeiptr nctl = any ? (GLsizeiptr)q->nctrl * 16 : 0;
-	if (upload(G.buf[0], &G.cap[0], any ? h->pivot : NULL, npiv, "curve pivot table") < 0 ||
-	    upload(G.buf[1], &G.cap[1], any ? h->index : NULL, nidx, "curve index table") < 0 ||
-	    upload(G.buf[2], &G.cap[2], any ? q->ctrl : NULL, nctl, "curve control points") < 0 ||
-	    upload(G.buf[3], &G.cap[3], any ? q->prm : NULL, nctl, "curve parameters") < 0)
+	if (upload(G->buf[0], &G->cap[0], any ? h->pivot : NULL, npiv, "curve pivot table", err, errlen) < 0 ||
+	    upload(G->buf[1], &G->cap[1], any ? h->index : NULL, nidx, "curve index table", err, errlen) < 0 ||
+	    upload(G->buf[2], &G->cap[2], any ? q->ctrl : NULL, nctl, "curve control points", err, errlen) < 0 ||
+	    upload(G->buf[3], &G->cap[3], any ? q->prm : NULL, nctl, "curve parameters", err, errlen) < 0)
 		return -1;
-	G.curves_gen = e->curves_gen;
+	G->curves_gen = e->curves_gen;
 	return 0;
 }
 
-static int upload_heightmap(const struct edits *e)
+static int upload_heightmap(struct edits_gl *G, const struct edits *e, char *err, size_t errlen)
 {
-	if (G.hm_ready && G.hm_gen == e->hm_gen)
+	if (G->hm_ready && G->hm_gen == e->hm_gen)
 		return 0;
-	if (G.hm_tex)
-		glDeleteTextures(1, &G.hm_tex);
-	glGenTextures(1, &G.hm_tex);
+	if (G->hm_tex)
+		glDeleteTextures(1, &G->hm_tex);
+	glGenTextures(1, &G->hm_tex);
 	GLint prev = 0;
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
 	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
-	glBindTexture(GL_TEXTURE_2D, G.hm_tex);
+	glBindTexture(GL_TEXTURE_2D, G->hm_tex);
 	int w = e->hm.w ? e->hm.w : 1, hh = e->hm.w ? e->hm.h : 1;
 	GLint max_tex = 0;
 	glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
 	if (max_tex > 0 && (w > max_tex || hh > max_tex)) {
-		log_error("heightmap of %dx%d samples exceeds the GL texture limit (%d)", w, hh, max_tex);
+		snprintf(err, errlen, "heightmap of %dx%d samples exceeds the GL texture limit (%d)", w, hh, max_tex);
 		glActiveTexture((GLenum)prev);
 		return -1;
 	}
@@ -121,8 +134,8 @@ static int upload_heightmap(const struct edits *e)
 	glActiveTexture((GLenum)prev);
 	if (gpu_check("heightmap texture") < 0)
 		return -1;
-	G.hm_gen = e->hm_gen;
-	G.hm_ready = true;
+	G->hm_gen = e->hm_gen;
+	G->hm_ready = true;
 	return 0;
 }
 
@@ -147,24 +160,21 @@ static void set_uniforms(GLuint prog, const struct edits *e)
 		glProgramUniform2i(prog, l, e->hm.w, e->hm.h);
 }
 
-int edits_gl_bind(GLuint prog, const struct params *p)
+int edits_gl_bind(struct edits *ed, GLuint prog, const struct params *p, char *err, size_t errlen)
 {
-	char err[512];
-	if (edits_load(p, err, sizeof(err)) < 0) {
-		log_error("%s", err);
+	if (edits_load(ed, p, err, errlen) < 0)
 		return -1;
-	}
-	const struct edits *e = edits_get();
-	if (upload_curves(e) < 0 || upload_heightmap(e) < 0)
+	struct edits_gl *G = gl_of(ed, err, errlen);
+	if (!G || upload_curves(G, ed, err, errlen) < 0 || upload_heightmap(G, ed, err, errlen) < 0)
 		return -1;
 	for (int i = 0; i < 4; i++)
-		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_CURVE_PIVOT + i, G.buf[i]);
+		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_CURVE_PIVOT + i, G->buf[i]);
 	GLint prev = 0;
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
 	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
-	glBindTexture(GL_TEXTURE_2D, G.hm_tex);
+	glBindTexture(GL_TEXTURE_2D, G->hm_tex);
 	glActiveTexture((GLenum)prev);
-	set_uniforms(prog, e);
+	set_uniforms(prog, ed);
 	return gpu_check("curve/heightmap bind");
 }
 
@@ -256,100 +266,126 @@ static int bake_tiles(const struct curve_quads *q, const struct bake_opts *o, ui
 	return n;
 }
 
-int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen)
+/* The bake program for these options (compiled on first use). */
+static GLuint bake_program(struct edits_gl *G, const struct bake_opts *o, bool hm, char *err, size_t errlen)
 {
-	if (o->res[0] < 1 || o->res[1] < 1 || o->res[0] > 16384 || o->res[1] > 16384) {
-		snprintf(err, errlen, "bake resolution %dx%d out of range", o->res[0], o->res[1]);
-		return -1;
-	}
-	char lerr[512];
-	if (edits_load(p, lerr, sizeof(lerr)) < 0) {
-		snprintf(err, errlen, "%s", lerr);
-		return -1;
-	}
-	const struct edits *e = edits_get();
-	bool dense = o->dense || o->iterative, hm = e->hm.w > 0;
-	int variant = (o->iterative ? 1 : 0) | (dense ? 2 : 0) | (hm ? 4 : 0);
-	GLuint *prog = &G.p_bake[variant];
+	bool dense = o->dense || o->iterative;
+	GLuint *prog = &G->p_bake[(o->iterative ? 1 : 0) | (dense ? 2 : 0) | (hm ? 4 : 0)];
 	if (!*prog) {
 		char defs[128];
 		snprintf(defs, sizeof(defs), "%s%s%s", o->iterative ? "#define CURVE_ITERATIVE 1\n" : "",
 			 dense ? "#define BAKE_DENSE 1\n" : "", hm ? "#define BAKE_HEIGHTMAP 1\n" : "");
 		*prog = gpu_compute_program("curve_bake.comp", defs, err, errlen);
-		if (!*prog)
-			return -1;
 	}
-	GLsizeiptr bytes = (GLsizeiptr)o->res[0] * o->res[1] * 4;
+	return *prog;
+}
+
+/* Zeroes the first bytes of the map (a GPU copy from a zero buffer). */
+static int bake_zero(struct edits_gl *G, GLsizeiptr bytes, char *err, size_t errlen)
+{
+	if (G->zero_cap < bytes) {
+		void *z = calloc(1, (size_t)bytes);
+		if (!z) {
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		if (!G->b_zero)
+			glGenBuffers(1, &G->b_zero);
+		glBindBuffer(GL_COPY_READ_BUFFER, G->b_zero);
+		glBufferData(GL_COPY_READ_BUFFER, bytes, z, GL_STATIC_DRAW);
+		glBindBuffer(GL_COPY_READ_BUFFER, 0);
+		free(z);
+		G->zero_cap = bytes;
+	}
+	glBindBuffer(GL_COPY_READ_BUFFER, G->b_zero);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, G->b_bake);
+	glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+	return 0;
+}
+
+/* The tiled bake: the map zeroed, then one work group per listed tile. */
+static int bake_tiled(struct edits_gl *G, const struct edits *e, GLuint prog, const struct bake_opts *o,
+		      GLsizeiptr bytes, char *err, size_t errlen)
+{
+	if (bake_zero(G, bytes, err, errlen) < 0)
+		return -1;
+	uint32_t *tiles = NULL;
+	int nt = bake_tiles(&e->quads, o, &tiles);
+	if (nt < 0) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	if (nt > 0) {
+		if (ensure(&G->b_tiles, &G->tiles_cap, (GLsizeiptr)nt * 4) < 0) {
+			free(tiles);
+			snprintf(err, errlen, "cannot allocate the tile list");
+			return -1;
+		}
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, G->b_tiles);
+		glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)nt * 4, tiles);
+		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+		int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
+		glProgramUniform1i(prog, glGetUniformLocation(prog, "u_bake_ntiles"), nt);
+		glProgramUniform1i(prog, glGetUniformLocation(prog, "u_bake_groups_x"), gx);
+		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G->b_tiles);
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+		glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
+	}
+	free(tiles);
+	return 0;
+}
+
+/* Room for the map: bytes within the GL limit, the buffer allocated. */
+static int bake_room(struct edits_gl *G, const struct bake_opts *o, GLsizeiptr bytes, char *err, size_t errlen)
+{
 	GLint max_ssbo = 0;
 	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_ssbo);
 	if (max_ssbo > 0 && bytes > max_ssbo) {
 		snprintf(err, errlen, "a %dx%d displacement map exceeds the GL storage block limit", o->res[0], o->res[1]);
 		return -1;
 	}
-	if (ensure(&G.b_bake, &G.bake_cap, bytes) < 0) {
+	if (ensure(&G->b_bake, &G->bake_cap, bytes) < 0) {
 		snprintf(err, errlen, "cannot allocate the displacement map");
 		return -1;
 	}
-	if (edits_gl_bind(*prog, p) < 0) {
-		snprintf(err, errlen, "curves/heightmap could not be bound (see the log)");
+	return 0;
+}
+
+int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts *o, float *out, char *err,
+		size_t errlen)
+{
+	if (errlen)
+		err[0] = '\0';
+	if (o->res[0] < 1 || o->res[1] < 1 || o->res[0] > 16384 || o->res[1] > 16384) {
+		snprintf(err, errlen, "bake resolution %dx%d out of range", o->res[0], o->res[1]);
 		return -1;
 	}
-	gpu_set_param_uniforms(*prog, p);
-	glProgramUniform2i(*prog, glGetUniformLocation(*prog, "u_bake_res"), o->res[0], o->res[1]);
-	glProgramUniform2f(*prog, glGetUniformLocation(*prog, "u_bake_origin"), o->origin[0], o->origin[1]);
-	glProgramUniform2f(*prog, glGetUniformLocation(*prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
+	if (edits_load(ed, p, err, errlen) < 0)
+		return -1;
+	struct edits_gl *G = gl_of(ed, err, errlen);
+	GLuint prog = G ? bake_program(G, o, ed->hm.w > 0, err, errlen) : 0;
+	GLsizeiptr bytes = (GLsizeiptr)o->res[0] * o->res[1] * 4;
+	if (!prog || bake_room(G, o, bytes, err, errlen) < 0)
+		return -1;
+	if (edits_gl_bind(ed, prog, p, err, errlen) < 0) {
+		if (!err[0])
+			snprintf(err, errlen, "curves/heightmap could not be bound (see the log)");
+		return -1;
+	}
+	gpu_set_param_uniforms(prog, p);
+	glProgramUniform2i(prog, glGetUniformLocation(prog, "u_bake_res"), o->res[0], o->res[1]);
+	glProgramUniform2f(prog, glGetUniformLocation(prog, "u_bake_origin"), o->origin[0], o->origin[1]);
+	glProgramUniform2f(prog, glGetUniformLocation(prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
 			   o->size[1] / (float)o->res[1]);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G.b_bake);
-	glUseProgram(*prog);
-	if (dense) {
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G->b_bake);
+	glUseProgram(prog);
+	if (o->dense || o->iterative) {
 		glDispatchCompute((GLuint)(o->res[0] + 7) / 8, (GLuint)(o->res[1] + 7) / 8, 1);
-	} else {
-		/* zero the map (GPU copy from a zero buffer), then the tiles */
-		if (G.zero_cap < bytes) {
-			void *z = calloc(1, (size_t)bytes);
-			if (!z) {
-				snprintf(err, errlen, "out of memory");
-				glUseProgram(0);
-				return -1;
-			}
-			if (!G.b_zero)
-				glGenBuffers(1, &G.b_zero);
-			glBindBuffer(GL_COPY_READ_BUFFER, G.b_zero);
-			glBufferData(GL_COPY_READ_BUFFER, bytes, z, GL_STATIC_DRAW);
-			glBindBuffer(GL_COPY_READ_BUFFER, 0);
-			free(z);
-			G.zero_cap = bytes;
-		}
-		glBindBuffer(GL_COPY_READ_BUFFER, G.b_zero);
-		glBindBuffer(GL_COPY_WRITE_BUFFER, G.b_bake);
-		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
-		glBindBuffer(GL_COPY_READ_BUFFER, 0);
-		glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-		uint32_t *tiles = NULL;
-		int nt = bake_tiles(&e->quads, o, &tiles);
-		if (nt < 0) {
-			snprintf(err, errlen, "out of memory");
-			glUseProgram(0);
-			return -1;
-		}
-		if (nt > 0) {
-			if (ensure(&G.b_tiles, &G.tiles_cap, (GLsizeiptr)nt * 4) < 0) {
-				free(tiles);
-				snprintf(err, errlen, "cannot allocate the tile list");
-				glUseProgram(0);
-				return -1;
-			}
-			glBindBuffer(GL_SHADER_STORAGE_BUFFER, G.b_tiles);
-			glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)nt * 4, tiles);
-			glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-			int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
-			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_ntiles"), nt);
-			glProgramUniform1i(*prog, glGetUniformLocation(*prog, "u_bake_groups_x"), gx);
-			glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G.b_tiles);
-			glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-			glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
-		}
-		free(tiles);
+	} else if (bake_tiled(G, ed, prog, o, bytes, err, errlen) < 0) {
+		glUseProgram(0);
+		return -1;
 	}
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	glUseProgram(0);
@@ -357,43 +393,50 @@ int curves_bake(const struct params *p, const struct bake_opts *o, float *out, c
 		snprintf(err, errlen, "the displacement-map bake failed (GL error)");
 		return -1;
 	}
-	if (out && read_back(G.b_bake, bytes, out) < 0) {
+	if (out && read_back(G->b_bake, bytes, out) < 0) {
 		snprintf(err, errlen, "reading the displacement map back failed");
 		return -1;
 	}
 	return 0;
 }
 
-int curves_gpu_test(const struct params *p, int mode, const float *in, int n, float *out, char *err, size_t errlen)
+int curves_gpu_test(struct edits *ed, const struct params *p, int mode, const float *in, int n, float *out, char *err,
+		    size_t errlen)
 {
-	if (!G.p_test) {
-		G.p_test = gpu_compute_program("curve_test.comp", NULL, err, errlen);
-		if (!G.p_test)
+	if (errlen)
+		err[0] = '\0';
+	struct edits_gl *G = gl_of(ed, err, errlen);
+	if (!G)
+		return -1;
+	if (!G->p_test) {
+		G->p_test = gpu_compute_program("curve_test.comp", NULL, err, errlen);
+		if (!G->p_test)
 			return -1;
 	}
 	if (n <= 0)
 		return 0;
 	GLsizeiptr in_bytes = (GLsizeiptr)n * (mode == 0 ? 64 : 16), out_bytes = (GLsizeiptr)n * 16;
-	if (ensure(&G.b_in, &G.in_cap, in_bytes) < 0 || ensure(&G.b_out, &G.out_cap, out_bytes) < 0) {
+	if (ensure(&G->b_in, &G->in_cap, in_bytes) < 0 || ensure(&G->b_out, &G->out_cap, out_bytes) < 0) {
 		snprintf(err, errlen, "cannot allocate test buffers");
 		return -1;
 	}
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, G.b_in);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, G->b_in);
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, in_bytes, in);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	if (edits_gl_bind(G.p_test, p) < 0) {
-		snprintf(err, errlen, "curves/heightmap could not be bound (see the log)");
+	if (edits_gl_bind(ed, G->p_test, p, err, errlen) < 0) {
+		if (!err[0])
+			snprintf(err, errlen, "curves/heightmap could not be bound (see the log)");
 		return -1;
 	}
-	gpu_set_param_uniforms(G.p_test, p);
-	glProgramUniform1i(G.p_test, glGetUniformLocation(G.p_test, "u_test_mode"), mode);
-	glProgramUniform1i(G.p_test, glGetUniformLocation(G.p_test, "u_test_n"), n);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G.b_in);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G.b_out);
-	glUseProgram(G.p_test);
+	gpu_set_param_uniforms(G->p_test, p);
+	glProgramUniform1i(G->p_test, glGetUniformLocation(G->p_test, "u_test_mode"), mode);
+	glProgramUniform1i(G->p_test, glGetUniformLocation(G->p_test, "u_test_n"), n);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G->b_in);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G->b_out);
+	glUseProgram(G->p_test);
 	glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
 	glUseProgram(0);
-	if (gpu_check("curve test") < 0 || read_back(G.b_out, out_bytes, out) < 0) {
+	if (gpu_check("curve test") < 0 || read_back(G->b_out, out_bytes, out) < 0) {
 		snprintf(err, errlen, "curve test dispatch failed");
 		return -1;
 	}

@@ -4,10 +4,11 @@
  * API), the GL resources (curves_gl.c) and the CPU mirror of the shader
  * code (carve_ref.c).  See docs/CURVES.md.
  *
- * One process-wide state: every pipeline (and the streaming world's blocks)
- * carve the same curves.  The GL objects belong to the current context;
- * pipeline_destroy() releases them (edits_gl_release) and the next bind
- * uploads again. */
+ * The edit state is an object owned by whoever creates it (the volume run,
+ * the streaming world's owner, a test): the terrain field that carves it on
+ * the GPU (app/terrain/terrain.h) and the CPU reference borrow it.  Its GL
+ * objects belong to the context current when they were made; edits_destroy()
+ * deletes them, edits_gl_release() earlier (the next bind uploads again). */
 #ifndef ISOTERRA_EDITS_H
 #define ISOTERRA_EDITS_H
 
@@ -37,51 +38,75 @@ int heightmap_write_png16(const char *path, const uint16_t *v, int w, int h, cha
 
 /* ---- the edit state (edits.c) ---------------------------------------------- */
 
+/* A file the state was loaded from: reloaded when any of this changes. */
+struct edits_file {
+	char path[PARAM_STR_MAX];
+	long long size, mtime_ns;
+};
+
+struct edits_gl; /* curves_gl.c */
+
 struct edits {
+	/* read freely; changed only through the functions below */
 	struct curve_set curves;   /* the current curves (input form) */
 	struct curve_quads quads;  /* after the curve pipeline */
 	struct curve_hash hash;    /* over quads */
 	bool curves_from_file;
 	struct heightmap hm;       /* w == 0: none */
 	unsigned curves_gen, hm_gen; /* bumped on every change (GPU re-upload) */
+	/* private: the files loaded, the hash size, the region changed since
+	 * the last edits_take_changes(), the GL side (NULL until first bound) */
+	struct edits_file curves_file, hm_file;
+	int hash_dim;
+	bool changed;
+	float changed_box[4];
+	struct edits_gl *gl;
 };
 
-/* The current state (never NULL; empty until something is loaded). */
-const struct edits *edits_get(void);
+/* An empty edit state (no curves, no heightmap); NULL when out of memory. */
+struct edits *edits_create(void);
+/* Frees the CPU data and deletes the GL objects (their context must be
+ * current if any were made).  NULL is fine. */
+void edits_destroy(struct edits *ed);
 /* Brings the state in line with p: loads the curves file (p->curves) and
  * the heightmap (p->heightmap) when their names, sizes or modification
  * times changed, rebuilds the hash when p->curve_hash_dim changed; an empty
- * name drops what was loaded from a file.  field=heightmap needs a
- * heightmap.  0, or -1 with one clear message (file:line, feature). */
-int edits_load(const struct params *p, char *err, size_t errlen);
+ * name drops what was loaded from a file (curves set through the API stay).
+ * field=heightmap needs a heightmap.  0, or -1 with one clear message
+ * (file:line, feature). */
+int edits_load(struct edits *ed, const struct params *p, char *err, size_t errlen);
 /* Replaces the curves (an editor, the streaming world): runs the curve
  * pipeline and rebuilds the hash.  0 or -1 with err. */
-int edits_set_curves(const struct curve_set *s, int hash_dim, char *err, size_t errlen);
+int edits_set_curves(struct edits *ed, const struct curve_set *s, int hash_dim, char *err, size_t errlen);
 /* The world-space XZ region (xmin, zmin, xmax, zmax) whose terrain changed
  * since the last call (union of curves_affected_bounds of every curve
  * change; a heightmap change reports the whole plane as +-FLT_MAX).
  * Returns false when nothing changed; clears the record. */
-bool edits_take_changes(float aabb[4]);
-/* Drops everything (CPU data; GL objects are released separately). */
-void edits_clear(void);
+bool edits_take_changes(struct edits *ed, float aabb[4]);
+/* Drops the curves and the heightmap (the GL objects stay, re-uploaded on
+ * the next bind). */
+void edits_clear(struct edits *ed);
 
 /* ---- GL (curves_gl.c) ------------------------------------------------------- */
 
-/* edits_load(p), uploads what changed, binds SSBOs 8..11 and the heightmap
- * (texture unit 3) and sets the curve/heightmap uniforms of prog (which
- * includes shaders/carve.glsl or curves.glsl).  Logs and returns -1 on
- * error. */
-int edits_gl_bind(GLuint prog, const struct params *p);
-/* Deletes the GL objects (the context must be current). */
-void edits_gl_release(void);
+/* edits_load(p), uploads what changed, binds the curve SSBOs
+ * (BIND_CURVE_PIVOT..BIND_CURVE_PRM) and the heightmap (TEX_HEIGHTMAP) and
+ * sets the curve/heightmap uniforms of prog (which includes
+ * shaders/carve.glsl or curves.glsl).  0, or -1 with err (left empty when
+ * a GL error was logged). */
+int edits_gl_bind(struct edits *ed, GLuint prog, const struct params *p, char *err, size_t errlen);
+/* Deletes the GL objects (the context must be current); the next bind
+ * uploads again. */
+void edits_gl_release(struct edits *ed);
 
 /* The curves' 2D displacement map (shaders/curve_bake.comp): res[0] x
  * res[1] texels over [origin, origin + size) in XZ, x fastest; each texel
  * Θ_closest · (h - H) at its centre, H the heightmap (bilinear) or 0.
  * By default only the 8x8 tiles that overlap a quadratic's padded box run
  * (the map is zeroed first); dense: every texel; iterative: the baseline
- * (32 line segments per curve, every curve, no hash).  The map stays in an SSBO (binding 12, explicit capacity);
- * out != NULL gets a copy.  0 or -1 with err. */
+ * (32 line segments per curve, every curve, no hash).  The map stays in an
+ * SSBO (BIND_AUX_A, explicit capacity); out != NULL gets a copy.  0 or -1
+ * with err. */
 struct bake_opts {
 	int res[2];
 	float origin[2], size[2];
@@ -89,13 +114,15 @@ struct bake_opts {
 	bool dense;     /* every texel (the thesis's dispatch) instead of the
 			   8x8 tiles over the padded boxes */
 };
-int curves_bake(const struct params *p, const struct bake_opts *o, float *out, char *err, size_t errlen);
+int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts *o, float *out, char *err,
+		size_t errlen);
 
 /* Test hook: runs shaders/curve_test.comp (mode 0: closest point on given
  * quadratics, 1: curve_eval + carve_density at points, 2: heightmap
  * height) on n inputs; see the shader.  in has 16 floats per item in mode
  * 0, else 4; out 4 per item. */
-int curves_gpu_test(const struct params *p, int mode, const float *in, int n, float *out, char *err, size_t errlen);
+int curves_gpu_test(struct edits *ed, const struct params *p, int mode, const float *in, int n, float *out, char *err,
+		    size_t errlen);
 
 /* ---- CPU mirror of curves.glsl / heightmap.glsl / carve.glsl (carve_ref.c) -- */
 

@@ -22,11 +22,8 @@
  * heightmap_height place it as they place a PNG), no-data samples at min. */
 static int load_gdal(const char *path, struct heightmap *hm, char *err, size_t errlen)
 {
-	static int registered;
-	if (!registered) {
+	if (GDALGetDriverCount() == 0) /* not registered yet */
 		GDALAllRegister();
-		registered = 1;
-	}
 	CPLPushErrorHandler(CPLQuietErrorHandler);
 	CPLErrorReset();
 	GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, NULL, NULL, NULL);

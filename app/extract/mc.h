@@ -32,8 +32,8 @@ struct mc_tables {
 	int8_t edge_owner[12][4];         /* owner cell offset x,y,z and slot */
 };
 
-/* The tables (built once, thread-safe after the first call returns). */
-const struct mc_tables *mc_get_tables(void);
+/* Builds the tables (a few microseconds; always the same result). */
+void mc_tables_build(struct mc_tables *t);
 
 /* CPU Marching Cubes over a margin density volume (see grid.h); output in
  * exactly the GPU's order.  0, or -1 when out of memory. */

@@ -32,44 +32,43 @@ static int vmask(const struct grid *g, const float *dens, float iso, int x, int 
 	return m;
 }
 
-/* One vertex per edge marked in mask (bit s: the edge along axis s from
- * each owner corner), position and normal interpolated, in owner order. */
-static void ref_vertices(const struct grid *g, const float *dens, float iso, const uint8_t *mask, struct mesh *out)
+static int cell_case(const struct mc_tables *t, const struct grid *g, const float *dens, float iso, int x, int y, int z)
 {
-	const int ox = g->nx + 1, oy = g->ny + 1, oz = g->nz + 1;
-	uint32_t v = 0;
-	for (int z = 0; z < oz; z++)
-		for (int y = 0; y < oy; y++)
-			for (int x = 0; x < ox; x++) {
-				size_t c = (size_t)x + (size_t)ox * ((size_t)y + (size_t)oy * z);
-				for (int s = 0; s < 3; s++) {
-					if (!(mask[c] & (1 << s)))
-						continue;
-					int x1 = x + (s == 0), y1 = y + (s == 1), z1 = z + (s == 2);
-					float d0 = D(g, dens, x, y, z), d1 = D(g, dens, x1, y1, z1);
-					float tt = (d0 - iso) / (d0 - d1);
-					float p0[3] = { (float)x, (float)y, (float)z };
-					float g0[3], g1[3];
-					gradient(g, dens, x, y, z, g0);
-					gradient(g, dens, x1, y1, z1, g1);
-					float n[3], len = 0.0f;
-					for (int a = 0; a < 3; a++) {
-						float pa = p0[a] + (a == s ? tt : 0.0f);
-						out->pos[3 * v + a] = g->origin[a] + pa * g->cell;
-						n[a] = g0[a] + (g1[a] - g0[a]) * tt;
-						len += n[a] * n[a];
-					}
-					len = sqrtf(len);
-					for (int a = 0; a < 3; a++)
-						out->nrm[3 * v + a] = len > 1e-20f ? -n[a] / len : (a == 1 ? 1.0f : 0.0f);
-					v++;
-				}
-			}
+	int cs = 0;
+	for (int n = 0; n < 8; n++)
+		cs |= (D(g, dens, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) > iso) << n;
+	return cs;
+}
+
+/* The vertex on the edge from corner (x, y, z) along axis s: position and
+ * normal (the interpolated gradient, pointing out of the rock). */
+static void edge_vertex(const struct grid *g, const float *dens, float iso, int x, int y, int z, int s, float pos[3],
+			float nrm[3])
+{
+	int x1 = x + (s == 0), y1 = y + (s == 1), z1 = z + (s == 2);
+	float d0 = D(g, dens, x, y, z), d1 = D(g, dens, x1, y1, z1);
+	float tt = (d0 - iso) / (d0 - d1);
+	float p0[3] = { (float)x, (float)y, (float)z };
+	float g0[3], g1[3];
+	gradient(g, dens, x, y, z, g0);
+	gradient(g, dens, x1, y1, z1, g1);
+	float n[3], len = 0.0f;
+	for (int a = 0; a < 3; a++) {
+		float pa = p0[a] + (a == s ? tt : 0.0f);
+		pos[a] = g->origin[a] + pa * g->cell;
+		n[a] = g0[a] + (g1[a] - g0[a]) * tt;
+		len += n[a] * n[a];
+	}
+	len = sqrtf(len);
+	for (int a = 0; a < 3; a++)
+		nrm[a] = len > 1e-20f ? -n[a] / len : (a == 1 ? 1.0f : 0.0f);
 }
 
 int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct mesh *out)
 {
-	const struct mc_tables *t = mc_get_tables();
+	struct mc_tables tables;
+	mc_tables_build(&tables);
+	const struct mc_tables *t = &tables;
 	const int ox = g->nx + 1, oy = g->ny + 1, oz = g->nz + 1;
 	const size_t owners = (size_t)ox * oy * oz;
 	uint32_t *base = malloc(sizeof(uint32_t) * (owners + 1));
@@ -89,12 +88,8 @@ int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct me
 				mask[c] = (uint8_t)m;
 				base[c] = (uint32_t)nv;
 				nv += (uint64_t)((m & 1) + ((m >> 1) & 1) + ((m >> 2) & 1));
-				if (x < g->nx && y < g->ny && z < g->nz) {
-					int cs = 0;
-					for (int n = 0; n < 8; n++)
-						cs |= (D(g, dens, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) > iso) << n;
-					nt += t->tri_count[cs];
-				}
+				if (x < g->nx && y < g->ny && z < g->nz)
+					nt += t->tri_count[cell_case(t, g, dens, iso, x, y, z)];
 			}
 	if (nv > UINT32_MAX || nt > UINT32_MAX / 3 || mesh_alloc(out, (uint32_t)nv, (uint32_t)nt) < 0) {
 		free(base);
@@ -102,15 +97,23 @@ int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct me
 		return -1;
 	}
 	/* pass 2: vertices */
-	ref_vertices(g, dens, iso, mask, out);
+	uint32_t v = 0;
+	for (int z = 0; z < oz; z++)
+		for (int y = 0; y < oy; y++)
+			for (int x = 0; x < ox; x++) {
+				size_t c = (size_t)x + (size_t)ox * ((size_t)y + (size_t)oy * z);
+				for (int s = 0; s < 3; s++)
+					if (mask[c] & (1 << s)) {
+						edge_vertex(g, dens, iso, x, y, z, s, out->pos + 3 * v, out->nrm + 3 * v);
+						v++;
+					}
+			}
 	/* pass 3: triangles */
 	uint32_t tri = 0;
 	for (int z = 0; z < g->nz; z++)
 		for (int y = 0; y < g->ny; y++)
 			for (int x = 0; x < g->nx; x++) {
-				int cs = 0;
-				for (int n = 0; n < 8; n++)
-					cs |= (D(g, dens, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) > iso) << n;
+				int cs = cell_case(t, g, dens, iso, x, y, z);
 				for (int k = 0; k < t->tri_count[cs] * 3; k++) {
 					int e = t->tri[cs][k];
 					int qx = x + t->edge_owner[e][0], qy = y + t->edge_owner[e][1], qz = z + t->edge_owner[e][2];

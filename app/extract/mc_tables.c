@@ -12,12 +12,8 @@
  * loops; each loop becomes a triangle fan. */
 #include "mc.h"
 
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
-
-static struct mc_tables T;
-static pthread_once_t once = PTHREAD_ONCE_INIT;
 
 static const int8_t corners[8][3] = {
 	{ 0, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 }, { 1, 0, 0 }, { 0, 0, 1 }, { 0, 1, 1 }, { 1, 1, 1 }, { 1, 0, 1 },
@@ -97,10 +93,10 @@ static int triangulate(const int *v, int n, const int *face_sets, int tris[][3],
 	return 0;
 }
 
-static void build(void)
+void mc_tables_build(struct mc_tables *t)
 {
-	memcpy(T.corner, corners, sizeof(corners));
-	memcpy(T.edge_corner, edges, sizeof(edges));
+	memcpy(t->corner, corners, sizeof(corners));
+	memcpy(t->edge_corner, edges, sizeof(edges));
 	for (int e = 0; e < 12; e++) {
 		int a = edges[e][0], b = edges[e][1];
 		int lo = a, axis = 0;
@@ -110,10 +106,10 @@ static void build(void)
 				lo = corners[a][i] < corners[b][i] ? a : b;
 			}
 		}
-		T.edge_owner[e][0] = corners[lo][0];
-		T.edge_owner[e][1] = corners[lo][1];
-		T.edge_owner[e][2] = corners[lo][2];
-		T.edge_owner[e][3] = (int8_t)axis;
+		t->edge_owner[e][0] = corners[lo][0];
+		t->edge_owner[e][1] = corners[lo][1];
+		t->edge_owner[e][2] = corners[lo][2];
+		t->edge_owner[e][3] = (int8_t)axis;
 	}
 	int fc[6][4];
 	int face_sets[12] = { 0 };
@@ -164,18 +160,12 @@ static void build(void)
 					abort();
 				/* loops run counter-clockwise seen from the air side */
 				for (int j = 0; j < 3; j++)
-					T.tri[cs][ntri * 3 + j] = (int8_t)tris[i][j];
+					t->tri[cs][ntri * 3 + j] = (int8_t)tris[i][j];
 				ntri++;
 			}
 		}
-		T.tri_count[cs] = (uint8_t)ntri;
+		t->tri_count[cs] = (uint8_t)ntri;
 		for (int i = ntri * 3; i < MC_MAX_TRIS * 3; i++)
-			T.tri[cs][i] = -1;
+			t->tri[cs][i] = -1;
 	}
-}
-
-const struct mc_tables *mc_get_tables(void)
-{
-	pthread_once(&once, build);
-	return &T;
 }

@@ -1,7 +1,22 @@
-/* isoterra — the GPU terrain pipeline: density -> Marching Cubes
- * classification -> HistoPyramid -> vertex and index generation ->
- * indirect draw.  No CPU read-back in the frame loop; the *_read functions
- * below are for tests, export and end-of-run reports. */
+/* isoterra — the extraction engine: a density field -> Marching Cubes
+ * classification -> HistoPyramid compaction -> vertex and index generation
+ * -> indirect draw, all on the GPU (docs/PIPELINE.md).  As in HPMC
+ * (Dyken's HistoPyramid Marching Cubes), the engine takes a field provider
+ * (field.h: the GLSL program that defines the field + a callback that binds
+ * its resources) and knows nothing about what the field is.  No CPU
+ * read-back in the frame loop; the *_read functions are for tests, export
+ * and end-of-run reports.
+ *
+ * Five calls (a current GL ES 3.1 context throughout):
+ *
+ *   struct pipeline *pl = pipeline_create(&grid, p, field, err, errlen);   1. with a field
+ *   pipeline_set_grid(pl, &grid2, bias);   2. optional: another grid of the same size
+ *   pipeline_set_target(pl, &slot);           and/or someone else's output buffers
+ *   pipeline_run(pl, p);                   3. density + extraction (every frame)
+ *   pipeline_draw_info(pl, &draw);         4. what the renderer draws, indirectly
+ *   pipeline_destroy(pl);                  5.
+ *
+ * The terrain is one field provider (app/terrain/terrain.h). */
 #ifndef ISOTERRA_PIPELINE_H
 #define ISOTERRA_PIPELINE_H
 
@@ -12,6 +27,7 @@
 #include "params.h"
 #include "mesh.h"
 #include "grid.h"
+#include "field.h"
 
 /* The grid the parameters describe (--grid N cells over the vol_* cube). */
 void grid_from_params(struct grid *g, const struct params *p);
@@ -25,10 +41,12 @@ struct extract_stats {
 
 struct pipeline;
 
-
-/* Creates buffers and programs for grid g.  Capacities: max_tris/max_verts
- * (0 = automatic).  Returns NULL with err. */
-struct pipeline *pipeline_create(const struct grid *g, const struct params *p, char *err, size_t errlen);
+/* Creates buffers and programs for grid g over the field f (borrowed: it
+ * must outlive the pipeline; NULL is refused with a message).  Capacities:
+ * p->max_triangles / p->max_vertices (0 = automatic).  Returns NULL with
+ * err. */
+struct pipeline *pipeline_create(const struct grid *g, const struct params *p, const struct field *f, char *err,
+				 size_t errlen);
 void pipeline_destroy(struct pipeline *pl);
 
 /* Per-pass timing for benchmarks: with profiling on, every pass ends with
@@ -54,9 +72,10 @@ void pipeline_set_target(struct pipeline *pl, const struct pipeline_target *t);
 /* Points the pipeline at another grid of the same size (a world block). */
 void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_bias);
 
-/* Runs the density pass only (benchmarks). */
+/* Runs the density pass only (benchmarks, tests).  0, or -1 (logged). */
 int pipeline_density(struct pipeline *pl, const struct params *p);
-/* Runs density + extraction with the compaction method in p->compaction. */
+/* Runs density + extraction with the compaction method in p->compaction
+ * (HistoPyramid always with a target).  0, or -1 (logged). */
 int pipeline_run(struct pipeline *pl, const struct params *p);
 /* Draw state for the renderer: vertex buffer (vec4 position, vec4 normal per
  * vertex, 32 bytes), element buffer (uint32, may be 0 when not indexed) and
@@ -69,8 +88,9 @@ struct pipeline_draw {
 };
 void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d);
 
-/* ---- read-back (tests, export, reports; never in the frame loop) ------- */
-/* (nx+3)*(ny+3)*(nz+3) densities, one-sample margin, x fastest. */
+/* ---- read-back (readback.c; tests, export, reports; never in the frame
+ * loop).  Each waits for the GPU. ------------------------------------------ */
+/* grid_dens_count() densities (the grid's corners and margin), x fastest. */
 int pipeline_read_density(struct pipeline *pl, float *out);
 /* 0 when the canaries after the output buffers are intact, 1 when
  * something wrote past a capacity, -1 on read error. */
@@ -78,13 +98,14 @@ int pipeline_check_guards(struct pipeline *pl);
 int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st);
 /* The extracted mesh (indexed; for atomic/none the triangles are unshared). */
 int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
-/* HistoPyramid test hook: builds the pyramid over n level-0 cell bytes
- * (bits 0..2 triangle count, bits 3..5 vertex mask) with the same shaders,
- * returns the totals (triangles, vertices), the (cell, rank) of every output
- * key of component comp (0 triangles, 1 vertices) and every cell's prefix
- * sum, read bottom-up (prefix) and from the down-swept prefix sums
- * (prefix_fast, may be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries, prefix n.  Needs a current
- * context.  0 or -1 with err. */
+/* HistoPyramid test hook (histopyramid.c): builds the pyramid over n
+ * level-0 cell bytes (bits 0..2 triangle count, bits 3..5 vertex mask) with
+ * the extraction's own reduction and down-sweep, returns the totals
+ * (triangles, vertices), the (cell, rank) of every output key of component
+ * comp (0 triangles, 1 vertices) and every cell's prefix sum, read
+ * bottom-up (prefix) and from the down-swept prefix sums (prefix_fast, may
+ * be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries,
+ * prefix n.  Needs a current context.  0 or -1 with err. */
 int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
 		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen);
 

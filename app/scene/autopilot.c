@@ -22,7 +22,7 @@
 
 static float dens(const struct autopilot *a, const float p[3])
 {
-	return density_ref(a->p, a->ns, p[0], p[1], p[2]);
+	return density_ref(a->p, a->ns, a->ed, p[0], p[1], p[2]);
 }
 
 /* Highest density (least clearance) along a ray of length len. */
@@ -47,10 +47,11 @@ static void heading(float yaw, float pitch, float out[3])
 	out[2] = cosf(pitch) * sinf(yaw);
 }
 
-int autopilot_init(struct autopilot *a, const struct params *p)
+int autopilot_init(struct autopilot *a, const struct params *p, const struct edits *ed)
 {
 	memset(a, 0, sizeof(*a));
 	a->p = p;
+	a->ed = ed;
 	a->ns = malloc(sizeof(*a->ns));
 	if (!a->ns)
 		return -1;

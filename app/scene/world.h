@@ -13,6 +13,7 @@
 #include "render.h"
 
 struct world;
+struct edits;
 
 struct world_stats {
 	uint64_t generated;       /* blocks run through the pipeline */
@@ -24,7 +25,9 @@ struct world_stats {
 	int ready, pending, empty_known, drawn, wanted;
 };
 
-struct world *world_create(const struct params *p, char *err, size_t errlen);
+/* A world carving the edit state ed (app/edit/edits.h; borrowed: it must
+ * outlive the world).  NULL with err. */
+struct world *world_create(const struct params *p, struct edits *ed, char *err, size_t errlen);
 void world_destroy(struct world *w);
 /* Plans and generates blocks for this camera.  deterministic: generate up
  * to gen_per_frame blocks and wait for their results (offline rendering,
@@ -36,7 +39,7 @@ int world_fill(struct world *w, const struct params *p, const struct camera *c, 
 int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now);
 void world_get_stats(const struct world *w, struct world_stats *st);
 
-/* Terrain edits (curves, heightmap; app/edits.h): marks every known block
+/* Terrain edits (curves, heightmap; app/edit/edits.h): marks every known block
  * whose density samples (the block, its sample margin and the reach of its
  * ambient-occlusion rays) overlap the world XZ box (xmin, zmin, xmax, zmax)
  * for regeneration.  A drawable block keeps its mesh until the new one
@@ -65,8 +68,11 @@ struct autopilot {
 	float in_turn[2];         /* held input: yaw right, pitch up (-1..1) */
 	const struct params *p;
 	struct noise_set *ns;
+	const struct edits *ed;   /* the terrain edits it avoids (NULL: none) */
 };
-int autopilot_init(struct autopilot *a, const struct params *p);
+/* ed: the edit state the world carves (borrowed, read as it changes), or
+ * NULL.  0, or -1 when out of memory. */
+int autopilot_init(struct autopilot *a, const struct params *p, const struct edits *ed);
 void autopilot_free(struct autopilot *a);
 /* Advances the fixed-step simulation to time t (deterministic). */
 void autopilot_advance(struct autopilot *a, double t);

@@ -187,15 +187,21 @@ static float shelf_term(const struct params *p, float y)
 	return p->shelf_strength * (1.0f - smooth01(fabsf(dy) * (1.0f / w)));
 }
 
-float density_ref(const struct params *p, const struct noise_set *ns, float x, float y, float z)
+/* no curves, no heightmap (ed == NULL) */
+static const struct edits no_edits;
+
+float density_ref(const struct params *p, const struct noise_set *ns, const struct edits *ed, float x, float y,
+		  float z)
 {
+	if (!ed)
+		ed = &no_edits;
 	x += p->time * p->scroll_speed;
-	if (p->field == FIELD_HEIGHTMAP) { /* carve_ref.c; needs edits_load(p) */
+	if (p->field == FIELD_HEIGHTMAP) { /* carve_ref.c; needs edits_load(ed, p) */
 		const float hp[3] = { x, y, z };
-		float hd = heightmap_ref_height(edits_get(), p, ns, x, z, true) - y;
+		float hd = heightmap_ref_height(ed, p, ns, x, z, true) - y;
 		if (p->heightmap_noise != 0.0f)
 			hd += p->heightmap_noise * p->noise_amp * fractal_ref(p, ns, hp);
-		return carve_ref_density(edits_get(), p, x, y, z, hd);
+		return carve_ref_density(ed, p, x, y, z, hd);
 	}
 	if (p->field != FIELD_TERRAIN)
 		return test_field(p, x, y, z);
@@ -239,11 +245,11 @@ float density_ref(const struct params *p, const struct noise_set *ns, float x, f
 		float amount = sat((p->flat_outer - dist) * (1.0f / fmaxf(p->flat_outer - p->flat_inner, 1e-4f))) * 0.9f;
 		d = d + amount * ((p->flat_y - orig[1]) - d);
 	}
-	return carve_ref_density(edits_get(), p, orig[0], orig[1], orig[2], d); /* curves: cut and fill */
+	return carve_ref_density(ed, p, orig[0], orig[1], orig[2], d); /* curves: cut and fill */
 }
 
-void density_ref_volume(const struct params *p, const struct noise_set *ns, const float origin[3], float cell,
-			int nx, int ny, int nz, float *out)
+void density_ref_volume(const struct params *p, const struct noise_set *ns, const struct edits *ed,
+			const float origin[3], float cell, int nx, int ny, int nz, float *out)
 {
 	int sx = nx + 3, sy = ny + 3, sz = nz + 3;
 	for (int k = 0; k < sz; k++)
@@ -252,9 +258,10 @@ void density_ref_volume(const struct params *p, const struct noise_set *ns, cons
 				float x = origin[0] + (float)(i - 1) * cell;
 				float y = origin[1] + (float)(j - 1) * cell;
 				float z = origin[2] + (float)(k - 1) * cell;
-				float d = density_ref(p, ns, x, y, z);
+				float d = density_ref(p, ns, ed, x, y, z);
 				if (p->closed) {
-					/* as density.comp: air on the border, more in the margin */
+					/* as the density pass (common.glsl): air on the border,
+					 * more in the margin */
 					if (i == 0 || j == 0 || k == 0 || i == sx - 1 || j == sy - 1 || k == sz - 1)
 						d = fminf(d, p->iso - cell);
 					else if (i == 1 || j == 1 || k == 1 || i == sx - 2 || j == sy - 2 || k == sz - 2)

@@ -1,17 +1,21 @@
-/* isoterra — CPU reference of the density function (plain C, mirrors
- * shaders/density.glsl term by term). */
+/* isoterra — CPU reference of the terrain's density function (plain C,
+ * mirrors shaders/density.glsl term by term).  The edit state ed (curves,
+ * heightmap; app/edit/edits.h) is read as it is: NULL means none. */
 #ifndef ISOTERRA_DENSITY_REF_H
 #define ISOTERRA_DENSITY_REF_H
 
 #include "params.h"
 #include "noise.h"
 
-float density_ref(const struct params *p, const struct noise_set *ns, float x, float y, float z);
+struct edits;
+
+float density_ref(const struct params *p, const struct noise_set *ns, const struct edits *ed, float x, float y,
+		  float z);
 
 /* Fills a (nx+3)*(ny+3)*(nz+3) volume (x fastest) with densities at
  * origin + (i-1, j-1, k-1) * cell, i.e. the corners of nx*ny*nz cells plus a
  * one-sample margin on every side, exactly as the GPU density pass does. */
-void density_ref_volume(const struct params *p, const struct noise_set *ns, const float origin[3], float cell,
-			int nx, int ny, int nz, float *out);
+void density_ref_volume(const struct params *p, const struct noise_set *ns, const struct edits *ed,
+			const float origin[3], float cell, int nx, int ny, int nz, float *out);
 
 #endif

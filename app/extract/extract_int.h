@@ -1,0 +1,85 @@
+/* isoterra — inside the extraction engine: the pipeline's state and what
+ * its files share (pipeline.c: buffers, programs, passes; histopyramid.c:
+ * the pyramid's levels, reduction and down-sweep; readback.c).  Nothing
+ * outside app/extract/ includes this. */
+#ifndef ISOTERRA_EXTRACT_INT_H
+#define ISOTERRA_EXTRACT_INT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <GLES3/gl31.h>
+
+#include "pipeline.h"
+
+#define GUARD_BYTES 1024u      /* canary after every output buffer */
+#define GUARD_WORD 0xa5c3e1f7u
+#define PROGRAM_VARIANTS 12    /* specialized programs kept per pipeline */
+
+static inline uint32_t div_up(uint64_t a, uint64_t b)
+{
+	return (uint32_t)((a + b - 1) / b);
+}
+
+/* ---- the HistoPyramid (histopyramid.c) ------------------------------------ */
+
+#define HP_MAX_LEVELS 16 /* u_hp_off[16] in shaders/hp.glsl */
+
+/* Level sizes: n[1] = level-0 words, n[k] = ceil(n[k-1] / 4) up to one node
+ * at `top`; every level but the top padded to a multiple of four (pad) so
+ * a parent reads four children; level k at node offset off[k] of the
+ * pyramid buffer, `nodes` in all (the prefix sums follow them). */
+struct hp_levels {
+	int top;
+	uint32_t n[HP_MAX_LEVELS], pad[HP_MAX_LEVELS], off[HP_MAX_LEVELS];
+	uint32_t nodes;
+};
+
+void hp_plan(struct hp_levels *h, uint32_t words);
+/* u_hp_off, u_hp_top, u_pre_base of a program (those it uses). */
+void hp_set_uniforms(GLuint prog, const struct hp_levels *h);
+/* glDispatchCompute of 64-wide groups over items, split in 2D past
+ * max_groups. */
+void hp_dispatch_1d(uint64_t items, int max_groups);
+/* With level 1 written (buffer b_hp at BIND_HP_LEVELS): levels 2..top by
+ * the reduction, then every node's prefix sum, top down (down-sweep). */
+void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
+
+/* ---- the pipeline (pipeline.c) ---------------------------------------------- */
+
+/* A program specialized on the code-path parameters; compiled on first use. */
+struct program_variant {
+	char key[512];
+	GLuint prog;
+};
+
+struct pipeline {
+	struct grid g;
+	const struct field *field;     /* borrowed */
+	struct program_variant variants[PROGRAM_VARIANTS];
+	int next_variant;
+	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
+	GLuint p_atomic, p_nocompact, p_finish;
+	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
+	uint32_t owners, words;        /* owner cells, level-0 words */
+	struct hp_levels hp;
+	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
+	uint64_t verts_alloc;          /* vertices the vertex buffer holds */
+	int max_groups;
+	int max_ssbo;
+	int last_mode;                 /* compaction of the last run, -1 none */
+	bool profile;                  /* glFinish + time every pass (benchmarks) */
+	float density_bias;            /* subtracted from the density (LOD) */
+	bool has_target;
+	struct pipeline_target target;
+	double pass_ms[PASS_COUNT];
+};
+
+/* A shader storage buffer of size bytes (at least 4), data may be NULL. */
+GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage);
+
+/* ---- read-back (readback.c) ------------------------------------------------- */
+
+/* size bytes of buf at off into out.  0 or -1. */
+int extract_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
+
+#endif

@@ -1,0 +1,45 @@
+/* isoterra — the extraction engine's field seam: what a density field gives
+ * the engine (pipeline.h).  As in HPMC (Dyken et al.), the engine knows
+ * nothing about what the field is: a provider names the GLSL program that
+ * defines it and binds whatever that program reads; the engine runs the
+ * density pass with it and extracts the surface.
+ *
+ * The program file (shaders/, GLSL ES 3.10) is written like this:
+ *
+ *     #include "common.glsl"          // the engine's grid uniforms; the density pass
+ *     #ifdef FIELD_PASS_VERTICES
+ *     #include "mc_vertices.comp"     // the engine's vertex pass
+ *     #endif
+ *     ... float density(vec3 ws) { ... }       // > 0 inside, world units
+ *     ... float density_far(vec3 ws) { ... }   // without its finest detail
+ *
+ * The engine compiles it with one of
+ *     FIELD_PASS_DENSITY   the density pass (main() in common.glsl): the
+ *                          field at every corner of the grid and its margin
+ *     FIELD_PASS_VERTICES  the vertex pass when it computes ambient
+ *                          occlusion (WITH_AO; main() in mc_vertices.comp):
+ *                          the long rays read density_far()
+ * defined, after the parameters' specialization #defines; the parameter
+ * uniforms (u_<name>) are declared by the shader prelude and set by the
+ * engine.  A field may use the binding points, texture units and uniform
+ * buffers app/gpu/abi.h gives no engine pass (BIND_CURVE_*, TEX_NOISE*,
+ * TEX_HEIGHTMAP, UBIND_NOISE, ...). */
+#ifndef ISOTERRA_FIELD_H
+#define ISOTERRA_FIELD_H
+
+#include <stddef.h>
+#include <GLES3/gl31.h>
+
+#include "params.h"
+
+struct field {
+	const char *program; /* the program file, as above */
+	/* Binds the field's resources and sets its uniforms on prog (the
+	 * engine has set the grid and parameter uniforms); called before every
+	 * dispatch of a program made from the file.  0, or -1 with err (left
+	 * empty when the failure was already logged as a GL error). */
+	int (*bind)(void *ctx, GLuint prog, const struct params *p, char *err, size_t errlen);
+	void *ctx;           /* the provider's, passed to bind */
+};
+
+#endif

@@ -1,0 +1,203 @@
+/* isoterra — the HistoPyramid's host side (Dyken & Ziegler, in a 1D,
+ * 4-to-1 form; docs/PIPELINE.md): the level plan, the reduction up to the
+ * totals (hp_reduce.comp) and the down-sweep of the prefix sums
+ * (hp_downsweep.comp).  The extraction (pipeline.c) builds its pyramid over
+ * the classified cells with hp_build(); hp_selftest() builds one over given
+ * level-0 bytes with the very same calls. */
+#include "extract_int.h"
+#include "gpu.h"
+#include "abi.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void hp_plan(struct hp_levels *h, uint32_t words)
+{
+	memset(h, 0, sizeof(*h));
+	int k = 1;
+	h->n[1] = words ? words : 1;
+	while (h->n[k] > 1) {
+		h->n[k + 1] = div_up(h->n[k], 4);
+		k++;
+	}
+	h->top = k;
+	uint32_t o = 0;
+	for (int i = 1; i <= k; i++) {
+		h->pad[i] = i < k ? 4 * h->n[i + 1] : 1;
+		h->off[i] = o;
+		o += h->pad[i];
+	}
+	h->nodes = o;
+}
+
+void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
+{
+	GLint loc = glGetUniformLocation(prog, "u_hp_off");
+	if (loc >= 0)
+		glProgramUniform1uiv(prog, loc, HP_MAX_LEVELS, h->off);
+	loc = glGetUniformLocation(prog, "u_hp_top");
+	if (loc >= 0)
+		glProgramUniform1i(prog, loc, h->top);
+	loc = glGetUniformLocation(prog, "u_pre_base");
+	if (loc >= 0)
+		glProgramUniform1ui(prog, loc, h->nodes);
+}
+
+void hp_dispatch_1d(uint64_t items, int max_groups)
+{
+	uint32_t groups = div_up(items, 64);
+	if (!groups)
+		return;
+	uint32_t gx = groups < (uint32_t)max_groups ? groups : (uint32_t)max_groups;
+	glDispatchCompute(gx, div_up(groups, gx), 1);
+}
+
+void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups)
+{
+	hp_set_uniforms(reduce, h);
+	GLint l_level = glGetUniformLocation(reduce, "u_level");
+	GLint l_count = glGetUniformLocation(reduce, "u_count");
+	GLint l_pad = glGetUniformLocation(reduce, "u_padded");
+	glUseProgram(reduce);
+	for (int k = 2; k <= h->top; k++) {
+		glProgramUniform1i(reduce, l_level, k);
+		glProgramUniform1ui(reduce, l_count, h->n[k]);
+		glProgramUniform1ui(reduce, l_pad, h->pad[k]);
+		hp_dispatch_1d(h->pad[k], max_groups);
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	}
+
+	/* prefix sums, top down: the top node's prefix is 0 */
+	hp_set_uniforms(downsweep, h);
+	glUseProgram(downsweep);
+	uint32_t zero[2] = { 0, 0 };
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b_hp);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(h->nodes + h->off[h->top]) * 8, 8, zero);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	GLint l_lev = glGetUniformLocation(downsweep, "u_level");
+	GLint l_cnt = glGetUniformLocation(downsweep, "u_count");
+	for (int k = h->top - 1; k >= 1; k--) {
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+		glProgramUniform1i(downsweep, l_lev, k);
+		glProgramUniform1ui(downsweep, l_cnt, h->n[k]);
+		hp_dispatch_1d(h->n[k], max_groups);
+	}
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* ---- the self-test hook ------------------------------------------------------ */
+
+struct hp_test {
+	struct hp_levels h;
+	int max_groups;
+	uint32_t words;
+	GLuint prog, reduce, down;  /* hp_test.comp, hp_reduce.comp, hp_downsweep.comp */
+	GLuint b_l0, b_hp, b_out;
+};
+
+static void hp_test_free(struct hp_test *t)
+{
+	glUseProgram(0);
+	GLuint bufs[3] = { t->b_l0, t->b_hp, t->b_out };
+	for (int i = 0; i < 3; i++)
+		if (bufs[i])
+			glDeleteBuffers(1, &bufs[i]);
+	GLuint progs[3] = { t->prog, t->reduce, t->down };
+	for (int i = 0; i < 3; i++)
+		if (progs[i])
+			glDeleteProgram(progs[i]);
+}
+
+/* Programs, the level-0 words from the bytes, the pyramid and the output
+ * buffer (outn keys or prefixes of 8 bytes). */
+static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, uint32_t outn, char *err,
+			 size_t errlen)
+{
+	glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &t->max_groups);
+	if (t->max_groups <= 0)
+		t->max_groups = 65535;
+	t->words = div_up(n, 4);
+	hp_plan(&t->h, t->words);
+	if (!(t->prog = gpu_compute_program("hp_test.comp", NULL, err, errlen)) ||
+	    !(t->reduce = gpu_compute_program("hp_reduce.comp", NULL, err, errlen)) ||
+	    !(t->down = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen)))
+		return -1;
+	uint32_t *words = calloc(t->words ? t->words : 1, 4);
+	if (!words) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	for (uint32_t i = 0; i < n; i++)
+		words[i / 4] |= (uint32_t)bytes[i] << (8 * (i % 4));
+	t->b_l0 = extract_buffer((GLsizeiptr)t->words * 4, words, GL_STATIC_DRAW);
+	free(words);
+	t->b_hp = extract_buffer((GLsizeiptr)t->h.nodes * 16, NULL, GL_DYNAMIC_COPY);
+	t->b_out = extract_buffer((GLsizeiptr)(outn ? outn : 1) * 8, NULL, GL_DYNAMIC_COPY);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, t->b_l0);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, t->b_hp);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_TEST_OUT, t->b_out);
+	return 0;
+}
+
+/* Runs hp_test.comp in mode (0 level 1, 1 traversal, 2 prefix sums) over
+ * count items. */
+static void hp_test_pass(const struct hp_test *t, int mode, uint32_t count)
+{
+	glUseProgram(t->prog);
+	glProgramUniform1i(t->prog, glGetUniformLocation(t->prog, "u_mode"), mode);
+	glProgramUniform1ui(t->prog, glGetUniformLocation(t->prog, "u_n"), count);
+	hp_dispatch_1d(count, t->max_groups);
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
+		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen)
+{
+	struct hp_test t;
+	memset(&t, 0, sizeof(t));
+	size_t room = (size_t)n * (comp == 0 ? 5 : 3);
+	uint32_t *tmp = malloc(8 * (room ? room : 1));
+	int rc = tmp ? hp_test_setup(&t, bytes, n, (uint32_t)room, err, errlen) : -1;
+	if (!tmp)
+		snprintf(err, errlen, "out of memory");
+	uint32_t top[2] = { 0, 0 };
+	if (rc == 0) {
+		hp_set_uniforms(t.prog, &t.h);
+		glProgramUniform1ui(t.prog, glGetUniformLocation(t.prog, "u_words"), t.words);
+		glProgramUniform1i(t.prog, glGetUniformLocation(t.prog, "u_comp"), comp);
+		hp_test_pass(&t, 0, t.h.pad[1]); /* level 1 from the bytes */
+		hp_build(&t.h, t.reduce, t.down, t.b_hp, t.max_groups);
+		rc = extract_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);
+	}
+	if (rc == 0) {
+		total[0] = top[0];
+		total[1] = top[1];
+		if (top[comp] > room) {
+			snprintf(err, errlen, "hp_selftest: total %u exceeds %zu (bad level-0 bytes?)", top[comp], room);
+			rc = -1;
+		}
+	}
+	if (rc == 0) {
+		hp_test_pass(&t, 1, top[comp]); /* every output key -> (cell, rank) */
+		rc = extract_read_buffer(t.b_out, 0, (GLsizeiptr)top[comp] * 8, tmp);
+		for (uint32_t i = 0; rc == 0 && i < top[comp]; i++) {
+			key_cell[i] = tmp[2 * i];
+			key_rank[i] = tmp[2 * i + 1];
+		}
+	}
+	if (rc == 0) {
+		hp_test_pass(&t, 2, n); /* every cell's prefix, both ways */
+		rc = extract_read_buffer(t.b_out, 0, (GLsizeiptr)n * 8, tmp);
+		for (uint32_t i = 0; rc == 0 && i < n; i++) {
+			prefix[i] = tmp[2 * i];
+			if (prefix_fast)
+				prefix_fast[i] = tmp[2 * i + 1];
+		}
+	}
+	free(tmp);
+	hp_test_free(&t);
+	if (rc == 0 && gpu_check("hp_selftest") < 0)
+		rc = -1;
+	return rc;
+}

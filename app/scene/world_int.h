@@ -1,0 +1,103 @@
+/* isoterra — inside the streaming world: its state and what its files
+ * share (world.c: the pool, the frame, the hooks; world_plan.c: the block
+ * table and the blocks a camera wants; world_gen.c: generating blocks into
+ * slots and learning their results).  Nothing outside app/scene/world*.c
+ * includes this. */
+#ifndef ISOTERRA_WORLD_INT_H
+#define ISOTERRA_WORLD_INT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <GLES3/gl31.h>
+
+#include "world.h"
+#include "abi.h"
+#include "edits.h"
+#include "pipeline.h"
+#include "terrain.h"
+
+enum bstate { B_FREE = 0, B_PENDING, B_READY, B_EMPTY };
+
+struct block {
+	int key[4];          /* x, y, z, lod */
+	enum bstate state;
+	int slot;
+	double born;         /* time it became drawable (fade in) */
+	float dist;          /* distance to the camera this frame */
+	uint32_t frame;      /* last frame it was wanted */
+	bool visible;        /* in the view frustum (else only prefetched) */
+	int readback;        /* index in the readback ring, or -1 */
+	bool stale;          /* terrain edited under it: regenerate in place */
+	int generations;     /* times generated (tests) */
+};
+
+struct readback {
+	GLuint buf;
+	GLsync fence;
+	int block;           /* block index, -1 = free */
+};
+
+#define READBACKS 64
+/* a generated block's counters, copied out of its status block for the
+ * fence-guarded read-back: triangles/vertices needed ... overflow flag */
+#define RB_FIRST ST_TRIS_NEEDED
+#define RB_WORDS (ST_OVERFLOW - ST_TRIS_NEEDED + 1)
+#define RB_BYTES (RB_WORDS * 4)
+#define AO_MARGIN 6      /* extra density samples around a block: short AO rays */
+
+/* a wanted block with its sort keys (nearest first) */
+struct want_key {
+	float dist;
+	int key[4];
+	int block;
+};
+
+struct world {
+	struct edits *ed;          /* borrowed: the terrain edits */
+	struct terrain *terrain;   /* the field the blocks are extracted from */
+	struct pipeline *pl;
+	int n;               /* cells per block edge */
+	GLuint vbo, ibo, status;
+	GLintptr vstride, istride, sstride;
+	uint32_t vcap, tcap;
+	int slots;
+	int *slot_block;     /* slot -> block index, -1 free */
+	struct block *blocks;
+	uint32_t cap, count; /* hash table of blocks (open addressing) */
+	struct readback rb[READBACKS];
+	uint32_t frame;
+	double credit_ms;    /* generation budget left (negative: owed) */
+	struct world_stats st;
+	/* this frame's wanted blocks, nearest first */
+	int *want;
+	struct want_key *want_sort; /* want_cap of them: sorting want[] */
+	int nwant, want_cap;
+};
+
+/* ---- world_plan.c -------------------------------------------------------- */
+
+/* Index of the block with key k (x, y, z, lod), creating it (B_FREE) if
+ * asked; -1 when absent or out of memory.  Indices move with a rehash. */
+int find_block(struct world *w, const int k[4], bool create);
+float block_world_size(const struct params *p, int lod);
+void block_aabb(const struct params *p, const int k[4], float lo[3], float hi[3]);
+/* Range of a level: lod_distance of its blocks, the coarsest to view_distance. */
+float lod_range(const struct params *p, int lod);
+/* The blocks this camera wants into want[], nearest first.  0/-1. */
+int plan_blocks(struct world *w, const struct params *p, const struct camera *c);
+
+/* ---- world_gen.c ----------------------------------------------------------- */
+
+void block_grid(const struct world *w, const struct params *p, const int k[4], struct grid *g);
+/* A slot for a block at distance d: a free one, or the farthest block's
+ * that is not wanted this frame or is farther than d; -1 if none. */
+int take_slot(struct world *w, float d);
+/* Collects finished results (waiting for them with wait): empty blocks
+ * give their slot back. */
+void collect_results(struct world *w, bool wait);
+/* A free entry of the readback ring, or -1. */
+int free_readback(struct world *w);
+/* Generates block b into slot and asks for its result.  0/-1. */
+int generate_block(struct world *w, const struct params *p, int b, int slot, double now);
+
+#endif
