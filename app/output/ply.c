@@ -221,6 +221,77 @@ static int read_header(FILE *f, const char *path, uint32_t *nv, uint32_t *nf, ch
 	return 0;
 }
 
+/* The body after the header must be exactly nv vertices and nf triangles. */
+static int check_body(FILE *f, const char *path, uint32_t nv, uint32_t nf, char *err, size_t errlen)
+{
+	long start = ftell(f);
+	struct stat st;
+	if (start < 0 || fstat(fileno(f), &st) < 0) {
+		snprintf(err, errlen, "cannot read '%s': %s", path, strerror(errno));
+		return -1;
+	}
+	uint64_t want = (uint64_t)nv * PLY_VERTEX_BYTES + (uint64_t)nf * FACE_BYTES;
+	uint64_t have = (uint64_t)st.st_size - (uint64_t)start;
+	if (have != want) {
+		snprintf(err, errlen, "'%s': %s PLY body (%" PRIu64 " bytes, %" PRIu32 " vertices and %" PRIu32
+		         " faces need %" PRIu64 ")", path, have < want ? "truncated" : "oversized", have, nv, nf, want);
+		return -1;
+	}
+	return 0;
+}
+
+/* 0, or -1 on a short read. */
+static int read_vertices(FILE *f, struct mesh *m)
+{
+	uint8_t buf[CHUNK * PLY_VERTEX_BYTES];
+	for (uint32_t v = 0; v < m->nverts;) {
+		uint32_t chunk = m->nverts - v < CHUNK ? m->nverts - v : CHUNK;
+		if (fread(buf, PLY_VERTEX_BYTES, chunk, f) != chunk)
+			return -1;
+		for (uint32_t i = 0; i < chunk; i++, v++)
+			for (int k = 0; k < 3; k++) {
+				m->pos[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 4 * k);
+				m->nrm[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 12 + 4 * k);
+			}
+	}
+	return 0;
+}
+
+/* Face t's three indices, checked.  0, or -2 with err. */
+static int read_face(const uint8_t *b, uint32_t t, struct mesh *m, const char *path, char *err, size_t errlen)
+{
+	if (b[0] != 3) {
+		snprintf(err, errlen, "'%s': face %" PRIu32 " has %u vertices (only triangles supported)", path, t,
+		         (unsigned)b[0]);
+		return -2;
+	}
+	for (int k = 0; k < 3; k++) {
+		uint32_t idx = get_u32(b + 1 + 4 * k);
+		if (idx >= m->nverts) {
+			snprintf(err, errlen, "'%s': face %" PRIu32 " references vertex %" PRIu32 " of %" PRIu32, path, t,
+			         idx, m->nverts);
+			return -2;
+		}
+		m->idx[3 * (size_t)t + k] = idx;
+	}
+	return 0;
+}
+
+/* 0, -1 on a short read, -2 with err on a bad face. */
+static int read_faces(FILE *f, struct mesh *m, const char *path, char *err, size_t errlen)
+{
+	uint8_t buf[CHUNK * FACE_BYTES];
+	for (uint32_t t = 0; t < m->ntris;) {
+		uint32_t chunk = m->ntris - t < CHUNK ? m->ntris - t : CHUNK;
+		if (fread(buf, FACE_BYTES, chunk, f) != chunk)
+			return -1;
+		for (uint32_t i = 0; i < chunk; i++, t++)
+			if (read_face(buf + i * FACE_BYTES, t, m, path, err, errlen) < 0)
+				return -2;
+	}
+	return 0;
+}
+
 int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 {
 	memset(m, 0, sizeof(*m));
@@ -230,23 +301,7 @@ int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 		return -1;
 	}
 	uint32_t nv = 0, nf = 0;
-	if (read_header(f, path, &nv, &nf, err, errlen) < 0) {
-		fclose(f);
-		return -1;
-	}
-	/* The body must be exactly nv vertices and nf triangles. */
-	long start = ftell(f);
-	struct stat st;
-	if (start < 0 || fstat(fileno(f), &st) < 0) {
-		snprintf(err, errlen, "cannot read '%s': %s", path, strerror(errno));
-		fclose(f);
-		return -1;
-	}
-	uint64_t want = (uint64_t)nv * PLY_VERTEX_BYTES + (uint64_t)nf * FACE_BYTES;
-	uint64_t have = (uint64_t)st.st_size - (uint64_t)start;
-	if (have != want) {
-		snprintf(err, errlen, "'%s': %s PLY body (%" PRIu64 " bytes, %" PRIu32 " vertices and %" PRIu32
-		         " faces need %" PRIu64 ")", path, have < want ? "truncated" : "oversized", have, nv, nf, want);
+	if (read_header(f, path, &nv, &nf, err, errlen) < 0 || check_body(f, path, nv, nf, err, errlen) < 0) {
 		fclose(f);
 		return -1;
 	}
@@ -255,48 +310,9 @@ int ply_read(struct mesh *m, const char *path, char *err, size_t errlen)
 		fclose(f);
 		return -1;
 	}
-	uint8_t buf[CHUNK * PLY_VERTEX_BYTES];
-	int rc = 0;
-	for (uint32_t v = 0; v < nv && rc == 0;) {
-		uint32_t chunk = nv - v < CHUNK ? nv - v : CHUNK;
-		if (fread(buf, PLY_VERTEX_BYTES, chunk, f) != chunk) {
-			rc = -1;
-			break;
-		}
-		for (uint32_t i = 0; i < chunk; i++, v++)
-			for (int k = 0; k < 3; k++) {
-				m->pos[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 4 * k);
-				m->nrm[3 * (size_t)v + k] = get_f32(buf + i * PLY_VERTEX_BYTES + 12 + 4 * k);
-			}
-	}
-	for (uint32_t t = 0; t < nf && rc == 0;) {
-		uint32_t chunk = nf - t < CHUNK ? nf - t : CHUNK;
-		if (fread(buf, FACE_BYTES, chunk, f) != chunk) {
-			rc = -1;
-			break;
-		}
-		for (uint32_t i = 0; i < chunk; i++, t++) {
-			const uint8_t *b = buf + i * FACE_BYTES;
-			if (b[0] != 3) {
-				snprintf(err, errlen, "'%s': face %" PRIu32 " has %u vertices (only triangles supported)",
-				         path, t, (unsigned)b[0]);
-				rc = -2;
-				break;
-			}
-			for (int k = 0; k < 3; k++) {
-				uint32_t idx = get_u32(b + 1 + 4 * k);
-				if (idx >= nv) {
-					snprintf(err, errlen, "'%s': face %" PRIu32 " references vertex %" PRIu32
-					         " of %" PRIu32, path, t, idx, nv);
-					rc = -2;
-					break;
-				}
-				m->idx[3 * (size_t)t + k] = idx;
-			}
-			if (rc)
-				break;
-		}
-	}
+	int rc = read_vertices(f, m);
+	if (rc == 0)
+		rc = read_faces(f, m, path, err, errlen);
 	if (rc == -1)
 		snprintf(err, errlen, "cannot read '%s': %s", path, ferror(f) ? strerror(errno) : "unexpected end of file");
 	fclose(f);
