@@ -19,5 +19,6 @@
 #include "pipeline.h"
 #include "render.h"
 #include "platform.h"
+#include "controls.h"
 
 #endif

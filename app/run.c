@@ -1,6 +1,6 @@
 /* isoterra — the main job: headless frames of the terrain to PNG. */
 #include "render.h"
-#include "hal.h"
+#include "controls.h"
 #include "cli.h"
 #include "gpu.h"
 #include "clock.h"
@@ -17,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "v4l2_out.h"
 #include "world.h"
 #include "y4m.h"
 
@@ -157,7 +158,8 @@ struct frame_out {
 	struct renderer *r;
 	int w, h;
 	int frames; /* frames finished */
-	struct hal *hal; /* issue 5: knobs, keys, OSD, V4L2 output */
+	struct controls *ctl;  /* knobs, keys, OSD, screenshots */
+	struct v4l2_out *v4l2; /* V4L2 output */
 };
 
 static bool frame_more(const struct params *p, int f)
@@ -183,6 +185,21 @@ static const char *frame_dest(const struct frame_out *o, const struct params *p)
 	return p->count == 0 ? "(display only: no image)" : "(stopped before the last frame: no image)";
 }
 
+/* OSD and screenshot (the controls), then the V4L2 output. */
+static int frame_overlays(struct frame_out *o, const struct params *p)
+{
+	char err[512];
+	if (controls_frame(o->ctl, o->r, p, err, sizeof(err)) < 0) {
+		if (err[0])
+			log_error("%s", err);
+		return -1;
+	}
+	unsigned fbo;
+	int w, h;
+	renderer_target(o->r, &fbo, &w, &h);
+	return v4l2_out_frame(o->v4l2, fbo, w, h);
+}
+
 static int run_volume(struct params *p, struct frame_out *o)
 {
 	char err[512] = "";
@@ -198,15 +215,15 @@ static int run_volume(struct params *p, struct frame_out *o)
 	struct camera cam;
 	float t0 = p->time;
 	for (int f = 0; frame_more(p, f); f++) {
-		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
+		if (controls_poll(o->ctl, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
 			o->fs->count = p->count = f + 1;
-		float t = hal_time(o->hal, (float)f / p->fps);
+		float t = controls_time(o->ctl, (float)f / p->fps);
 		p->time = t0 + t;
 		if (pipeline_run(pl, p) < 0)
 			goto out;
 		pipeline_draw_info(pl, &d);
 		camera_orbit(&cam, p, &g, t, (float)o->w / (float)o->h);
-		if (renderer_draw(o->r, &d, &cam, p) < 0 || hal_frame(o->hal, o->r, p) < 0)
+		if (renderer_draw(o->r, &d, &cam, p) < 0 || frame_overlays(o, p) < 0)
 			goto out;
 		int q = frame_done(o, f);
 		if (q < 0)
@@ -273,20 +290,20 @@ static int run_world(struct params *p, struct frame_out *o)
 		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s)",
 			 p->keyboard == KEYBOARD_OFF ? "off!" : "terminal or evdev");
 	for (int f = 0; frame_more(p, f); f++) {
-		if (hal_poll(o->hal, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
+		if (controls_poll(o->ctl, p)) /* issue 5: inputs -> parameters; quit: this frame is the last */
 			o->fs->count = p->count = f + 1;
 		double t = live ? clock_ms() / 1e3 - start : (double)f / p->fps;
-		t -= (double)((float)t - hal_time(o->hal, (float)t)); /* paused time */
+		t -= (double)((float)t - controls_time(o->ctl, (float)t)); /* paused time */
 		p->time = t0; /* the world does not scroll: the camera moves */
 		if (p->camera == CAMERA_MANUAL) { /* manual: the keys steer, rock still stops */
 			float move[3], turn[2];
-			hal_flight(o->hal, move, turn);
+			controls_flight(o->ctl, move, turn);
 			autopilot_steer(&ap, move, turn);
 		}
 		autopilot_advance(&ap, t);
 		autopilot_camera(&ap, &cam, p->fov, (float)o->w / (float)o->h, far);
 		int urc = f == 0 ? world_fill(wd, p, &cam, t) : world_update(wd, p, &cam, t, !live);
-		if (urc < 0 || world_draw(wd, o->r, &cam, p, t) < 0 || hal_frame(o->hal, o->r, p) < 0)
+		if (urc < 0 || world_draw(wd, o->r, &cam, p, t) < 0 || frame_overlays(o, p) < 0)
 			goto out;
 		int q = frame_done(o, f);
 		if (q < 0)
@@ -337,7 +354,8 @@ int run_headless(const struct params *p_in)
 	}
 	int rc = 1;
 	struct renderer *r = NULL;
-	struct hal *hal = NULL; /* issue 5: knobs, keys, OSD, V4L2 output */
+	struct controls *ctl = NULL; /* knobs, keys, OSD, screenshots */
+	struct v4l2_out *v4l2 = NULL;
 	/* issue 4: display platforms render at the window's / mode's size */
 	struct display_loop disp;
 	display_begin(&disp, plat, &p);
@@ -361,15 +379,24 @@ int run_headless(const struct params *p_in)
 		log_error("%s", err);
 		goto out;
 	}
-	hal = hal_open(&p, w, h, err, sizeof(err));
-	if (!hal) {
+	ctl = controls_create(&p, err, sizeof(err));
+	if (!ctl) {
+		log_error("%s", err);
+		rc = 2;
+		goto out;
+	}
+	struct hal_v4l2_config vc;
+	controls_v4l2_config(&p, w, h, &vc);
+	v4l2 = v4l2_out_open(&vc, err, sizeof(err));
+	if (!v4l2 && err[0]) {
 		log_error("%s", err);
 		rc = 2;
 		goto out;
 	}
 	if (sink_open(&fs, &p, w, h) < 0)
 		goto out;
-	struct frame_out o = { .fs = &fs, .plat = plat, .disp = &disp, .r = r, .w = w, .h = h, .hal = hal };
+	struct frame_out o = { .fs = &fs, .plat = plat, .disp = &disp, .r = r, .w = w, .h = h, .ctl = ctl,
+			      .v4l2 = v4l2 };
 	rc = p.scene == SCENE_WORLD ? run_world(&p, &o) : run_volume(&p, &o);
 	r = o.r; /* a resize may have replaced it */
 	if (sink_close(&fs) < 0)
@@ -377,7 +404,8 @@ int run_headless(const struct params *p_in)
 	if (quit_requested && rc == 0)
 		log_info("stopped by signal");
 out:
-	hal_close(hal);
+	v4l2_out_close(v4l2);
+	controls_destroy(ctl);
 	renderer_destroy(r);
 	platform_close(plat);
 	display_end(&disp);

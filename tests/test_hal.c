@@ -1,8 +1,9 @@
 /* isoterra — the knob mapping (parameter steps, clamping, snapping, enums,
  * booleans), the development keys' byte decoding, the pause clock, the OSD
  * (drawn where it should be, text visible, nothing outside its box) and
- * hal_open's configuration errors. */
+ * the configuration errors of the controls (app/controls.c over hal/). */
 #include "app.h"
+#include "controls.h"
 #include "hal.h"
 #include "osd.h"
 #include "font.h"
@@ -133,11 +134,11 @@ static void test_open(void)
 	char err[512];
 	params_defaults(&p);
 	/* nothing configured: a no-op object, time passes through */
-	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
+	struct controls *h = controls_create(&p, err, sizeof(err));
 	CHECK(h != NULL, "open: %s", err);
-	CHECK(hal_time(h, 1.5f) == 1.5f, "clock");
-	CHECK(hal_poll(h, &p) == 0, "no quit");
-	hal_close(h);
+	CHECK(controls_time(h, 1.5f) == 1.5f, "clock");
+	CHECK(controls_poll(h, &p) == 0, "no quit");
+	controls_destroy(h);
 	struct {
 		const char *key, *value, *msg;
 	} bad[] = {
@@ -150,18 +151,18 @@ static void test_open(void)
 		params_defaults(&p);
 		CHECK(params_set(&p, bad[i].key, bad[i].value, err, sizeof(err)) == 0, "set %s", bad[i].key);
 		err[0] = 0;
-		h = hal_open(&p, 64, 64, err, sizeof(err));
+		h = controls_create(&p, err, sizeof(err));
 		CHECK(h == NULL && strstr(err, bad[i].msg), "%s=%s refused with '%s': got '%s'", bad[i].key, bad[i].value,
 		      bad[i].msg, err);
-		hal_close(h);
+		controls_destroy(h);
 	}
 	params_defaults(&p);
 	params_set(&p, "gpio_chip", "gpiochip0", err, sizeof(err));
 	params_set(&p, "enc1_a", "1", err, sizeof(err));
 	params_set(&p, "enc1_b", "1", err, sizeof(err));
-	h = hal_open(&p, 64, 64, err, sizeof(err));
+	h = controls_create(&p, err, sizeof(err));
 	CHECK(h == NULL && strstr(err, "twice"), "a line used twice: %s", err);
-	hal_close(h);
+	controls_destroy(h);
 }
 
 int main(void)
