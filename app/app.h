@@ -20,5 +20,6 @@
 #include "render.h"
 #include "platform.h"
 #include "controls.h"
+#include "run.h"
 
 #endif
