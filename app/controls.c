@@ -144,24 +144,44 @@ static int text(const struct params *p, const char *fmt, int i, const char **s, 
 	return 0;
 }
 
+/* An enum key read by its index into a table of ref's choices: its choices
+ * must be ref's (or the first of them), checked here for keys the static
+ * assertions above do not name (another encoder). */
+static int same_choices(const struct params *p, const char *fmt, int i, const char *ref, int *v, char *err,
+			size_t errlen)
+{
+	const struct param_info *pi = key(fmt, i, err, errlen), *r = params_find(ref);
+	if (!pi)
+		return -1;
+	size_t n = pi->choices ? strlen(pi->choices) : 0;
+	if (pi->type != PT_ENUM || !r || !r->choices || strncmp(pi->choices, r->choices, n) ||
+	    (r->choices[n] && r->choices[n] != '|')) {
+		snprintf(err, errlen, "parameter '%s': its choices are not those of '%s'", pi->name, ref);
+		return -1;
+	}
+	*v = (int)params_get_number(p, pi);
+	return 0;
+}
+
 static int encoder_config(const struct params *p, int e, struct hal_encoder_config *ec, char *err, size_t errlen)
 {
-	double a, b, sw, al, bias, spd, action;
-	int n = e + 1;
+	double a, b, sw, al, spd;
+	int bias, action, n = e + 1;
 	if (text(p, "enc%d_chip", n, &ec->chip, err, errlen) < 0 || number(p, "enc%d_a", n, &a, err, errlen) < 0 ||
 	    number(p, "enc%d_b", n, &b, err, errlen) < 0 || number(p, "enc%d_sw", n, &sw, err, errlen) < 0 ||
-	    number(p, "enc%d_active_low", n, &al, err, errlen) < 0 || number(p, "enc%d_bias", n, &bias, err, errlen) < 0 ||
+	    number(p, "enc%d_active_low", n, &al, err, errlen) < 0 ||
+	    same_choices(p, "enc%d_bias", n, "button_bias", &bias, err, errlen) < 0 ||
 	    number(p, "enc%d_steps_per_detent", n, &spd, err, errlen) < 0 ||
-	    number(p, "enc%d_sw_action", n, &action, err, errlen) < 0)
+	    same_choices(p, "enc%d_sw_action", n, "button1_action", &action, err, errlen) < 0)
 		return -1;
 	ec->a = (int)a;
 	ec->b = (int)b;
 	ec->sw = (int)sw;
 	ec->active_low = al != 0;
-	ec->bias = bias_of[choice((int)bias, ARRAY_SIZE(bias_of))];
+	ec->bias = bias_of[choice(bias, ARRAY_SIZE(bias_of))];
 	ec->steps_per_detent = (int)spd;
 	ec->turn = e == 0 ? HAL_TURN_SELECT : HAL_TURN_CHANGE;
-	ec->sw_action = action_of[choice((int)action, ARRAY_SIZE(action_of))];
+	ec->sw_action = action_of[choice(action, ARRAY_SIZE(action_of))];
 	return 0;
 }
 
@@ -182,12 +202,13 @@ int controls_gpio_config(const struct params *p, struct hal_gpio_config *cfg, ch
 		if (encoder_config(p, e, &cfg->enc[e], err, errlen) < 0)
 			return -1;
 	for (int b = 0; b < HAL_BUTTONS; b++) {
-		double line, action;
+		double line;
+		int action;
 		if (number(p, "button%d_line", b + 1, &line, err, errlen) < 0 ||
-		    number(p, "button%d_action", b + 1, &action, err, errlen) < 0)
+		    same_choices(p, "button%d_action", b + 1, "button1_action", &action, err, errlen) < 0)
 			return -1;
 		cfg->button[b].line = (int)line;
-		cfg->button[b].action = action_of[choice((int)action, ARRAY_SIZE(action_of))];
+		cfg->button[b].action = action_of[choice(action, ARRAY_SIZE(action_of))];
 	}
 	return 0;
 }
