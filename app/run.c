@@ -94,6 +94,7 @@ struct run {
 	struct renderer *r;
 	int w, h;
 	struct controls *ctl;
+	struct sink *display;  /* opened with the platform, then the last sink */
 	struct sink_set sinks;
 	struct scene *scene;
 };
@@ -108,6 +109,8 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 		.mode = p->mode, .kms_legacy = p->kms_legacy };
 	rn->plat = platform_open(&po, err, errlen);
 	if (!rn->plat)
+		return 1;
+	if (!rn->plat->headless && !(rn->display = sink_display_open(rn->plat, p, err, errlen)))
 		return 1;
 	if (rn->plat->headless && p->count == 0) {
 		snprintf(err, errlen, "--count 0 (until closed) needs a display platform (gbm, wayland, x11), not '%s'",
@@ -137,9 +140,13 @@ static int open_run(struct run *rn, bool signals_ok, char *err, size_t errlen)
 	rn->ctl = controls_create(&rn->p, err, errlen);
 	if (!rn->ctl)
 		return 2;
-	rc = sinks_open(&rn->sinks, &rn->p, rn->plat, rn->w, rn->h, err, errlen);
+	rc = sinks_open(&rn->sinks, &rn->p, rn->w, rn->h, err, errlen);
 	if (rc)
 		return rc;
+	if (rn->display) {
+		sinks_add(&rn->sinks, rn->display); /* last: a resize re-creates the renderer */
+		rn->display = NULL;
+	}
 	rn->scene = scene_create(&rn->p, err, errlen);
 	return rn->scene ? 0 : 1;
 }
@@ -196,6 +203,8 @@ static void close_run(struct run *rn)
 	renderer_destroy(rn->r);
 	platform_close(rn->plat);
 	sinks_destroy(&rn->sinks);
+	if (rn->display)
+		rn->display->ops->destroy(rn->display);
 	signals_restore();
 }
 

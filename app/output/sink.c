@@ -1,6 +1,5 @@
 /* isoterra — the set of sinks a run writes to (see sink.h). */
 #include "sink.h"
-#include "platform.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -13,8 +12,7 @@ int sinks_add(struct sink_set *set, struct sink *s)
 	return 0;
 }
 
-int sinks_open(struct sink_set *set, const struct params *p, struct platform *plat, int w, int h, char *err,
-	       size_t errlen)
+int sinks_open(struct sink_set *set, const struct params *p, int w, int h, char *err, size_t errlen)
 {
 	memset(set, 0, sizeof(*set));
 	err[0] = 0;
@@ -26,8 +24,6 @@ int sinks_open(struct sink_set *set, const struct params *p, struct platform *pl
 	if (p->export_mesh[0] && sinks_add(set, sink_mesh_open(p->export_mesh, err, errlen)) < 0)
 		return 1;
 	if (sinks_add(set, sink_file_open(p, w, h, err, errlen)) < 0)
-		return 1;
-	if (!plat->headless && sinks_add(set, sink_display_open(plat, p, err, errlen)) < 0)
 		return 1;
 	return 0;
 }

@@ -74,7 +74,8 @@ struct sink *sink_mesh_open(const char *path, char *err, size_t errlen);
 /* A display platform (gbm, wayland, x11): each frame blitted to the window
  * and presented, window events handled, SIGINT/SIGTERM end the run (the
  * platform restores the display), the frame rate reported on SIGUSR1 and
- * every p->fps_report seconds (display.c). */
+ * every p->fps_report seconds, counted from this call: open it with the
+ * platform (display.c). */
 struct sink *sink_display_open(struct platform *plat, const struct params *p, char *err, size_t errlen);
 
 /* ---- every sink a run asks for ------------------------------------------------ */
@@ -83,11 +84,11 @@ struct sink_set {
 	struct sink *s[SINK_MAX];
 	int n;
 };
-/* The sinks p asks for, in frame order: V4L2, mesh export, the --out file,
- * the display (plat not headless).  0, or the exit code with err: 2 bad
- * configuration, 1 a file or device that cannot be opened. */
-int sinks_open(struct sink_set *set, const struct params *p, struct platform *plat, int w, int h, char *err,
-	       size_t errlen);
+/* The sinks p asks for, in frame order: V4L2, mesh export, the --out file
+ * (frames of w x h).  A display sink, opened with the platform, is added
+ * after them: it may re-create the renderer.  0, or the exit code with err:
+ * 2 bad configuration, 1 a file or device that cannot be opened. */
+int sinks_open(struct sink_set *set, const struct params *p, int w, int h, char *err, size_t errlen);
 /* Adds one (set full or s NULL: -1). */
 int sinks_add(struct sink_set *set, struct sink *s);
 /* One frame to every sink: 0 go on, 1 stop, -1 error with err. */
