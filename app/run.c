@@ -208,7 +208,7 @@ static void close_run(struct run *rn)
 	signals_restore();
 }
 
-int run_headless(const struct params *p_in)
+int run_program(const struct params *p_in)
 {
 	struct run rn;
 	memset(&rn, 0, sizeof(rn));

@@ -40,6 +40,6 @@ int render_to_image(const struct params *p, struct image *img, char *err, size_t
 /* The program's run: p->count frames (0 on a display: until closed) to
  * p->out, the display, the V4L2 device; the mesh to p->export_mesh.
  * Returns the process exit code. */
-int run_headless(const struct params *p);
+int run_program(const struct params *p);
 
 #endif
