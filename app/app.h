@@ -19,5 +19,7 @@
 #include "pipeline.h"
 #include "render.h"
 #include "platform.h"
+#include "controls.h"
+#include "run.h"
 
 #endif

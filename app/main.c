@@ -12,5 +12,5 @@ int main(int argc, char **argv)
 		return 2;
 	case CLI_RUN: break;
 	}
-	return run_headless(&p);
+	return run_program(&p);
 }

@@ -42,33 +42,72 @@ static double run(struct platform *plat, struct renderer *r, const struct pipeli
 	return (clock_ms() - t0) / frames;
 }
 
-int main(int argc, char **argv)
+struct options {
+	const char *plat_name, *size;
+	int frames, rounds, grid;
+};
+
+static int parse_args(int argc, char **argv, struct options *o)
 {
-	const char *plat_name = "auto", *size = "640x480";
-	int frames = 3, rounds = 15, grid = 64;
+	*o = (struct options){ .plat_name = "auto", .size = "640x480", .frames = 3, .rounds = 15, .grid = 64 };
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--platform") && i + 1 < argc)
-			plat_name = argv[++i];
+			o->plat_name = argv[++i];
 		else if (!strcmp(argv[i], "--size") && i + 1 < argc)
-			size = argv[++i];
+			o->size = argv[++i];
 		else if (!strcmp(argv[i], "--frames") && i + 1 < argc)
-			frames = atoi(argv[++i]);
+			o->frames = atoi(argv[++i]);
 		else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
-			rounds = atoi(argv[++i]);
+			o->rounds = atoi(argv[++i]);
 		else if (!strcmp(argv[i], "--grid") && i + 1 < argc)
-			grid = atoi(argv[++i]);
+			o->grid = atoi(argv[++i]);
 		else {
 			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--rounds N] [--grid N]\n",
 				argv[0]);
-			return 2;
+			return -1;
 		}
 	}
+	return 0;
+}
+
+/* The three steps in alternating rounds; the median round of each, printed.
+ * 0, or -1 when a frame failed. */
+static int measure(struct platform *plat, struct renderer *r, const struct pipeline_draw *d, const struct camera *c,
+		   const struct params *p, const struct options *o)
+{
+	static const char *names[] = { "draw (headless frame)", "draw + blit to window", "draw + blit + present" };
+	int rounds = o->rounds;
+	double ms[3], *t = malloc(sizeof(double) * 3 * (size_t)rounds);
+	if (!t)
+		return -1;
+	for (int k = 0; k < rounds; k++)
+		for (int s = DRAW; s <= PRESENT; s++)
+			if ((t[s * rounds + k] = run(plat, r, d, c, p, (enum step)s, o->frames)) < 0) {
+				free(t);
+				return -1;
+			}
+	for (int s = DRAW; s <= PRESENT; s++) {
+		qsort(t + s * rounds, (size_t)rounds, sizeof(double), bench_cmp_double);
+		ms[s] = t[s * rounds + rounds / 2];
+	}
+	free(t);
+	for (int s = DRAW; s <= PRESENT; s++)
+		printf("  %-24s %8.2f ms/frame  %7.1f fps  ratio %.3f\n", names[s], ms[s], 1e3 / ms[s], ms[s] / ms[DRAW]);
+	printf("  presented %lu, shown %lu\n", plat->presented, plat->shown);
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	struct options o;
 	int w, h;
-	if (cli_parse_size(size, &w, &h) < 0 || frames < 1 || rounds < 1 || rounds > 1000 || grid < 2) {
+	if (parse_args(argc, argv, &o) < 0)
+		return 2;
+	if (cli_parse_size(o.size, &w, &h) < 0 || o.frames < 1 || o.rounds < 1 || o.rounds > 1000 || o.grid < 2) {
 		fprintf(stderr, "bench_display: bad --size, --frames, --rounds or --grid\n");
 		return 2;
 	}
-	struct platform *plat = bench_open(plat_name, w, h);
+	struct platform *plat = bench_open(o.plat_name, w, h);
 	if (!plat)
 		return 1;
 	char err[512];
@@ -81,10 +120,10 @@ int main(int argc, char **argv)
 	w = plat->width;
 	h = plat->height;
 	printf("platform %s (%s), %dx%d, grid %d^3, %d rounds of %d frames per step\n", plat->backend->name,
-	       plat->device_desc, w, h, grid, rounds, frames);
+	       plat->device_desc, w, h, o.grid, o.rounds, o.frames);
 	struct params p;
 	params_defaults(&p);
-	p.grid = grid;
+	p.grid = o.grid;
 	p.cam_spin = 0;
 	struct grid g;
 	grid_from_params(&g, &p);
@@ -102,30 +141,10 @@ int main(int argc, char **argv)
 	pipeline_draw_info(pl, &d);
 	camera_orbit(&cam, &p, &g, 0.0f, (float)w / (float)h);
 	/* warm-up: shader compilation, first swap */
-	if (run(plat, r, &d, &cam, &p, PRESENT, 3) < 0)
-		goto fail;
-	static const char *names[] = { "draw (headless frame)", "draw + blit to window", "draw + blit + present" };
-	double ms[3], *t = malloc(sizeof(double) * 3 * (size_t)rounds);
-	if (!t)
-		goto fail;
-	for (int k = 0; k < rounds; k++)
-		for (int s = DRAW; s <= PRESENT; s++)
-			if ((t[s * rounds + k] = run(plat, r, &d, &cam, &p, (enum step)s, frames)) < 0) {
-				free(t);
-				goto fail;
-			}
-	for (int s = DRAW; s <= PRESENT; s++) {
-		qsort(t + s * rounds, (size_t)rounds, sizeof(double), bench_cmp_double);
-		ms[s] = t[s * rounds + rounds / 2];
-	}
-	free(t);
-	for (int s = DRAW; s <= PRESENT; s++)
-		printf("  %-24s %8.2f ms/frame  %7.1f fps  ratio %.3f\n", names[s], ms[s], 1e3 / ms[s], ms[s] / ms[DRAW]);
-	printf("  presented %lu, shown %lu\n", plat->presented, plat->shown);
-	rc = 0;
-	goto out;
-fail:
-	fprintf(stderr, "bench_display: a frame failed (see the log)\n");
+	if (run(plat, r, &d, &cam, &p, PRESENT, 3) < 0 || measure(plat, r, &d, &cam, &p, &o) < 0)
+		fprintf(stderr, "bench_display: a frame failed (see the log)\n");
+	else
+		rc = 0;
 out:
 	renderer_destroy(r);
 	pipeline_destroy(pl);

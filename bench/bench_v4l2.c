@@ -11,7 +11,6 @@
  * temporary file): the pipeline up to the kernel, without a driver.
  * usage: bench_v4l2 [--quick] [--platform NAME] [--device DEV] [--v4l2-fps N] */
 #include "app.h"
-#include "hal.h"
 #include "v4l2_out.h"
 #include "terrain.h"
 
@@ -49,13 +48,17 @@ static void find_output(char *path, size_t len)
 	}
 }
 
-static int sink_fd = -1;
-static unsigned long sink_errors;
+/* No device: each converted frame is written into a file. */
+struct file_out {
+	int fd;
+	unsigned long errors;
+};
+
 static void to_file(void *user, const uint8_t *bytes, size_t size)
 {
-	(void)user;
-	if (pwrite(sink_fd, bytes, size, 0) != (ssize_t)size)
-		sink_errors++;
+	struct file_out *fo = user;
+	if (pwrite(fo->fd, bytes, size, 0) != (ssize_t)size)
+		fo->errors++;
 }
 
 struct scene {
@@ -94,35 +97,149 @@ static double run(struct scene *s, struct v4l2_out *v, int n)
 	return n / (clock_ms() / 1e3 - t0);
 }
 
-int main(int argc, char **argv)
+struct options {
+	const char *plat_name, *dev, *sink_path;
+	int quick;
+	double fps;
+};
+
+static int parse_args(int argc, char **argv, struct options *o)
 {
-	const char *plat_name = "auto", *dev = NULL, *sink_path = NULL;
-	int quick = 0;
-	double fps = 30;
+	*o = (struct options){ .plat_name = "auto", .fps = 30 };
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--quick"))
-			quick = 1;
+			o->quick = 1;
 		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
-			plat_name = argv[++i];
+			o->plat_name = argv[++i];
 		else if (!strcmp(argv[i], "--device") && i + 1 < argc)
-			dev = argv[++i];
+			o->dev = argv[++i];
 		else if (!strcmp(argv[i], "--sink") && i + 1 < argc)
-			sink_path = argv[++i];
+			o->sink_path = argv[++i];
 		else if (!strcmp(argv[i], "--v4l2-fps") && i + 1 < argc)
-			fps = atof(argv[++i]);
+			o->fps = atof(argv[++i]);
 		else {
 			fprintf(stderr, "usage: %s [--quick] [--platform NAME] [--device DEV] [--sink FILE] [--v4l2-fps N]\n",
 				argv[0]);
-			return 2;
+			return -1;
 		}
 	}
+	return 0;
+}
+
+/* The outputs: paced and (without a device) every-frame.  0 or -1. */
+static int open_outputs(const struct options *o, const struct scene *s, struct file_out *fo, struct v4l2_out **paced,
+			struct v4l2_out **every)
+{
+	char err[512], found[64], tmpl[] = "/tmp/isoterra-bench-v4l2-XXXXXX";
+	const char *dev = o->dev;
+	if (!dev) {
+		find_output(found, sizeof(found));
+		dev = found[0] ? found : NULL;
+	}
+	if (dev) {
+		struct hal_v4l2_config vc = { .device = dev, .format = CF_YUYV, .matrix = CM_BT601,
+					      .io = HAL_V4L2_IO_AUTO, .fps = o->fps, .width = s->w, .height = s->h,
+					      .gpu = *controls_hal_gpu(), .log = controls_hal_log() };
+		*paced = v4l2_out_open(&vc, err, sizeof(err));
+		if (!*paced) {
+			fprintf(stderr, "bench: %s: %s\n", dev, err);
+			return -1;
+		}
+		printf("output: %s (a V4L2 video output device), YUYV 640x480 BT.601\n", dev);
+		return 0;
+	}
+	fo->fd = o->sink_path ? open(o->sink_path, O_WRONLY | O_CREAT | O_TRUNC, 0644) : mkstemp(tmpl);
+	if (fo->fd < 0) {
+		fprintf(stderr, "bench: %s: %s\n", o->sink_path ? o->sink_path : tmpl, strerror(errno));
+		return -1;
+	}
+	if (!o->sink_path)
+		unlink(tmpl);
+	struct frame_format f = { .fmt = CF_YUYV, .width = s->w, .height = s->h, .matrix = CM_BT601 };
+	conv_fmt_tight(f.fmt, s->w, s->h, &f.bytesperline, &f.sizeimage);
+	*paced = v4l2_out_open_sink(&f, o->fps, to_file, fo, controls_hal_gpu(), err, sizeof(err));
+	*every = *paced ? v4l2_out_open_sink(&f, 0, to_file, fo, controls_hal_gpu(), err, sizeof(err)) : NULL;
+	if (!*every) {
+		fprintf(stderr, "bench: %s\n", err);
+		return -1;
+	}
+	printf("output: no V4L2 output device here: GPU conversion to YUYV 640x480 BT.601, PBO read-back and "
+	       "write() of each frame into %s (no driver)\n", o->sink_path ? o->sink_path : "a temporary file");
+	return 0;
+}
+
+/* The output path alone, on the last rendered frame: resolve, GPU
+ * conversion, read-back and hand-over, each frame finished.  Only unpaced
+ * (the sink): a device's output waits for its frame slots.  ms per frame,
+ * or -1. */
+static double output_alone(struct scene *s, struct v4l2_out *every, int n)
+{
+	unsigned fbo;
+	int fw, fh;
+	renderer_target(s->r, &fbo, &fw, &fh);
+	double t1 = clock_ms();
+	for (int i = 0; i < n; i++) {
+		if (v4l2_out_frame(every, fbo, fw, fh) < 0)
+			return -1;
+		glFinish();
+	}
+	return (clock_ms() - t1) / n;
+}
+
+static double median(double *v, int n)
+{
+	qsort(v, (size_t)n, sizeof(double), bench_cmp_double);
+	return v[n / 2];
+}
+
+/* Rounds of A (no output), B (paced), C (every frame); the medians. */
+static int measure(struct scene *s, const struct options *o, struct v4l2_out *paced, struct v4l2_out *every)
+{
+	run(s, paced, 3); /* warm-up: shaders, converter */
+	if (every)
+		run(s, every, 3);
+	run(s, NULL, 3);
+	int rounds = o->quick ? 3 : 5, n = o->quick ? 10 : 30;
+	double a[16], b[16], c[16];
+	for (int i = 0; i < rounds; i++) {
+		a[i] = run(s, NULL, n);
+		b[i] = run(s, paced, n);
+		c[i] = every ? run(s, every, n) : 0;
+		if (a[i] < 0 || b[i] < 0 || c[i] < 0) {
+			fprintf(stderr, "bench: rendering failed\n");
+			return -1;
+		}
+	}
+	double ma = median(a, rounds), mb = median(b, rounds), mc = median(c, rounds);
+	printf("%d rounds x %d frames, median fps:\n", rounds, n);
+	printf("  no video output          %7.1f fps\n", ma);
+	printf("  V4L2 out paced to %2.0f fps %7.1f fps  (%+.1f%% vs no output)%s\n", o->fps, mb, 100 * (mb / ma - 1),
+	       ma > o->fps ? "  [the render loop is paced to the output rate]" : "");
+	if (!every)
+		return 0;
+	printf("  V4L2 out, every frame    %7.1f fps  (%+.1f%% vs no output)\n", mc, 100 * (mc / ma - 1));
+	double out_ms = output_alone(s, every, n);
+	if (out_ms < 0) {
+		fprintf(stderr, "bench: video output failed\n");
+		return -1;
+	}
+	printf("  output path alone        %7.1f ms per frame (%.1f%% of a %.0f ms frame without output)\n", out_ms,
+	       100 * out_ms * ma / 1e3, 1e3 / ma);
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	struct options o;
+	if (parse_args(argc, argv, &o) < 0)
+		return 2;
 	log_set_level(LOG_WARN);
-	char err[512], found[64];
+	char err[512];
 	struct scene s;
 	memset(&s, 0, sizeof(s));
 	s.w = 640;
 	s.h = 480;
-	struct platform *plat = bench_open(plat_name, 64, 64);
+	struct platform *plat = bench_open(o.plat_name, 64, 64);
 	if (!plat)
 		return 1;
 	params_defaults(&s.p);
@@ -136,91 +253,17 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;
 	}
-	if (!dev) {
-		find_output(found, sizeof(found));
-		dev = found[0] ? found : NULL;
-	}
 	struct v4l2_out *paced = NULL, *every = NULL;
-	char tmpl[] = "/tmp/isoterra-bench-v4l2-XXXXXX";
-	if (dev) {
-		struct params q = s.p;
-		snprintf(q.v4l2, sizeof(q.v4l2), "%s", dev);
-		q.v4l2_format = 1 + CF_YUYV;
-		q.v4l2_fps = fps;
-		paced = v4l2_out_open(&q, s.w, s.h, err, sizeof(err));
-		if (!paced) {
-			fprintf(stderr, "bench: %s: %s\n", dev, err);
-			return 1;
-		}
-		printf("output: %s (a V4L2 video output device), YUYV 640x480 BT.601\n", dev);
-	} else {
-		sink_fd = sink_path ? open(sink_path, O_WRONLY | O_CREAT | O_TRUNC, 0644) : mkstemp(tmpl);
-		if (sink_fd < 0) {
-			fprintf(stderr, "bench: %s: %s\n", sink_path ? sink_path : tmpl, strerror(errno));
-			return 1;
-		}
-		if (!sink_path)
-			unlink(tmpl);
-		struct frame_format f = { .fmt = CF_YUYV, .width = s.w, .height = s.h, .matrix = CM_BT601 };
-		conv_fmt_tight(f.fmt, s.w, s.h, &f.bytesperline, &f.sizeimage);
-		paced = v4l2_out_open_sink(&f, fps, to_file, NULL, err, sizeof(err));
-		every = paced ? v4l2_out_open_sink(&f, 0, to_file, NULL, err, sizeof(err)) : NULL;
-		if (!every) {
-			fprintf(stderr, "bench: %s\n", err);
-			return 1;
-		}
-		printf("output: no V4L2 output device here: GPU conversion to YUYV 640x480 BT.601, PBO read-back and "
-		       "write() of each frame into %s (no driver)\n", sink_path ? sink_path : "a temporary file");
-	}
-	printf("scene: volume, grid %d, 640x480; %s\n", s.p.grid, quick ? "quick" : "full");
-	run(&s, paced, 3); /* warm-up: shaders, converter */
-	if (every)
-		run(&s, every, 3);
-	run(&s, NULL, 3);
-	int rounds = quick ? 3 : 5, n = quick ? 10 : 30;
-	double a[16], b[16], c[16];
-	for (int i = 0; i < rounds; i++) {
-		a[i] = run(&s, NULL, n);
-		b[i] = run(&s, paced, n);
-		c[i] = every ? run(&s, every, n) : 0;
-		if (a[i] < 0 || b[i] < 0 || c[i] < 0) {
-			fprintf(stderr, "bench: rendering failed\n");
-			return 1;
-		}
-	}
-	qsort(a, rounds, sizeof(double), bench_cmp_double);
-	qsort(b, rounds, sizeof(double), bench_cmp_double);
-	qsort(c, rounds, sizeof(double), bench_cmp_double);
-	double ma = a[rounds / 2], mb = b[rounds / 2], mc = c[rounds / 2];
-	printf("%d rounds x %d frames, median fps:\n", rounds, n);
-	printf("  no video output          %7.1f fps\n", ma);
-	printf("  V4L2 out paced to %2.0f fps %7.1f fps  (%+.1f%% vs no output)%s\n", fps, mb, 100 * (mb / ma - 1),
-	       ma > fps ? "  [the render loop is paced to the output rate]" : "");
-	if (every)
-		printf("  V4L2 out, every frame    %7.1f fps  (%+.1f%% vs no output)\n", mc, 100 * (mc / ma - 1));
-	/* the output path alone, on the last rendered frame: resolve, GPU
-	 * conversion, read-back and hand-over, each frame finished.  Only
-	 * unpaced (the sink): a device's output waits for its frame slots. */
-	if (every) {
-		unsigned fbo;
-		int fw, fh;
-		renderer_target(s.r, &fbo, &fw, &fh);
-		double t1 = clock_ms();
-		for (int i = 0; i < n; i++) {
-			if (v4l2_out_frame(every, fbo, fw, fh) < 0) {
-				fprintf(stderr, "bench: video output failed\n");
-				return 1;
-			}
-			glFinish();
-		}
-		double out_ms = (clock_ms() - t1) / n;
-		printf("  output path alone        %7.1f ms per frame (%.1f%% of a %.0f ms frame without output)\n",
-		       out_ms, 100 * out_ms * ma / 1e3, 1e3 / ma);
-	}
+	struct file_out fo = { .fd = -1 };
+	if (open_outputs(&o, &s, &fo, &paced, &every) < 0)
+		return 1;
+	printf("scene: volume, grid %d, 640x480; %s\n", s.p.grid, o.quick ? "quick" : "full");
+	if (measure(&s, &o, paced, every) < 0)
+		return 1;
 	struct v4l2_stats st;
 	v4l2_out_stats(paced, &st);
 	printf("paced output: %lu frames written, %lu dropped (read-back busy)%s\n", st.written, st.dropped_busy,
-	       sink_errors ? ", WRITE ERRORS" : "");
+	       fo.errors ? ", WRITE ERRORS" : "");
 	if (every) {
 		v4l2_out_stats(every, &st);
 		printf("every-frame output: %lu frames written, %lu dropped (read-back busy)\n", st.written,
@@ -228,8 +271,8 @@ int main(int argc, char **argv)
 	}
 	v4l2_out_close(paced);
 	v4l2_out_close(every);
-	if (sink_fd >= 0)
-		close(sink_fd);
+	if (fo.fd >= 0)
+		close(fo.fd);
 	renderer_destroy(s.r);
 	pipeline_destroy(s.pl);
 	terrain_destroy(tr);

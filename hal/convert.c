@@ -1,9 +1,8 @@
 /* isoterra — GPU conversion and asynchronous read-back (see convert.h). */
 #include "convert.h"
-#include "gpu.h"
-#include "log.h"
 
 #include <linux/videodev2.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -72,15 +71,28 @@ struct slot {
 
 struct gpu_conv {
 	struct frame_format f;
+	struct hal_gpu gpu;
 	GLuint prog, src_tex, src_fbo, out_tex, out_fbo;
 	int src_w, src_h, out_h;
 	uint32_t words;
-	GLint l_src, l_scaled, l_w, l_h, l_bpl, l_size, l_words, l_out_w, l_k;
+	GLint l_scaled, l_w, l_h, l_bpl, l_size, l_words, l_out_w, l_k;
 	struct slot slots[MAX_SLOTS];
 	int nslots;
 	unsigned long seq;
 	int mapped; /* slot index mapped by gpu_conv_ready, -1 none */
 };
+
+/* glGetError() != GL_NO_ERROR -> reports "what: GL error 0x..." and returns -1. */
+static int gl_check(const struct gpu_conv *c, const char *what)
+{
+	GLenum e = glGetError();
+	if (e == GL_NO_ERROR)
+		return 0;
+	hal_logf(&c->gpu.log, HAL_ERROR, "%s: GL error 0x%04x", what, e);
+	while (glGetError() != GL_NO_ERROR)
+		;
+	return -1;
+}
 
 void gpu_conv_destroy(struct gpu_conv *c)
 {
@@ -121,8 +133,13 @@ static GLuint make_target(GLuint *tex, int w, int h, GLenum filter)
 	return st == GL_FRAMEBUFFER_COMPLETE ? fbo : (glDeleteFramebuffers(1, &fbo), 0u);
 }
 
-struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, char *err, size_t errlen)
+struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, const struct hal_gpu *gpu, char *err,
+				 size_t errlen)
 {
+	if (!gpu || !gpu->compile) {
+		snprintf(err, errlen, "the V4L2 conversion needs a shader compiler");
+		return NULL;
+	}
 	if (f->fmt >= CF_COUNT || f->width < 2 || f->height < 2 || nslots < 1 || nslots > MAX_SLOTS ||
 	    f->sizeimage < conv_fmt_min_size(f->fmt, f->height, f->bytesperline)) {
 		snprintf(err, errlen, "bad frame format for the GPU conversion");
@@ -134,16 +151,16 @@ struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, char 
 		return NULL;
 	}
 	c->f = *f;
+	c->gpu = *gpu;
 	c->mapped = -1;
 	c->nslots = nslots;
 	char defs[32];
 	snprintf(defs, sizeof(defs), "#define FMT %du\n", (int)f->fmt); /* one program per format */
-	c->prog = gpu_compute_program("v4l2_convert.comp", defs, err, errlen);
+	c->prog = gpu->compile(gpu->user, "v4l2_convert.comp", defs, err, errlen);
 	if (!c->prog) {
 		free(c);
 		return NULL;
 	}
-	c->l_src = glGetUniformLocation(c->prog, "u_src");
 	c->l_scaled = glGetUniformLocation(c->prog, "u_scaled");
 	c->l_w = glGetUniformLocation(c->prog, "u_w");
 	c->l_h = glGetUniformLocation(c->prog, "u_h");
@@ -162,7 +179,7 @@ struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, char 
 		glBufferData(GL_PIXEL_PACK_BUFFER, (GLsizeiptr)bytes, NULL, GL_STREAM_READ);
 	}
 	glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-	if (!c->out_fbo || gpu_check("V4L2 conversion setup") < 0) {
+	if (!c->out_fbo || gl_check(c, "V4L2 conversion setup") < 0) {
 		snprintf(err, errlen, "cannot set up the V4L2 conversion buffers (%dx%d %s)", f->width, f->height,
 			 conv_fmt_name(f->fmt));
 		gpu_conv_destroy(c);
@@ -192,7 +209,7 @@ int gpu_conv_submit(struct gpu_conv *c, GLuint src_fbo, int sw, int sh)
 		c->src_h = sh;
 		if (!c->src_fbo) {
 			c->src_w = 0;
-			log_error("V4L2 conversion: cannot create a %dx%d source texture", sw, sh);
+			hal_logf(&c->gpu.log, HAL_ERROR, "V4L2 conversion: cannot create a %dx%d source texture", sw, sh);
 			return -1;
 		}
 	}
@@ -205,9 +222,8 @@ int gpu_conv_submit(struct gpu_conv *c, GLuint src_fbo, int sw, int sh)
 	double kr, kb;
 	conv_matrix_k(c->f.matrix, &kr, &kb);
 	glUseProgram(c->prog);
-	glActiveTexture(GL_TEXTURE0);
+	glActiveTexture(GL_TEXTURE0 + c->gpu.tex_frame); /* the shader's binding: the frame's unit */
 	glBindTexture(GL_TEXTURE_2D, c->src_tex);
-	glUniform1i(c->l_src, 0);
 	glUniform1i(c->l_scaled, sw != c->f.width || sh != c->f.height);
 	glUniform1ui(c->l_w, (GLuint)c->f.width);
 	glUniform1ui(c->l_h, (GLuint)c->f.height);
@@ -216,10 +232,11 @@ int gpu_conv_submit(struct gpu_conv *c, GLuint src_fbo, int sw, int sh)
 	glUniform1ui(c->l_words, c->words);
 	glUniform1ui(c->l_out_w, OUT_W);
 	glUniform2f(c->l_k, (float)kr, (float)kb);
-	glBindImageTexture(0, c->out_tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+	glBindImageTexture(c->gpu.img_out, c->out_tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
 	glDispatchCompute((c->words + 63) / 64, 1, 1);
 	glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 	glBindTexture(GL_TEXTURE_2D, 0);
+	glActiveTexture(GL_TEXTURE0);
 	glUseProgram(0);
 
 	/* start the read-back into the slot's pixel buffer; fence it */
@@ -230,7 +247,7 @@ int gpu_conv_submit(struct gpu_conv *c, GLuint src_fbo, int sw, int sh)
 	glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 	glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 	c->slots[s].fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-	if (!c->slots[s].fence || gpu_check("V4L2 conversion") < 0)
+	if (!c->slots[s].fence || gl_check(c, "V4L2 conversion") < 0)
 		return -1;
 	glFlush();
 	c->slots[s].busy = true;
@@ -260,7 +277,7 @@ const uint8_t *gpu_conv_ready(struct gpu_conv *c, bool wait)
 	if (r == GL_TIMEOUT_EXPIRED)
 		return NULL;
 	if (r == GL_WAIT_FAILED) {
-		gpu_check("V4L2 read-back fence");
+		gl_check(c, "V4L2 read-back fence");
 		return NULL;
 	}
 	glDeleteSync(c->slots[s].fence);
@@ -270,7 +287,7 @@ const uint8_t *gpu_conv_ready(struct gpu_conv *c, bool wait)
 	glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 	c->slots[s].busy = false;
 	if (!ptr) {
-		gpu_check("V4L2 read-back map");
+		gl_check(c, "V4L2 read-back map");
 		return NULL;
 	}
 	c->mapped = s;

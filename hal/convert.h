@@ -10,6 +10,8 @@
 #include <stdint.h>
 #include <GLES3/gl31.h>
 
+#include "hal.h"
+
 enum conv_fmt { CF_YUYV, CF_UYVY, CF_NV12, CF_NV21, CF_YU12, CF_RGB24, CF_BGR24, CF_COUNT };
 enum conv_matrix { CM_BT601, CM_BT709 };
 
@@ -32,9 +34,23 @@ uint32_t conv_fmt_min_size(enum conv_fmt f, int h, uint32_t bpl);
 /* Kr, Kb of a matrix. */
 void conv_matrix_k(enum conv_matrix m, double *kr, double *kb);
 
+/* What the conversion needs from its host: its program, which the host's
+ * shader loader compiles from `file` (v4l2_convert.comp) with the extra
+ * #define lines in `defines` (0 with err on failure), and the texture and
+ * image units that program's bindings name (the host knows them from the
+ * same place the shader does). */
+struct hal_gpu {
+	GLuint (*compile)(void *user, const char *file, const char *defines, char *err, size_t errlen);
+	void *user;
+	GLuint tex_frame;   /* texture unit the frame is sampled from */
+	GLuint img_out;     /* image unit the packed bytes are written to */
+	struct hal_log log; /* GL errors */
+};
+
 struct gpu_conv;
 /* nslots pixel buffers (2..4).  Needs a current GLES 3.1 context. */
-struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, char *err, size_t errlen);
+struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, const struct hal_gpu *gpu, char *err,
+				 size_t errlen);
 void gpu_conv_destroy(struct gpu_conv *c);
 /* Resolves framebuffer src (sw x sh, may be multisampled), converts it and
  * starts the read-back into a free slot.  1 submitted, 0 no free slot (the

@@ -5,13 +5,13 @@
  * kernel timestamps) feed the decoders in rotary.c.  A chip that cannot be
  * opened, or whose lines cannot be requested, or that disappears (read
  * error, POLLERR, ENODEV from the periodic line-info check) is reported once
- * and retried every gpio_retry seconds. */
+ * and retried every retry_s seconds (struct hal_gpio_config). */
 #include "hal.h"
 #include "rotary.h"
-#include "log.h"
 
 #include <errno.h>
 #include <poll.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -20,7 +20,7 @@
 #include <gpiod.h>
 #endif
 
-#define NLINES 10 /* 2 encoders x (A, B, switch) + 4 buttons */
+#define NLINES (3 * HAL_ENCODERS + HAL_BUTTONS) /* encoders: A, B, switch; buttons */
 #define EVENTS_PER_READ 16 /* per line and poll: the kernel queues 16 (v1 uAPI) */
 
 enum role { R_ENC_A, R_ENC_B, R_ENC_SW, R_BUTTON };
@@ -30,9 +30,9 @@ struct gline {
 	int chip;         /* index into chips */
 	int offset;
 	enum role role;
-	int ctl;          /* encoder 0/1 or button 0..3 */
+	int ctl;          /* encoder or button index */
 	bool active_low;
-	int bias;         /* 0 as-is, 1 disable, 2 pull-up, 3 pull-down */
+	enum hal_bias bias;
 #ifdef HAVE_LIBGPIOD
 	struct gpiod_line *line;
 #endif
@@ -41,7 +41,7 @@ struct gline {
 };
 
 struct gchip {
-	char name[PARAM_STR_MAX];
+	char name[HAL_NAME_MAX];
 #ifdef HAVE_LIBGPIOD
 	struct gpiod_chip *chip;
 #endif
@@ -54,11 +54,13 @@ struct hal_gpio {
 	int nchips;
 	struct gline lines[NLINES];
 	int nlines;
-	struct rotary enc[2];
-	struct rotary_config enc_cfg[2];
-	struct button sw[2], btn[4];
-	int sw_action[2], btn_action[4];
+	struct rotary enc[HAL_ENCODERS];
+	struct rotary_config enc_cfg[HAL_ENCODERS];
+	enum hal_turn enc_turn[HAL_ENCODERS];
+	struct button sw[HAL_ENCODERS], btn[HAL_BUTTONS];
+	enum hal_action sw_action[HAL_ENCODERS], btn_action[HAL_BUTTONS];
 	uint64_t enc_debounce, btn_debounce, retry_ns, next_check;
+	struct hal_log log;
 };
 
 static int chip_index(struct hal_gpio *g, const char *name)
@@ -66,16 +68,16 @@ static int chip_index(struct hal_gpio *g, const char *name)
 	for (int i = 0; i < g->nchips; i++)
 		if (!strcmp(g->chips[i].name, name))
 			return i;
-	snprintf(g->chips[g->nchips].name, PARAM_STR_MAX, "%s", name);
+	snprintf(g->chips[g->nchips].name, HAL_NAME_MAX, "%s", name);
 	return g->nchips++;
 }
 
 static int add_line(struct hal_gpio *g, const char *what, const char *chip, int offset, enum role role, int ctl,
-		    bool active_low, int bias, char *err, size_t errlen)
+		    bool active_low, enum hal_bias bias, char *err, size_t errlen)
 {
 	if (offset < 0)
 		return 0;
-	if (!chip[0]) {
+	if (!chip || !chip[0]) {
 		snprintf(err, errlen, "%s is line %d but no gpiochip is set (gpio_chip or the control's *_chip)", what,
 			 offset);
 		return -1;
@@ -97,8 +99,6 @@ static int add_line(struct hal_gpio *g, const char *what, const char *chip, int 
 	l->fd = -1;
 	return 0;
 }
-
-void hal_gpio_close(struct hal_gpio *g);
 
 #ifdef HAVE_LIBGPIOD
 static void chip_down(struct hal_gpio *g, int c)
@@ -136,7 +136,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 	ch->chip = gpiod_chip_open_lookup(ch->name);
 	if (!ch->chip) {
 		if (!ch->reported)
-			log_warn("gpio: cannot open gpiochip '%s': %s; controls on it are off, retrying every %g s", ch->name,
+			hal_logf(&g->log, HAL_WARN, "gpio: cannot open gpiochip '%s': %s; controls on it are off, retrying every %g s", ch->name,
 				 strerror(errno), (double)g->retry_ns / 1e9);
 		ch->reported = true;
 		return false;
@@ -147,9 +147,9 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 			continue;
 		char d[32];
 		int flags = (l->active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0) |
-			    (l->bias == 1 ? GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE : 0) |
-			    (l->bias == 2 ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP : 0) |
-			    (l->bias == 3 ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN : 0);
+			    (l->bias == HAL_BIAS_DISABLE ? GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE : 0) |
+			    (l->bias == HAL_BIAS_PULL_UP ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP : 0) |
+			    (l->bias == HAL_BIAS_PULL_DOWN ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN : 0);
 		l->line = gpiod_chip_get_line(ch->chip, (unsigned)l->offset);
 		const char *fail = NULL;
 		if (!l->line)
@@ -161,7 +161,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 			fail = strerror(errno);
 		if (fail) {
 			if (!ch->reported)
-				log_warn("gpio: %s: line %d of '%s' (%s): %s; retrying every %g s", line_desc(l, d, sizeof(d)),
+				hal_logf(&g->log, HAL_WARN, "gpio: %s: line %d of '%s' (%s): %s; retrying every %g s", line_desc(l, d, sizeof(d)),
 					 l->offset, ch->name, gpiod_chip_label(ch->chip), fail, (double)g->retry_ns / 1e9);
 			ch->reported = true;
 			chip_down(g, c);
@@ -188,7 +188,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 			button_init(&g->btn[l->ctl], g->btn_debounce, l->level);
 		}
 	}
-	log_info("gpio: %s (%s) %s", gpiod_chip_name(ch->chip), gpiod_chip_label(ch->chip),
+	hal_logf(&g->log, HAL_INFO, "gpio: %s (%s) %s", gpiod_chip_name(ch->chip), gpiod_chip_label(ch->chip),
 		 ch->reported ? "is back" : "ready");
 	ch->up = true;
 	ch->reported = false;
@@ -198,7 +198,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 static void chip_gone(struct hal_gpio *g, int c, const char *why, uint64_t now)
 {
 	struct gchip *ch = &g->chips[c];
-	log_warn("gpio: gpiochip '%s' is gone (%s); controls on it are off, retrying every %g s", ch->name, why,
+	hal_logf(&g->log, HAL_WARN, "gpio: gpiochip '%s' is gone (%s); controls on it are off, retrying every %g s", ch->name, why,
 		 (double)g->retry_ns / 1e9);
 	chip_down(g, c);
 	ch->reported = true;
@@ -239,7 +239,48 @@ static uint64_t event_ns(const struct timespec *ts, uint64_t now)
 }
 #endif
 
-struct hal_gpio *hal_gpio_open(const struct params *p, char *err, size_t errlen)
+static const char *chip_or(const char *chip, const char *fallback)
+{
+	return chip && chip[0] ? chip : fallback;
+}
+
+/* Encoder e: its decoder and its lines (A, B, switch). */
+static int add_encoder(struct hal_gpio *g, const struct hal_gpio_config *cfg, int e, char *err, size_t errlen)
+{
+	const struct hal_encoder_config *ec = &cfg->enc[e];
+	const char *chip = chip_or(ec->chip, cfg->chip);
+	if ((ec->a < 0) != (ec->b < 0)) {
+		snprintf(err, errlen, "enc%d: set both enc%d_a and enc%d_b (or neither)", e + 1, e + 1, e + 1);
+		return -1;
+	}
+	g->enc_cfg[e] = (struct rotary_config){ .steps_per_detent = ec->steps_per_detent,
+						.debounce_ns = g->enc_debounce,
+						.accel_ns = (uint64_t)(cfg->enc_accel_ms * 1e6),
+						.accel_max = cfg->enc_accel_max };
+	if (!rotary_init(&g->enc[e], &g->enc_cfg[e], 0, 0)) {
+		snprintf(err, errlen, "enc%d_steps_per_detent must be 1, 2 or 4 (got %d)", e + 1, ec->steps_per_detent);
+		return -1;
+	}
+	if ((unsigned)ec->sw_action >= HAL_ACTION_COUNT) {
+		snprintf(err, errlen, "enc%d: bad switch action %d", e + 1, (int)ec->sw_action);
+		return -1;
+	}
+	g->enc_turn[e] = ec->turn;
+	g->sw_action[e] = ec->sw_action;
+	button_init(&g->sw[e], g->btn_debounce, 0);
+	static const char *const suffix[] = { "a", "b", "sw" };
+	const int line[] = { ec->a, ec->b, ec->sw };
+	const enum role role[] = { R_ENC_A, R_ENC_B, R_ENC_SW };
+	for (int k = 0; k < 3; k++) {
+		char what[32];
+		snprintf(what, sizeof(what), "enc%d_%s", e + 1, suffix[k]);
+		if (add_line(g, what, chip, line[k], role[k], e, ec->active_low, ec->bias, err, errlen) < 0)
+			return -1;
+	}
+	return 0;
+}
+
+struct hal_gpio *hal_gpio_open(const struct hal_gpio_config *cfg, char *err, size_t errlen)
 {
 	err[0] = 0;
 	struct hal_gpio *g = calloc(1, sizeof(*g));
@@ -247,57 +288,26 @@ struct hal_gpio *hal_gpio_open(const struct params *p, char *err, size_t errlen)
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	g->enc_debounce = (uint64_t)(p->enc_debounce_ms * 1e6);
-	g->btn_debounce = (uint64_t)(p->button_debounce_ms * 1e6);
-	g->retry_ns = (uint64_t)(p->gpio_retry * 1e9);
-	const struct {
-		const char *chip;
-		int a, b, sw, spd, action, bias;
-		bool al;
-	} enc[2] = {
-		{ p->enc1_chip, p->enc1_a, p->enc1_b, p->enc1_sw, p->enc1_steps_per_detent, p->enc1_sw_action,
-		  p->enc1_bias, p->enc1_active_low },
-		{ p->enc2_chip, p->enc2_a, p->enc2_b, p->enc2_sw, p->enc2_steps_per_detent, p->enc2_sw_action,
-		  p->enc2_bias, p->enc2_active_low },
-	};
+	g->log = cfg->log;
+	g->enc_debounce = (uint64_t)(cfg->enc_debounce_ms * 1e6);
+	g->btn_debounce = (uint64_t)(cfg->button_debounce_ms * 1e6);
+	g->retry_ns = (uint64_t)(cfg->retry_s * 1e9);
 	int rc = 0;
-	for (int e = 0; e < 2 && rc == 0; e++) {
-		const char *chip = enc[e].chip[0] ? enc[e].chip : p->gpio_chip;
-		char w[32];
-		if ((enc[e].a < 0) != (enc[e].b < 0)) {
-			snprintf(err, errlen, "enc%d: set both enc%d_a and enc%d_b (or neither)", e + 1, e + 1, e + 1);
+	for (int e = 0; e < HAL_ENCODERS && rc == 0; e++)
+		rc = add_encoder(g, cfg, e, err, errlen);
+	const char *bchip = chip_or(cfg->button_chip, cfg->chip);
+	for (int b = 0; b < HAL_BUTTONS && rc == 0; b++) {
+		char what[32];
+		snprintf(what, sizeof(what), "button%d_line", b + 1);
+		if ((unsigned)cfg->button[b].action >= HAL_ACTION_COUNT) {
+			snprintf(err, errlen, "button%d: bad action %d", b + 1, (int)cfg->button[b].action);
 			rc = -1;
 			break;
 		}
-		g->enc_cfg[e] = (struct rotary_config){ .steps_per_detent = enc[e].spd,
-							.debounce_ns = g->enc_debounce,
-							.accel_ns = (uint64_t)(p->enc_accel_ms * 1e6),
-							.accel_max = p->enc_accel_max };
-		if (!rotary_init(&g->enc[e], &g->enc_cfg[e], 0, 0)) {
-			snprintf(err, errlen, "enc%d_steps_per_detent must be 1, 2 or 4 (got %d)", e + 1, enc[e].spd);
-			rc = -1;
-			break;
-		}
-		g->sw_action[e] = enc[e].action;
-		button_init(&g->sw[e], g->btn_debounce, 0);
-		snprintf(w, sizeof(w), "enc%d_a", e + 1);
-		rc = add_line(g, w, chip, enc[e].a, R_ENC_A, e, enc[e].al, enc[e].bias, err, errlen);
-		snprintf(w, sizeof(w), "enc%d_b", e + 1);
-		if (rc == 0)
-			rc = add_line(g, w, chip, enc[e].b, R_ENC_B, e, enc[e].al, enc[e].bias, err, errlen);
-		snprintf(w, sizeof(w), "enc%d_sw", e + 1);
-		if (rc == 0)
-			rc = add_line(g, w, chip, enc[e].sw, R_ENC_SW, e, enc[e].al, enc[e].bias, err, errlen);
-	}
-	const int bl[4] = { p->button1_line, p->button2_line, p->button3_line, p->button4_line };
-	const int ba[4] = { p->button1_action, p->button2_action, p->button3_action, p->button4_action };
-	const char *bchip = p->button_chip[0] ? p->button_chip : p->gpio_chip;
-	for (int b = 0; b < 4 && rc == 0; b++) {
-		char w[32];
-		snprintf(w, sizeof(w), "button%d_line", b + 1);
-		g->btn_action[b] = ba[b];
+		g->btn_action[b] = cfg->button[b].action;
 		button_init(&g->btn[b], g->btn_debounce, 0);
-		rc = add_line(g, w, bchip, bl[b], R_BUTTON, b, p->button_active_low, p->button_bias, err, errlen);
+		rc = add_line(g, what, bchip, cfg->button[b].line, R_BUTTON, b, cfg->button_active_low, cfg->button_bias,
+			      err, errlen);
 	}
 	if (rc < 0 || g->nlines == 0) {
 		free(g);
@@ -309,7 +319,8 @@ struct hal_gpio *hal_gpio_open(const struct params *p, char *err, size_t errlen)
 		chip_up(g, c, now);
 	g->next_check = now + g->retry_ns;
 #else
-	log_warn("gpio: this build has no libgpiod (install libgpiod-dev and rebuild); GPIO controls are off");
+	hal_logf(&g->log, HAL_WARN,
+		 "gpio: this build has no libgpiod (install libgpiod-dev and rebuild); GPIO controls are off");
 #endif
 	return g;
 }
@@ -325,12 +336,11 @@ void hal_gpio_close(struct hal_gpio *g)
 	free(g);
 }
 
-void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
-{
-	if (!g)
-		return;
 #ifdef HAVE_LIBGPIOD
-	/* (re)open missing chips; check that open ones are still there */
+/* (Re)opens missing chips; checks now and then that open ones are still
+ * there (a removed chip's lines answer ENODEV). */
+static void check_chips(struct hal_gpio *g, uint64_t now)
+{
 	bool check = now >= g->next_check;
 	if (check)
 		g->next_check = now + g->retry_ns;
@@ -347,6 +357,18 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 				}
 		}
 	}
+}
+
+/* Reads every pending edge of every line into ev (at most
+ * NLINES * EVENTS_PER_READ), sorted by kernel timestamp.
+ *
+ * Each line has its own event fd, so the edges of an encoder's A and B
+ * lines arrive in separate queues: when several accumulated since the last
+ * frame (a slow frame, a fast turn), decoding one queue after the other
+ * would scramble the Gray sequence.  All of them are merged by their kernel
+ * timestamps first. */
+static int read_edges(struct hal_gpio *g, uint64_t now, struct edge *ev_all)
+{
 	struct pollfd pfd[NLINES];
 	int idx[NLINES], n = 0;
 	for (int i = 0; i < g->nlines; i++)
@@ -358,13 +380,7 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 		}
 	int pr = n ? poll(pfd, (nfds_t)n, 0) : 0;
 	if (pr < 0 && errno != EINTR)
-		log_warn("gpio: poll: %s", strerror(errno));
-	/* Each line has its own event fd, so the edges of an encoder's A and B
-	 * lines arrive in separate queues: when several accumulated since the
-	 * last frame (a slow frame, a fast turn), decoding one queue after the
-	 * other would scramble the Gray sequence.  All of them are merged by
-	 * their kernel timestamps first. */
-	struct edge ev_all[NLINES * EVENTS_PER_READ];
+		hal_logf(&g->log, HAL_WARN, "gpio: poll: %s", strerror(errno));
 	int nev = 0;
 	for (int k = 0; k < n && pr > 0; k++) {
 		struct gline *l = &g->lines[idx[k]];
@@ -388,10 +404,16 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 						       .ts = event_ns(&ev[e].ts, now) };
 	}
 	sort_edges(ev_all, nev);
+	return nev;
+}
+
+/* The edges, in time order, into the decoders. */
+static void decode_edges(struct hal_gpio *g, const struct edge *ev, int nev)
+{
 	for (int e = 0; e < nev; e++) {
-		struct gline *l = &g->lines[ev_all[e].line];
-		int level = ev_all[e].level;
-		uint64_t ts = ev_all[e].ts;
+		struct gline *l = &g->lines[ev[e].line];
+		int level = ev[e].level;
+		uint64_t ts = ev[e].ts;
 		l->level = level;
 		switch (l->role) {
 		case R_ENC_A: rotary_edge(&g->enc[l->ctl], 0, level, ts); break;
@@ -400,19 +422,30 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 		case R_BUTTON: button_edge(&g->btn[l->ctl], level, ts); break;
 		}
 	}
+}
+#endif
+
+void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
+{
+	if (!g)
+		return;
+#ifdef HAVE_LIBGPIOD
+	check_chips(g, now);
+	struct edge ev[NLINES * EVENTS_PER_READ];
+	decode_edges(g, ev, read_edges(g, now, ev));
 #endif
 	/* settle what has been stable long enough; collect */
-	for (int e = 0; e < 2; e++) {
+	for (int e = 0; e < HAL_ENCODERS; e++) {
 		rotary_flush(&g->enc[e], now);
 		int d = rotary_take(&g->enc[e]);
-		if (e == 0)
+		if (g->enc_turn[e] == HAL_TURN_SELECT)
 			in->select += d;
 		else
 			in->change += d;
 		button_flush(&g->sw[e], now);
 		in->actions[g->sw_action[e]] += button_take(&g->sw[e]);
 	}
-	for (int b = 0; b < 4; b++) {
+	for (int b = 0; b < HAL_BUTTONS; b++) {
 		button_flush(&g->btn[b], now);
 		in->actions[g->btn_action[b]] += button_take(&g->btn[b]);
 	}

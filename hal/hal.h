@@ -1,16 +1,17 @@
 /* isoterra — the hardware layer's door: GPIO knobs and buttons (libgpiod
- * 1.6), development keys (terminal / evdev), the on-screen display of what a
- * knob changes, and V4L2 video output of the rendered frames.
+ * 1.6), development keys (terminal / evdev) and, in v4l2_out.h, V4L2 video
+ * output of rendered frames.
  *
- * The frame loop calls, per frame:
- *     if (hal_poll(hal, &p)) break;          // inputs -> parameters; 1 = quit
- *     t = hal_time(hal, t);                  // animation clock (pause)
- *     ... render ...
- *     hal_frame(hal, renderer, &p);          // OSD, screenshots, V4L2 out
- * Nothing here blocks the loop: event fds are polled with a zero timeout,
- * frames are read back through a ring of pixel-pack buffers with fences.
- * A missing or vanished gpiochip / video device is reported once and
- * retried; the renderer keeps going. */
+ * hal is a lower layer: it includes nothing of the application.  It takes
+ * its configuration as the plain structs below (the application fills them
+ * from its parameters), reports what happens through a struct hal_log and
+ * hands the inputs back as counted events (struct hal_input): which
+ * parameter they change, presets, the OSD, screenshots or the knob log are
+ * the application's business.
+ *
+ * Nothing here blocks the caller: event fds are polled with a zero timeout.
+ * A missing or vanished gpiochip / input device is reported once and
+ * retried. */
 #ifndef ISOTERRA_HAL_H
 #define ISOTERRA_HAL_H
 
@@ -18,69 +19,107 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "params.h"
+#define HAL_ENCODERS 2    /* rotary encoders: A, B and a push switch each */
+#define HAL_BUTTONS 4     /* plain push buttons */
+#define HAL_NO_LINE (-1)  /* a line that is not connected */
+#define HAL_NAME_MAX 256  /* chip names and device paths, NUL included */
 
-struct renderer;
+/* ---- reporting ------------------------------------------------------------ */
+enum hal_level { HAL_ERROR, HAL_WARN, HAL_INFO, HAL_DEBUG };
 
-/* Actions (indices match the *_action enums of app/params_hal.def). */
+/* Where hal's messages go: one line each, without a trailing newline.  A
+ * NULL fn drops them. */
+struct hal_log {
+	void (*fn)(void *user, enum hal_level level, const char *msg);
+	void *user;
+};
+void hal_logf(const struct hal_log *log, enum hal_level level, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+uint64_t hal_now_ns(void); /* CLOCK_MONOTONIC */
+
+/* ---- input events ------------------------------------------------------- */
+/* What a button, an encoder's push switch or a key asks for. */
 enum hal_action {
 	HAL_NONE, HAL_PRESET, HAL_SCREENSHOT, HAL_PAUSE, HAL_RESET, HAL_QUIT, HAL_NEXT, HAL_PREV, HAL_ACTION_COUNT
 };
+/* What turning an encoder does. */
+enum hal_turn { HAL_TURN_SELECT, HAL_TURN_CHANGE };
+/* Flight keys (a manually steered camera): one axis each. */
+enum hal_fly { HAL_FLY_FORWARD, HAL_FLY_RIGHT, HAL_FLY_UP, HAL_FLY_YAW, HAL_FLY_PITCH, HAL_FLY_AXES };
 
-/* What the inputs asked for since the last poll. */
+/* What the inputs asked for since the last poll (counts; add up). */
 struct hal_input {
 	int select;                    /* detents: choose the parameter */
 	int change;                    /* detents: change its value */
-	int actions[HAL_ACTION_COUNT]; /* counts */
-	int fly[5];                    /* key presses: forward, right, up, yaw right, pitch up (manual camera) */
+	int actions[HAL_ACTION_COUNT]; /* presses */
+	int fly[HAL_FLY_AXES];         /* key presses, signed (forward minus back, ...) */
 };
 
-struct hal;
-/* Opens what the parameters configure (nothing configured: a cheap no-op
- * object).  NULL with err only for bad configuration (exit 2). */
-struct hal *hal_open(const struct params *p, int width, int height, char *err, size_t errlen);
-void hal_close(struct hal *h);
-/* Reads the inputs without blocking and applies them to *p.  1 when the
- * user asked to quit (key q, a quit button), else 0 (SIGINT/SIGTERM: run.c). */
-int hal_poll(struct hal *h, struct params *p);
-/* Manual camera (camera=manual): the flight keys pressed since the last
- * call, as held inputs (-1..1): i/k forward/back, j/l turn, u/o up/down,
- * y/h pitch.  A terminal repeats a held key ~30 times a second, so a press
- * holds for 0.15 s.  All zero when no key is pressed. */
-void hal_flight(struct hal *h, float move[3], float turn[2]);
-/* The animation clock: t while running, frozen while paused. */
-float hal_time(struct hal *h, float t);
-/* After the frame is drawn into the renderer's target: OSD, screenshot,
- * V4L2 output (paced to v4l2_fps).  0, or -1 on a GL error. */
-int hal_frame(struct hal *h, struct renderer *r, const struct params *p);
+/* ---- GPIO: encoders and buttons (gpio.c, rotary.c) ------------------------ */
+enum hal_bias { HAL_BIAS_AS_IS, HAL_BIAS_DISABLE, HAL_BIAS_PULL_UP, HAL_BIAS_PULL_DOWN };
 
-/* ---- parts, for tests and the benchmark ------------------------------ */
-uint64_t hal_now_ns(void); /* CLOCK_MONOTONIC */
+struct hal_encoder_config {
+	const char *chip;          /* "" or NULL: the default chip */
+	int a, b, sw;              /* line offsets; HAL_NO_LINE = not connected */
+	bool active_low;
+	enum hal_bias bias;
+	int steps_per_detent;      /* quarter steps per detent: 1, 2 or 4 */
+	enum hal_turn turn;        /* a detent selects or changes */
+	enum hal_action sw_action; /* the push switch */
+};
+
+struct hal_button_config {
+	int line;                  /* HAL_NO_LINE = not connected */
+	enum hal_action action;
+};
+
+/* Chips are named as libgpiod looks them up: name, path, label or number.
+ * Strings are copied by hal_gpio_open. */
+struct hal_gpio_config {
+	const char *chip;          /* the default chip of every control */
+	double retry_s;            /* a missing or vanished chip: retried this often */
+	struct hal_encoder_config enc[HAL_ENCODERS];
+	double enc_debounce_ms;    /* an edge counts once its line is stable this long */
+	double enc_accel_ms;       /* detents closer than this accelerate (0 = off) */
+	int enc_accel_max;
+	const char *button_chip;   /* "" or NULL: the default chip */
+	bool button_active_low;
+	enum hal_bias button_bias;
+	double button_debounce_ms;
+	struct hal_button_config button[HAL_BUTTONS];
+	struct hal_log log;
+};
 
 struct hal_gpio;
 /* NULL with err[0] == 0 when no line is configured; NULL with err on bad
  * configuration.  Missing chips are reported and retried, not errors. */
-struct hal_gpio *hal_gpio_open(const struct params *p, char *err, size_t errlen);
+struct hal_gpio *hal_gpio_open(const struct hal_gpio_config *cfg, char *err, size_t errlen);
+/* Adds the events since the last poll to *in (never blocks). */
 void hal_gpio_poll(struct hal_gpio *g, uint64_t now_ns, struct hal_input *in);
 void hal_gpio_close(struct hal_gpio *g);
 
+/* ---- development keys (keys.c) --------------------------------------------- */
+/*   left/right or [ ]   select          up/down or - +   change
+ *   p pause   s screenshot   n preset   r reset   q / Esc quit
+ *   flight: i/k forward/back, j/l turn, u/o up/down, y/h pitch */
+enum hal_keys_mode { HAL_KEYS_AUTO, HAL_KEYS_OFF, HAL_KEYS_TTY, HAL_KEYS_EVDEV };
+
+struct hal_keys_config {
+	enum hal_keys_mode mode;   /* auto: the terminal when stdin is one */
+	const char *evdev;         /* HAL_KEYS_EVDEV: /dev/input/eventN (copied) */
+	struct hal_log log;
+};
+
 struct hal_keys;
-struct hal_keys *hal_keys_open(const struct params *p, char *err, size_t errlen);
+/* NULL with err[0] == 0 when keys are off (or auto without a terminal);
+ * NULL with err on bad configuration.  A terminal is put in raw mode until
+ * hal_keys_close, which the owner must call on every path. */
+struct hal_keys *hal_keys_open(const struct hal_keys_config *cfg, char *err, size_t errlen);
 void hal_keys_poll(struct hal_keys *k, struct hal_input *in);
 void hal_keys_close(struct hal_keys *k);
-/* Feeds raw terminal bytes (tests): arrows, [ ] - + p s n r q. */
+/* Decodes raw terminal bytes (tests): arrows, [ ] - + p s n r q, flight keys.
+ * *esc_state carries an escape sequence split across reads (start at 0). */
 void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc_state, struct hal_input *in);
-
-/* Knob mapping: the parameters a knob cycles through and the step of one
- * detent. */
-struct knobs {
-	const struct param_info *list[128];
-	int count, sel;
-};
-int knobs_init(struct knobs *k, const char *csv, char *err, size_t errlen);
-double knob_step(const struct param_info *pi);
-/* Applies delta detents to the selected parameter (clamped, snapped to the
- * step); returns true when the value changed. */
-bool knob_change(const struct knobs *k, struct params *p, int delta);
 
 #endif

@@ -4,12 +4,12 @@
  *   p pause   s screenshot   n next preset   r reset   q / Esc quit
  *   manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch */
 #include "hal.h"
-#include "log.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <linux/input.h>
 #include <poll.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <termios.h>
@@ -20,20 +20,12 @@ struct hal_keys {
 	struct termios saved;
 	int esc;
 	int ev_fd;             /* evdev, -1 when not used */
-	char ev_path[PARAM_STR_MAX];
+	char ev_path[HAL_NAME_MAX];
 	uint64_t ev_next_try;  /* while ev_fd < 0: when to try opening it again */
+	struct hal_log log;
 };
 
 #define EV_RETRY_NS 2000000000ull /* a vanished evdev keyboard: every 2 s */
-
-/* Terminal settings are restored at exit even when the loop ends through
- * an error path. */
-static struct termios *atexit_termios;
-static void restore_tty(void)
-{
-	if (atexit_termios)
-		tcsetattr(STDIN_FILENO, TCSANOW, atexit_termios);
-}
 
 void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc, struct hal_input *in)
 {
@@ -67,54 +59,26 @@ void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc, struct hal_
 		case 'n': in->actions[HAL_PRESET]++; break;
 		case 'r': in->actions[HAL_RESET]++; break;
 		case 'q': case 3: in->actions[HAL_QUIT]++; break;
-		case 'i': in->fly[0]++; break;
-		case 'k': in->fly[0]--; break;
-		case 'l': in->fly[3]++; break;
-		case 'j': in->fly[3]--; break;
-		case 'u': in->fly[2]++; break;
-		case 'o': in->fly[2]--; break;
-		case 'y': in->fly[4]++; break;
-		case 'h': in->fly[4]--; break;
+		case 'i': in->fly[HAL_FLY_FORWARD]++; break;
+		case 'k': in->fly[HAL_FLY_FORWARD]--; break;
+		case 'l': in->fly[HAL_FLY_YAW]++; break;
+		case 'j': in->fly[HAL_FLY_YAW]--; break;
+		case 'u': in->fly[HAL_FLY_UP]++; break;
+		case 'o': in->fly[HAL_FLY_UP]--; break;
+		case 'y': in->fly[HAL_FLY_PITCH]++; break;
+		case 'h': in->fly[HAL_FLY_PITCH]--; break;
 		default: break;
 		}
 	}
 }
 
-struct hal_keys *hal_keys_open(const struct params *p, char *err, size_t errlen)
+/* The terminal in raw mode (no echo, no line buffering, reads never
+ * block); NULL when it cannot be (reported: keys are off). */
+static struct hal_keys *open_tty(struct hal_keys *k)
 {
-	err[0] = 0;
-	enum { K_AUTO, K_OFF, K_TTY, K_EVDEV } mode = p->keyboard;
-	if (mode == K_OFF)
-		return NULL;
-	if (mode == K_EVDEV && !p->keyboard_evdev[0]) {
-		snprintf(err, errlen, "--keyboard evdev needs --keyboard-evdev /dev/input/eventN");
-		return NULL;
-	}
-	bool tty = isatty(STDIN_FILENO);
-	if (mode == K_TTY && !tty) {
-		snprintf(err, errlen, "--keyboard tty: standard input is not a terminal");
-		return NULL;
-	}
-	if (mode == K_AUTO && !tty)
-		return NULL;
-	struct hal_keys *k = calloc(1, sizeof(*k));
-	if (!k) {
-		snprintf(err, errlen, "out of memory");
-		return NULL;
-	}
-	k->tty_fd = k->ev_fd = -1;
-	if (mode == K_EVDEV) {
-		snprintf(k->ev_path, sizeof(k->ev_path), "%s", p->keyboard_evdev);
-		k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-		if (k->ev_fd < 0) {
-			log_warn("keys: cannot open %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
-			k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
-		}
-		return k;
-	}
 	struct termios raw;
 	if (tcgetattr(STDIN_FILENO, &k->saved) < 0) {
-		log_warn("keys: tcgetattr: %s; keys are off", strerror(errno));
+		hal_logf(&k->log, HAL_WARN, "keys: tcgetattr: %s; keys are off", strerror(errno));
 		free(k);
 		return NULL;
 	}
@@ -123,18 +87,48 @@ struct hal_keys *hal_keys_open(const struct params *p, char *err, size_t errlen)
 	raw.c_cc[VMIN] = 0;
 	raw.c_cc[VTIME] = 0;
 	if (tcsetattr(STDIN_FILENO, TCSANOW, &raw) < 0) {
-		log_warn("keys: tcsetattr: %s; keys are off", strerror(errno));
+		hal_logf(&k->log, HAL_WARN, "keys: tcsetattr: %s; keys are off", strerror(errno));
 		free(k);
 		return NULL;
 	}
-	static struct termios saved_copy;
-	saved_copy = k->saved;
-	if (!atexit_termios) {
-		atexit_termios = &saved_copy;
-		atexit(restore_tty);
-	}
 	k->tty_fd = STDIN_FILENO;
-	log_info("keys: arrows or [ ] select, - + change, p pause, s screenshot, n preset, r reset, q quit");
+	hal_logf(&k->log, HAL_INFO,
+		 "keys: arrows or [ ] select, - + change, p pause, s screenshot, n preset, r reset, q quit");
+	return k;
+}
+
+struct hal_keys *hal_keys_open(const struct hal_keys_config *cfg, char *err, size_t errlen)
+{
+	err[0] = 0;
+	enum hal_keys_mode mode = cfg->mode;
+	if (mode == HAL_KEYS_OFF)
+		return NULL;
+	if (mode == HAL_KEYS_EVDEV && (!cfg->evdev || !cfg->evdev[0])) {
+		snprintf(err, errlen, "--keyboard evdev needs --keyboard-evdev /dev/input/eventN");
+		return NULL;
+	}
+	bool tty = isatty(STDIN_FILENO);
+	if (mode == HAL_KEYS_TTY && !tty) {
+		snprintf(err, errlen, "--keyboard tty: standard input is not a terminal");
+		return NULL;
+	}
+	if (mode == HAL_KEYS_AUTO && !tty)
+		return NULL;
+	struct hal_keys *k = calloc(1, sizeof(*k));
+	if (!k) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	k->tty_fd = k->ev_fd = -1;
+	k->log = cfg->log;
+	if (mode != HAL_KEYS_EVDEV)
+		return open_tty(k);
+	snprintf(k->ev_path, sizeof(k->ev_path), "%s", cfg->evdev);
+	k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (k->ev_fd < 0) {
+		hal_logf(&k->log, HAL_WARN, "keys: cannot open %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
+		k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
+	}
 	return k;
 }
 
@@ -142,10 +136,8 @@ void hal_keys_close(struct hal_keys *k)
 {
 	if (!k)
 		return;
-	if (k->tty_fd >= 0) {
+	if (k->tty_fd >= 0)
 		tcsetattr(k->tty_fd, TCSANOW, &k->saved);
-		atexit_termios = NULL;
-	}
 	if (k->ev_fd >= 0)
 		close(k->ev_fd);
 	free(k);
@@ -163,14 +155,14 @@ static void evdev_key(int code, struct hal_input *in)
 	case KEY_N: in->actions[HAL_PRESET]++; break;
 	case KEY_R: in->actions[HAL_RESET]++; break;
 	case KEY_Q: case KEY_ESC: in->actions[HAL_QUIT]++; break;
-	case KEY_I: in->fly[0]++; break;
-	case KEY_K: in->fly[0]--; break;
-	case KEY_L: in->fly[3]++; break;
-	case KEY_J: in->fly[3]--; break;
-	case KEY_U: in->fly[2]++; break;
-	case KEY_O: in->fly[2]--; break;
-	case KEY_Y: in->fly[4]++; break;
-	case KEY_H: in->fly[4]--; break;
+	case KEY_I: in->fly[HAL_FLY_FORWARD]++; break;
+	case KEY_K: in->fly[HAL_FLY_FORWARD]--; break;
+	case KEY_L: in->fly[HAL_FLY_YAW]++; break;
+	case KEY_J: in->fly[HAL_FLY_YAW]--; break;
+	case KEY_U: in->fly[HAL_FLY_UP]++; break;
+	case KEY_O: in->fly[HAL_FLY_UP]--; break;
+	case KEY_Y: in->fly[HAL_FLY_PITCH]++; break;
+	case KEY_H: in->fly[HAL_FLY_PITCH]--; break;
 	default: break;
 	}
 }
@@ -190,7 +182,7 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 		if (now >= k->ev_next_try) {
 			k->ev_next_try = now + EV_RETRY_NS;
 			if ((k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) >= 0)
-				log_info("keys: %s opened", k->ev_path);
+				hal_logf(&k->log, HAL_INFO, "keys: %s opened", k->ev_path);
 		}
 	}
 	if (k->ev_fd >= 0) {
@@ -199,7 +191,8 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 			ssize_t n = read(k->ev_fd, ev, sizeof(ev));
 			if (n < 0) {
 				if (errno != EAGAIN && errno != EINTR) {
-					log_warn("keys: %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
+					hal_logf(&k->log, HAL_WARN, "keys: %s: %s; retrying every 2 s", k->ev_path,
+						 strerror(errno));
 					close(k->ev_fd);
 					k->ev_fd = -1;
 					k->ev_next_try = hal_now_ns() + EV_RETRY_NS;

@@ -8,13 +8,12 @@
  * Busy / refused / vanished devices are reported once and retried every
  * RETRY_S seconds; rendering never stops for them. */
 #include "v4l2_out.h"
-#include "hal.h"
-#include "log.h"
 
 #include <errno.h>
 #include <stdarg.h>
 #include <fcntl.h>
 #include <linux/videodev2.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
@@ -34,15 +33,17 @@ struct mbuf {
 
 struct v4l2_out {
 	/* configuration */
-	char path[PARAM_STR_MAX];
+	char path[HAL_NAME_MAX];
 	int want_fmt;          /* -1 auto, else enum conv_fmt */
 	enum conv_matrix matrix;
-	int io;                /* 0 auto, 1 write, 2 mmap */
+	enum hal_v4l2_io io;
 	int width, height;     /* requested (the render size) */
 	double fps;
 	v4l2_sink_fn sink;     /* sink mode when set or when path is empty */
 	void *user;
 	bool sink_mode;
+	struct hal_gpu gpu;
+	struct hal_log log;
 	/* device state */
 	int fd;
 	bool use_mmap, streaming, gave_up;
@@ -76,7 +77,7 @@ static void report(struct v4l2_out *v, const char *fmt, ...)
 	vsnprintf(msg, sizeof(msg), fmt, ap);
 	va_end(ap);
 	if (strcmp(msg, v->problem)) /* once per distinct problem */
-		log_warn("v4l2: %s: %s", v->path, msg);
+		hal_logf(&v->log, HAL_WARN, "v4l2: %s: %s", v->path, msg);
 	snprintf(v->problem, sizeof(v->problem), "%s", msg);
 }
 
@@ -169,19 +170,18 @@ static int try_format(struct v4l2_out *v, enum conv_fmt cf)
 	return 1;
 }
 
-/* Opens and configures the device; true when frames can go out.  first:
- * at start-up, where a device of the wrong kind is a configuration error. */
-static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
+/* Opens the device and checks what it is; false when it cannot take our
+ * frames.  first: at start-up, where a device of the wrong kind is a
+ * configuration error (err). */
+static bool dev_query(struct v4l2_out *v, bool first, struct v4l2_capability *cap, char *err, size_t errlen)
 {
-	v->next_try = hal_now_ns() + (uint64_t)(RETRY_S * 1e9);
 	v->fd = open(v->path, O_RDWR | O_NONBLOCK | O_CLOEXEC);
 	if (v->fd < 0) {
 		report(v, "cannot open: %s; no video output, retrying every %g s", strerror(errno), RETRY_S);
 		return false;
 	}
-	struct v4l2_capability cap;
-	memset(&cap, 0, sizeof(cap));
-	if (xioctl(v->fd, VIDIOC_QUERYCAP, &cap) < 0) {
+	memset(cap, 0, sizeof(*cap));
+	if (xioctl(v->fd, VIDIOC_QUERYCAP, cap) < 0) {
 		if (first) {
 			snprintf(err, errlen, "--v4l2 %s is not a V4L2 device (VIDIOC_QUERYCAP: %s)", v->path, strerror(errno));
 			v->gave_up = true;
@@ -191,10 +191,10 @@ static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
 		dev_close(v);
 		return false;
 	}
-	uint32_t caps = cap.capabilities & V4L2_CAP_DEVICE_CAPS ? cap.device_caps : cap.capabilities;
+	uint32_t caps = cap->capabilities & V4L2_CAP_DEVICE_CAPS ? cap->device_caps : cap->capabilities;
 	if (!(caps & V4L2_CAP_VIDEO_OUTPUT)) {
 		snprintf(err, errlen, "--v4l2 %s (%.32s, %.32s) is not a video output device%s", v->path,
-			 (const char *)cap.card, (const char *)cap.driver,
+			 (const char *)cap->card, (const char *)cap->driver,
 			 caps & V4L2_CAP_VIDEO_OUTPUT_MPLANE ? " (only multi-planar output, which is not supported)" : "");
 		if (!first)
 			report(v, "%s", err);
@@ -203,14 +203,19 @@ static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
 		return false;
 	}
 	bool can_stream = caps & V4L2_CAP_STREAMING, can_write = caps & V4L2_CAP_READWRITE;
-	v->use_mmap = v->io == 2 || (v->io == 0 && can_stream);
+	v->use_mmap = v->io == HAL_V4L2_IO_MMAP || (v->io == HAL_V4L2_IO_AUTO && can_stream);
 	if ((v->use_mmap && !can_stream) || (!v->use_mmap && !can_write)) {
 		snprintf(err, errlen, "--v4l2 %s does not support %s I/O", v->path, v->use_mmap ? "mmap streaming" : "write()");
 		v->gave_up = true;
 		dev_close(v);
 		return false;
 	}
-	/* format: the requested one, or the first of ours the device takes */
+	return true;
+}
+
+/* The requested format, or the first of ours the device takes (v->f). */
+static bool dev_negotiate(struct v4l2_out *v)
+{
 	static const enum conv_fmt order[] = { CF_YUYV, CF_NV12, CF_UYVY, CF_YU12, CF_NV21, CF_RGB24, CF_BGR24 };
 	int r = 0;
 	if (v->want_fmt >= 0) {
@@ -219,55 +224,72 @@ static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
 		for (size_t i = 0; i < sizeof(order) / sizeof(order[0]) && r == 0; i++)
 			r = try_format(v, order[i]);
 	}
-	if (r <= 0) {
-		if (r == 0) {
-			char list[160];
-			offered(v->fd, list, sizeof(list));
-			if (v->want_fmt >= 0)
-				report(v, "device refuses %s at %dx%d (it offers: %s); no video output", conv_fmt_name(v->want_fmt),
-				       v->width, v->height, list);
-			else
-				report(v, "device takes none of YUYV NV12 UYVY YU12 NV21 RGB24 BGR24 (it offers: %s); no video output",
-				       list);
-			v->gave_up = true; /* a refusal will not change by retrying */
-		}
+	if (r > 0)
+		return true;
+	if (r == 0) {
+		char list[160];
+		offered(v->fd, list, sizeof(list));
+		if (v->want_fmt >= 0)
+			report(v, "device refuses %s at %dx%d (it offers: %s); no video output", conv_fmt_name(v->want_fmt),
+			       v->width, v->height, list);
+		else
+			report(v, "device takes none of YUYV NV12 UYVY YU12 NV21 RGB24 BGR24 (it offers: %s); no video output",
+			       list);
+		v->gave_up = true; /* a refusal will not change by retrying */
+	}
+	dev_close(v);
+	return false;
+}
+
+/* mmap streaming: the device's buffers, mapped. */
+static bool dev_map_buffers(struct v4l2_out *v)
+{
+	struct v4l2_requestbuffers rb = { .count = NBUF, .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP };
+	if (xioctl(v->fd, VIDIOC_REQBUFS, &rb) < 0 || rb.count < 1) {
+		report(v, "VIDIOC_REQBUFS: %s", rb.count < 1 ? "no buffers" : errno == EBUSY ? "device is busy" : strerror(errno));
 		dev_close(v);
 		return false;
 	}
+	v->nbufs = (int)(rb.count > NBUF ? NBUF : rb.count);
+	for (int i = 0; i < v->nbufs; i++) {
+		struct v4l2_buffer b = { .index = (uint32_t)i, .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP };
+		if (xioctl(v->fd, VIDIOC_QUERYBUF, &b) < 0) {
+			report(v, "VIDIOC_QUERYBUF: %s", strerror(errno));
+			dev_close(v);
+			return false;
+		}
+		void *ptr = mmap(NULL, b.length, PROT_READ | PROT_WRITE, MAP_SHARED, v->fd, b.m.offset);
+		if (ptr == MAP_FAILED) {
+			report(v, "mmap: %s", strerror(errno));
+			dev_close(v);
+			return false;
+		}
+		v->bufs[i] = (struct mbuf){ .ptr = ptr, .len = b.length };
+	}
+	return true;
+}
+
+/* Opens and configures the device; true when frames can go out.  first:
+ * at start-up, where a device of the wrong kind is a configuration error. */
+static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
+{
+	v->next_try = hal_now_ns() + (uint64_t)(RETRY_S * 1e9);
+	struct v4l2_capability cap;
+	if (!dev_query(v, first, &cap, err, errlen) || !dev_negotiate(v))
+		return false;
 	if (v->fps > 0) {
 		struct v4l2_streamparm sp = { .type = V4L2_BUF_TYPE_VIDEO_OUTPUT };
 		sp.parm.output.timeperframe.numerator = 1000;
 		sp.parm.output.timeperframe.denominator = (uint32_t)(v->fps * 1000 + 0.5);
 		xioctl(v->fd, VIDIOC_S_PARM, &sp); /* optional: many devices ignore it */
 	}
-	if (v->use_mmap) {
-		struct v4l2_requestbuffers rb = { .count = NBUF, .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP };
-		if (xioctl(v->fd, VIDIOC_REQBUFS, &rb) < 0 || rb.count < 1) {
-			report(v, "VIDIOC_REQBUFS: %s", rb.count < 1 ? "no buffers" : errno == EBUSY ? "device is busy" : strerror(errno));
-			dev_close(v);
-			return false;
-		}
-		v->nbufs = (int)(rb.count > NBUF ? NBUF : rb.count);
-		for (int i = 0; i < v->nbufs; i++) {
-			struct v4l2_buffer b = { .index = (uint32_t)i, .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP };
-			if (xioctl(v->fd, VIDIOC_QUERYBUF, &b) < 0) {
-				report(v, "VIDIOC_QUERYBUF: %s", strerror(errno));
-				dev_close(v);
-				return false;
-			}
-			void *ptr = mmap(NULL, b.length, PROT_READ | PROT_WRITE, MAP_SHARED, v->fd, b.m.offset);
-			if (ptr == MAP_FAILED) {
-				report(v, "mmap: %s", strerror(errno));
-				dev_close(v);
-				return false;
-			}
-			v->bufs[i] = (struct mbuf){ .ptr = ptr, .len = b.length };
-		}
-	}
+	if (v->use_mmap && !dev_map_buffers(v))
+		return false;
 	/* the converter for the negotiated format is made at the next frame */
 	v->conv_stale = true;
-	log_info("v4l2: %s (%.32s): %dx%d %s, %u bytes per frame, %s, %s%s", v->path, (const char *)cap.card, v->f.width,
-		 v->f.height, conv_fmt_name(v->f.fmt), v->f.sizeimage, v->use_mmap ? "mmap streaming" : "write()",
+	hal_logf(&v->log, HAL_INFO, "v4l2: %s (%.32s): %dx%d %s, %u bytes per frame, %s, %s%s", v->path,
+		 (const char *)cap.card, v->f.width, v->f.height, conv_fmt_name(v->f.fmt), v->f.sizeimage,
+		 v->use_mmap ? "mmap streaming" : "write()",
 		 conv_fmt_is_yuv(v->f.fmt) ? (v->matrix == CM_BT709 ? "BT.709 limited" : "BT.601 limited") : "sRGB",
 		 v->problem[0] ? " (recovered)" : "");
 	v->problem[0] = 0;
@@ -281,59 +303,55 @@ static void dev_failed(struct v4l2_out *v, const char *what, int e)
 	v->next_try = hal_now_ns() + (uint64_t)(RETRY_S * 1e9);
 }
 
-/* Hands one converted frame to the device. */
-static void put_frame(struct v4l2_out *v, const uint8_t *bytes)
+/* write(): one frame per call; a full queue drops it. */
+static void put_write(struct v4l2_out *v, const uint8_t *bytes, size_t size)
 {
-	size_t size = v->f.sizeimage;
-	if (v->sink_mode) {
-		if (v->sink)
-			v->sink(v->user, bytes, size);
-		v->st.written++;
+	ssize_t n = write(v->fd, bytes, size);
+	if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+		v->st.dropped_busy++;
 		return;
 	}
-	if (v->fd < 0) {
+	if (n < 0) {
+		dev_failed(v, "write", errno);
 		v->st.dropped_off++;
 		return;
 	}
-	if (!v->use_mmap) {
-		ssize_t n = write(v->fd, bytes, size);
-		if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-			v->st.dropped_busy++;
-			return;
-		}
-		if (n < 0) {
-			dev_failed(v, "write", errno);
-			v->st.dropped_off++;
-			return;
-		}
-		if ((size_t)n != size)
-			log_debug("v4l2: short write %zd of %zu bytes", n, size);
-		v->st.written++;
-		return;
-	}
-	/* mmap: a never-queued buffer, else one the device has finished with */
-	int idx = -1;
-	for (int i = 0; i < v->nbufs && idx < 0; i++)
+	if ((size_t)n != size)
+		hal_logf(&v->log, HAL_DEBUG, "v4l2: short write %zd of %zu bytes", n, size);
+	v->st.written++;
+}
+
+/* mmap streaming: a buffer never queued, else one the device has finished
+ * with; -1 when none is free (dropped) or the device failed. */
+static int free_buffer(struct v4l2_out *v)
+{
+	for (int i = 0; i < v->nbufs; i++)
 		if (!v->bufs[i].queued)
-			idx = i;
-	if (idx < 0) {
-		struct v4l2_buffer b = { .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP };
-		if (xioctl(v->fd, VIDIOC_DQBUF, &b) < 0) {
-			if (errno == EAGAIN) {
-				v->st.dropped_busy++;
-				return;
-			}
-			dev_failed(v, "VIDIOC_DQBUF", errno);
-			v->st.dropped_off++;
-			return;
+			return i;
+	struct v4l2_buffer b = { .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP };
+	if (xioctl(v->fd, VIDIOC_DQBUF, &b) < 0) {
+		if (errno == EAGAIN) {
+			v->st.dropped_busy++;
+			return -1;
 		}
-		idx = (int)b.index;
-		if (idx < 0 || idx >= v->nbufs) {
-			dev_failed(v, "VIDIOC_DQBUF returned a bad index", EIO);
-			return;
-		}
-		v->bufs[idx].queued = false;
+		dev_failed(v, "VIDIOC_DQBUF", errno);
+		v->st.dropped_off++;
+		return -1;
 	}
+	int idx = (int)b.index;
+	if (idx < 0 || idx >= v->nbufs) {
+		dev_failed(v, "VIDIOC_DQBUF returned a bad index", EIO);
+		return -1;
+	}
+	v->bufs[idx].queued = false;
+	return idx;
+}
+
+static void put_mmap(struct v4l2_out *v, const uint8_t *bytes, size_t size)
+{
+	int idx = free_buffer(v);
+	if (idx < 0)
+		return;
 	struct mbuf *mb = &v->bufs[idx];
 	size_t n = size < mb->len ? size : mb->len;
 	memcpy(mb->ptr, bytes, n);
@@ -360,6 +378,23 @@ static void put_frame(struct v4l2_out *v, const uint8_t *bytes)
 	v->st.written++;
 }
 
+/* Hands one converted frame to the device (or the sink). */
+static void put_frame(struct v4l2_out *v, const uint8_t *bytes)
+{
+	size_t size = v->f.sizeimage;
+	if (v->sink_mode) {
+		if (v->sink)
+			v->sink(v->user, bytes, size);
+		v->st.written++;
+	} else if (v->fd < 0) {
+		v->st.dropped_off++;
+	} else if (!v->use_mmap) {
+		put_write(v, bytes, size);
+	} else {
+		put_mmap(v, bytes, size);
+	}
+}
+
 /* Hands every finished read-back to the device (wait: all of them). */
 static int harvest(struct v4l2_out *v, bool wait)
 {
@@ -384,22 +419,24 @@ static struct v4l2_out *alloc_out(double fps)
 	return v;
 }
 
-struct v4l2_out *v4l2_out_open(const struct params *p, int width, int height, char *err, size_t errlen)
+struct v4l2_out *v4l2_out_open(const struct hal_v4l2_config *cfg, char *err, size_t errlen)
 {
 	err[0] = 0;
-	if (!p->v4l2[0])
+	if (!cfg->device || !cfg->device[0])
 		return NULL;
-	struct v4l2_out *v = alloc_out(p->v4l2_fps);
+	struct v4l2_out *v = alloc_out(cfg->fps);
 	if (!v) {
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	snprintf(v->path, sizeof(v->path), "%s", p->v4l2);
-	v->want_fmt = p->v4l2_format - 1; /* "auto" is index 0 */
-	v->matrix = p->v4l2_matrix == 1 ? CM_BT709 : CM_BT601;
-	v->io = p->v4l2_io;
-	v->width = width;
-	v->height = height;
+	snprintf(v->path, sizeof(v->path), "%s", cfg->device);
+	v->want_fmt = cfg->format;
+	v->matrix = cfg->matrix;
+	v->io = cfg->io;
+	v->width = cfg->width;
+	v->height = cfg->height;
+	v->gpu = cfg->gpu;
+	v->log = cfg->log;
 	if (!dev_open(v, true, err, errlen) && err[0]) {
 		v4l2_out_close(v);
 		return NULL;
@@ -408,7 +445,7 @@ struct v4l2_out *v4l2_out_open(const struct params *p, int width, int height, ch
 }
 
 struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4l2_sink_fn sink, void *user,
-				    char *err, size_t errlen)
+				    const struct hal_gpu *gpu, char *err, size_t errlen)
 {
 	struct v4l2_out *v = alloc_out(fps);
 	if (!v) {
@@ -420,7 +457,11 @@ struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4
 	v->sink = sink;
 	v->user = user;
 	v->f = *f;
-	v->conv = gpu_conv_create(f, NSLOTS, err, errlen);
+	if (gpu) {
+		v->gpu = *gpu;
+		v->log = gpu->log;
+	}
+	v->conv = gpu_conv_create(f, NSLOTS, gpu, err, errlen);
 	if (!v->conv) {
 		free(v);
 		return NULL;
@@ -457,9 +498,9 @@ int v4l2_out_frame(struct v4l2_out *v, GLuint fbo, int w, int h)
 		char e[256];
 		gpu_conv_destroy(v->conv);
 		v->conv_stale = false;
-		v->conv = gpu_conv_create(&v->f, NSLOTS, e, sizeof(e));
+		v->conv = gpu_conv_create(&v->f, NSLOTS, &v->gpu, e, sizeof(e));
 		if (!v->conv) {
-			log_error("v4l2: %s", e);
+			hal_logf(&v->log, HAL_ERROR, "v4l2: %s", e);
 			return -1;
 		}
 	}
@@ -487,7 +528,7 @@ void v4l2_out_close(struct v4l2_out *v)
 		return;
 	harvest(v, true);
 	if (v->st.submitted)
-		log_info("v4l2: %s: %lu frames converted, %lu written, %lu dropped (busy), %lu not sent (no device)", v->path,
+		hal_logf(&v->log, HAL_INFO, "v4l2: %s: %lu frames converted, %lu written, %lu dropped (busy), %lu not sent (no device)", v->path,
 			 v->st.submitted, v->st.written, v->st.dropped_busy, v->st.dropped_off);
 	gpu_conv_destroy(v->conv);
 	dev_close(v);

@@ -8,7 +8,7 @@
 #include <GLES3/gl31.h>
 
 #include "convert.h"
-#include "params.h"
+#include "hal.h"
 
 struct v4l2_stats {
 	unsigned long submitted;     /* frames converted on the GPU */
@@ -19,14 +19,28 @@ struct v4l2_stats {
 
 typedef void (*v4l2_sink_fn)(void *user, const uint8_t *bytes, size_t size);
 
+enum hal_v4l2_io { HAL_V4L2_IO_AUTO, HAL_V4L2_IO_WRITE, HAL_V4L2_IO_MMAP };
+
+struct hal_v4l2_config {
+	const char *device;       /* /dev/videoN (copied); "" or NULL: no output */
+	int format;               /* enum conv_fmt, or -1: the first the device takes */
+	enum conv_matrix matrix;  /* YCbCr formats: BT.601 or BT.709, limited range */
+	enum hal_v4l2_io io;      /* auto: mmap streaming when the device streams */
+	double fps;               /* pacing: one frame every 1/fps s; 0 = every frame */
+	int width, height;        /* the rendered frames' size */
+	struct hal_gpu gpu;       /* the conversion's program (convert.h) */
+	struct hal_log log;
+};
+
 struct v4l2_out;
-/* p->v4l2 names the device.  NULL with err for bad configuration (a device
- * that is not a video output, an odd size); a missing or busy device is
- * reported and retried. */
-struct v4l2_out *v4l2_out_open(const struct params *p, int width, int height, char *err, size_t errlen);
-/* No device: the same conversion and read-back, frames go to sink (NULL: dropped after mapping). */
+/* NULL with err[0] == 0 when no device is configured; NULL with err for bad
+ * configuration (a device that is not a video output, an odd size); a
+ * missing or busy device is reported and retried. */
+struct v4l2_out *v4l2_out_open(const struct hal_v4l2_config *cfg, char *err, size_t errlen);
+/* No device: the same conversion and read-back, frames go to sink (NULL:
+ * dropped after mapping). */
 struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4l2_sink_fn sink, void *user,
-				    char *err, size_t errlen);
+				    const struct hal_gpu *gpu, char *err, size_t errlen);
 /* Per frame, after drawing into fbo (w x h): hands finished read-backs to
  * the device, waits for the next frame time when pacing, submits this
  * frame.  0, or -1 on a GL error. */

@@ -1,8 +1,9 @@
 /* isoterra — the knob mapping (parameter steps, clamping, snapping, enums,
  * booleans), the development keys' byte decoding, the pause clock, the OSD
  * (drawn where it should be, text visible, nothing outside its box) and
- * hal_open's configuration errors. */
+ * the configuration errors of the controls (app/controls.c over hal/). */
 #include "app.h"
+#include "controls.h"
 #include "hal.h"
 #include "osd.h"
 #include "font.h"
@@ -133,11 +134,11 @@ static void test_open(void)
 	char err[512];
 	params_defaults(&p);
 	/* nothing configured: a no-op object, time passes through */
-	struct hal *h = hal_open(&p, 64, 64, err, sizeof(err));
+	struct controls *h = controls_create(&p, err, sizeof(err));
 	CHECK(h != NULL, "open: %s", err);
-	CHECK(hal_time(h, 1.5f) == 1.5f, "clock");
-	CHECK(hal_poll(h, &p) == 0, "no quit");
-	hal_close(h);
+	CHECK(controls_time(h, 1.5f) == 1.5f, "clock");
+	CHECK(controls_poll(h, &p) == 0, "no quit");
+	controls_destroy(h);
 	struct {
 		const char *key, *value, *msg;
 	} bad[] = {
@@ -150,22 +151,67 @@ static void test_open(void)
 		params_defaults(&p);
 		CHECK(params_set(&p, bad[i].key, bad[i].value, err, sizeof(err)) == 0, "set %s", bad[i].key);
 		err[0] = 0;
-		h = hal_open(&p, 64, 64, err, sizeof(err));
+		h = controls_create(&p, err, sizeof(err));
 		CHECK(h == NULL && strstr(err, bad[i].msg), "%s=%s refused with '%s': got '%s'", bad[i].key, bad[i].value,
 		      bad[i].msg, err);
-		hal_close(h);
+		controls_destroy(h);
 	}
 	params_defaults(&p);
 	params_set(&p, "gpio_chip", "gpiochip0", err, sizeof(err));
 	params_set(&p, "enc1_a", "1", err, sizeof(err));
 	params_set(&p, "enc1_b", "1", err, sizeof(err));
-	h = hal_open(&p, 64, 64, err, sizeof(err));
+	h = controls_create(&p, err, sizeof(err));
 	CHECK(h == NULL && strstr(err, "twice"), "a line used twice: %s", err);
-	hal_close(h);
+	controls_destroy(h);
+}
+
+/* hal's configuration from the parameters: names, numbers and choices
+ * arrive as hal's own values */
+static void test_config(void)
+{
+	struct params p;
+	char err[512];
+	params_defaults(&p);
+	const char *set[] = { "gpio_chip=knobs", "enc1_a=3", "enc1_b=4", "enc1_sw=5", "enc1_bias=pull_down",
+			      "enc1_sw_action=quit", "enc2_chip=other", "enc2_steps_per_detent=2", "button3_line=7",
+			      "button3_action=prev", "button_bias=disable", "keyboard=evdev",
+			      "keyboard_evdev=/dev/input/event9", "v4l2=/dev/video7", "v4l2_format=NV12",
+			      "v4l2_matrix=bt709", "v4l2_io=write", "v4l2_fps=25" };
+	for (size_t i = 0; i < sizeof(set) / sizeof(set[0]); i++) {
+		char name[64];
+		const char *eq = strchr(set[i], '=');
+		snprintf(name, sizeof(name), "%.*s", (int)(eq - set[i]), set[i]);
+		CHECK(params_set(&p, name, eq + 1, err, sizeof(err)) == 0, "%s: %s", set[i], err);
+	}
+	struct hal_gpio_config g;
+	CHECK(controls_gpio_config(&p, &g, err, sizeof(err)) == 0, "gpio config: %s", err);
+	CHECK(!strcmp(g.chip, "knobs") && !strcmp(g.enc[1].chip, "other") && !g.enc[0].chip[0], "chips");
+	CHECK(g.enc[0].a == 3 && g.enc[0].b == 4 && g.enc[0].sw == 5 && g.enc[1].a == HAL_NO_LINE, "lines");
+	CHECK(g.enc[0].bias == HAL_BIAS_PULL_DOWN && g.enc[1].bias == HAL_BIAS_AS_IS && g.button_bias == HAL_BIAS_DISABLE,
+	      "bias");
+	CHECK(g.enc[0].sw_action == HAL_QUIT && g.enc[1].sw_action == HAL_RESET, "switch actions");
+	CHECK(g.enc[0].turn == HAL_TURN_SELECT && g.enc[1].turn == HAL_TURN_CHANGE, "encoder 1 selects, 2 changes");
+	CHECK(g.enc[1].steps_per_detent == 2 && g.enc[0].steps_per_detent == 4, "steps per detent");
+	CHECK(g.button[2].line == 7 && g.button[2].action == HAL_PREV && g.button[0].action == HAL_PRESET &&
+		      g.button[1].action == HAL_SCREENSHOT && g.button[3].action == HAL_QUIT,
+	      "buttons");
+	struct hal_keys_config k;
+	controls_keys_config(&p, &k);
+	CHECK(k.mode == HAL_KEYS_EVDEV && !strcmp(k.evdev, "/dev/input/event9"), "keys");
+	struct hal_v4l2_config v;
+	controls_v4l2_config(&p, 64, 48, &v);
+	CHECK(!strcmp(v.device, "/dev/video7") && v.format == CF_NV12 && v.matrix == CM_BT709 &&
+		      v.io == HAL_V4L2_IO_WRITE && v.fps == 25 && v.width == 64 && v.height == 48,
+	      "v4l2");
+	params_defaults(&p);
+	controls_v4l2_config(&p, 64, 48, &v);
+	CHECK(v.format == -1 && v.matrix == CM_BT601 && v.io == HAL_V4L2_IO_AUTO, "v4l2 defaults: the first format");
+	CHECK(v.gpu.compile && v.gpu.log.fn && v.log.fn, "seams filled");
 }
 
 int main(void)
 {
+	test_config();
 	test_knobs();
 	test_keys();
 	struct platform *plat = fixture_open();

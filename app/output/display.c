@@ -1,73 +1,77 @@
-/* isoterra — the display side of the frame loop; see display.h. */
-#include "display.h"
+/* isoterra — the display sink (gbm, wayland, x11; see sink.h): the
+ * finished frame is blitted to the window and presented, window events are
+ * handled (a resize re-creates the renderer, closing ends the run),
+ * SIGINT/SIGTERM end the run cleanly (so the platform restores the
+ * display), and the frame rate is reported on SIGUSR1 and every
+ * --fps-report seconds. */
+#include "sink.h"
 #include "log.h"
+#include "platform.h"
+#include "render.h"
+#include "signals.h"
 
-#include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
-static volatile sig_atomic_t quit_signal, fps_request;
-static struct sigaction old_int, old_term, old_usr1;
-
-static void on_quit(int sig)
-{
-	quit_signal = sig;
-}
-
-static void on_usr1(int sig)
-{
-	(void)sig;
-	fps_request = 1;
-}
+struct display_sink {
+	struct sink base;
+	struct platform *plat;
+	struct timespec start, last;
+	unsigned long frames, frames_last;
+	double report_every;
+	/* copied from the platform each frame: the final report comes after
+	 * the platform is closed */
+	unsigned long presented, shown;
+	const char *backend;
+};
 
 static double seconds(const struct timespec *a, const struct timespec *b)
 {
 	return (double)(b->tv_sec - a->tv_sec) + (double)(b->tv_nsec - a->tv_nsec) * 1e-9;
 }
 
-void display_begin(struct display_loop *d, const struct platform *plat, const struct params *p)
+static void report(struct display_sink *d, const struct timespec *now)
 {
-	memset(d, 0, sizeof(*d));
-	if (plat->headless)
-		return;
-	d->active = true;
-	d->report_every = p->fps_report;
-	clock_gettime(CLOCK_MONOTONIC, &d->start);
-	d->last = d->start;
-	quit_signal = 0;
-	fps_request = 0;
-	/* No SA_RESTART: a blocking wait returns EINTR and the loop sees the
-	 * flag.  SA_RESETHAND: a second SIGINT/SIGTERM kills at once. */
-	struct sigaction sa;
-	memset(&sa, 0, sizeof(sa));
-	sigemptyset(&sa.sa_mask);
-	sa.sa_handler = on_quit;
-	sa.sa_flags = SA_RESETHAND;
-	if (sigaction(SIGINT, &sa, &old_int) != 0 || sigaction(SIGTERM, &sa, &old_term) != 0)
-		log_warn("cannot install the SIGINT/SIGTERM handlers; the display is not restored on those");
-	sa.sa_handler = on_usr1;
-	sa.sa_flags = 0;
-	if (sigaction(SIGUSR1, &sa, &old_usr1) != 0)
-		log_warn("cannot install the SIGUSR1 handler (frame rate on demand)");
-}
-
-static void report(struct display_loop *d, const struct platform *plat, const struct timespec *now)
-{
+	const struct platform *plat = d->plat;
 	double dt = seconds(&d->last, now);
 	unsigned long n = d->frames - d->frames_last;
 	fprintf(stderr, "isoterra: fps %.1f (%lu frames in %.2f s; %lu presented, %lu shown, %dx%d %s)\n",
-	        dt > 0 ? (double)n / dt : 0.0, n, dt, plat->presented, plat->shown, plat->width, plat->height,
-	        plat->backend->name);
+		dt > 0 ? (double)n / dt : 0.0, n, dt, plat->presented, plat->shown, plat->width, plat->height,
+		plat->backend->name);
 	d->last = *now;
 	d->frames_last = d->frames;
 }
 
-int display_frame(struct display_loop *d, struct platform *plat, struct renderer **r, int *w, int *h)
+/* The window's new size: a renderer of that size replaces fr->r. */
+static int resize(struct display_sink *d, struct sink_frame *fr, char *err, size_t errlen)
 {
-	if (renderer_blit_to_default(*r, plat->width, plat->height) < 0)
+	struct platform *plat = d->plat;
+	char e[256];
+	struct renderer *nr = renderer_create(plat->width, plat->height, e, sizeof(e));
+	if (!nr) {
+		snprintf(err, errlen, "resize to %dx%d: %s", plat->width, plat->height, e);
 		return -1;
+	}
+	log_debug("resized %dx%d -> %dx%d", fr->w, fr->h, plat->width, plat->height);
+	renderer_destroy(fr->r);
+	fr->r = nr;
+	fr->w = plat->width;
+	fr->h = plat->height;
+	return 0;
+}
+
+static int display_frame(struct sink *s, struct sink_frame *fr, char *err, size_t errlen)
+{
+	struct display_sink *d = (struct display_sink *)s;
+	struct platform *plat = d->plat;
+	if (renderer_blit_to_default(fr->r, plat->width, plat->height) < 0) {
+		err[0] = 0; /* reported */
+		return -1;
+	}
 	if (platform_present(plat) < 0) {
-		log_error("presenting the frame failed");
+		snprintf(err, errlen, "presenting the frame failed");
 		return -1;
 	}
 	d->frames++;
@@ -75,48 +79,66 @@ int display_frame(struct display_loop *d, struct platform *plat, struct renderer
 	d->presented = plat->presented;
 	d->shown = plat->shown;
 	d->backend = plat->backend->name;
-	if (rc < 0)
+	if (rc < 0) {
+		err[0] = 0; /* reported by the platform */
 		return -1;
+	}
 	struct timespec now;
 	clock_gettime(CLOCK_MONOTONIC, &now);
-	if (fps_request || (d->report_every > 0 && seconds(&d->last, &now) >= d->report_every)) {
-		fps_request = 0;
-		report(d, plat, &now);
-	}
-	if (quit_signal) {
-		log_info("%s: stopping", strsignal(quit_signal));
+	if (signals_take_report() || (d->report_every > 0 && seconds(&d->last, &now) >= d->report_every))
+		report(d, &now);
+	int sig = signals_quit();
+	if (sig) {
+		log_info("%s: stopping", strsignal(sig));
 		return 1;
 	}
 	if (rc > 0)
 		return 1;
-	if (plat->width != *w || plat->height != *h) {
-		char err[256];
-		struct renderer *nr = renderer_create(plat->width, plat->height, err, sizeof(err));
-		if (!nr) {
-			log_error("resize to %dx%d: %s", plat->width, plat->height, err);
-			return -1;
-		}
-		log_debug("resized %dx%d -> %dx%d", *w, *h, plat->width, plat->height);
-		renderer_destroy(*r);
-		*r = nr;
-		*w = plat->width;
-		*h = plat->height;
-	}
+	if (plat->width != fr->w || plat->height != fr->h)
+		return resize(d, fr, err, errlen);
 	return 0;
 }
 
-void display_end(struct display_loop *d)
+static int display_finish(struct sink *s, const struct sink_end *end, char *err, size_t errlen)
 {
-	if (!d->active)
-		return;
-	d->active = false;
+	(void)s;
+	(void)end;
+	(void)err;
+	(void)errlen;
+	return 0;
+}
+
+/* After platform_close (which restores the display): "N frames presented,
+ * M shown, F fps". */
+static void display_destroy(struct sink *s)
+{
+	struct display_sink *d = (struct display_sink *)s;
 	struct timespec now;
 	clock_gettime(CLOCK_MONOTONIC, &now);
 	double dt = seconds(&d->start, &now);
 	if (d->backend)
 		log_info("%s: %lu frames presented, %lu shown, %.1f fps", d->backend, d->presented, d->shown,
-		         dt > 0 ? (double)d->frames / dt : 0.0);
-	sigaction(SIGINT, &old_int, NULL);
-	sigaction(SIGTERM, &old_term, NULL);
-	sigaction(SIGUSR1, &old_usr1, NULL);
+			 dt > 0 ? (double)d->frames / dt : 0.0);
+	free(d);
+}
+
+static const struct sink_ops display_ops = {
+	.frame = display_frame, .finish = display_finish, .destroy = display_destroy
+};
+
+struct sink *sink_display_open(struct platform *plat, const struct params *p, char *err, size_t errlen)
+{
+	struct display_sink *d = calloc(1, sizeof(*d));
+	if (!d) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	d->base.ops = &display_ops;
+	d->plat = plat;
+	d->report_every = p->fps_report;
+	clock_gettime(CLOCK_MONOTONIC, &d->start);
+	d->last = d->start;
+	if (signals_watch_report() < 0)
+		log_warn("cannot install the SIGUSR1 handler (frame rate on demand)");
+	return &d->base;
 }

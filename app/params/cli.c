@@ -42,72 +42,65 @@ static bool opt_key(const char *arg, char *key, size_t len)
 	return true;
 }
 
-/* Decodes argv[*i] (and its value argument) into o; advances *i. */
-static int next_opt(int argc, char **argv, int *i, struct opt *o, char *err, size_t errlen)
+/* -h, -D CARD (kmscube's -D: the DRM card): 1 handled, 0 not one of
+ * them, -1 error. */
+static int short_opt(const char *arg, int argc, char **argv, int *i, struct opt *o, char *err, size_t errlen)
 {
-	const char *arg = argv[*i];
-	(*i)++;
-	memset(o, 0, sizeof(*o));
 	if (!strcmp(arg, "-h")) {
 		o->kind = OPT_HELP;
-		return 0;
+		return 1;
 	}
-	if (!strcmp(arg, "-D")) { /* kmscube's -D: the DRM card */
-		if (*i >= argc) {
-			snprintf(err, errlen, "option '-D' needs a value");
-			return -1;
-		}
-		o->kind = OPT_PARAM;
-		o->pi = params_find("drm_device");
-		o->value = argv[(*i)++];
+	if (strcmp(arg, "-D"))
 		return 0;
-	}
-	if (arg[0] != '-' || !strcmp(arg, "-") || !strcmp(arg, "--")) {
-		snprintf(err, errlen, "unexpected argument '%s' (options only, see --help)", arg);
+	if (*i >= argc) {
+		snprintf(err, errlen, "option '-D' needs a value");
 		return -1;
 	}
-	char key[64];
-	const char *eq = strchr(arg, '=');
-	int optlen = eq ? (int)(eq - arg) : (int)strlen(arg);
-	if (arg[1] != '-' || !opt_key(arg, key, sizeof(key)) || !key[0]) {
-		snprintf(err, errlen, "unknown option '%.*s' (see --help)", optlen, arg);
-		return -1;
-	}
+	o->kind = OPT_PARAM;
+	o->pi = params_find("drm_device");
+	o->value = argv[(*i)++];
+	return 1;
+}
 
-	bool takes_value = true, optional_bool = false;
-	if (!strcmp(key, "help")) {
-		o->kind = OPT_HELP;
-		takes_value = false;
-	} else if (!strcmp(key, "version")) {
-		o->kind = OPT_VERSION;
-		takes_value = false;
-	} else if (!strcmp(key, "list_presets")) {
-		o->kind = OPT_LIST_PRESETS;
-		takes_value = false;
-	} else if (!strcmp(key, "set")) {
-		o->kind = OPT_SET;
-	} else if (!strcmp(key, "preset")) {
-		o->kind = OPT_PRESET;
-	} else if (!strcmp(key, "config")) {
-		o->kind = OPT_CONFIG;
-	} else if ((o->pi = params_find(key)) != NULL) {
+/* What the option named key is (o->kind, o->pi); false when unknown.
+ * *takes_value: it has a value; *optional_bool: a boolean whose value may
+ * be left out. */
+static bool classify(const char *key, struct opt *o, bool *takes_value, bool *optional_bool)
+{
+	static const struct {
+		const char *name;
+		enum opt_kind kind;
+		bool value;
+	} words[] = {
+		{ "help", OPT_HELP, false },	 { "version", OPT_VERSION, false }, { "list_presets", OPT_LIST_PRESETS, false },
+		{ "set", OPT_SET, true },	 { "preset", OPT_PRESET, true },    { "config", OPT_CONFIG, true },
+	};
+	*takes_value = true;
+	*optional_bool = false;
+	for (size_t k = 0; k < ARRAY_SIZE(words); k++)
+		if (!strcmp(key, words[k].name)) {
+			o->kind = words[k].kind;
+			*takes_value = words[k].value;
+			return true;
+		}
+	if ((o->pi = params_find(key)) != NULL) {
 		o->kind = OPT_PARAM;
-		optional_bool = o->pi->type == PT_BOOL;
-	} else if (!strncmp(key, "no_", 3) && (o->pi = params_find(key + 3)) && o->pi->type == PT_BOOL) {
+		*optional_bool = o->pi->type == PT_BOOL;
+		return true;
+	}
+	if (!strncmp(key, "no_", 3) && (o->pi = params_find(key + 3)) && o->pi->type == PT_BOOL) {
 		o->kind = OPT_NO_BOOL;
-		takes_value = false;
-	} else {
-		snprintf(err, errlen, "unknown option '%.*s' (see --help)", optlen, arg);
-		return -1;
+		*takes_value = false;
+		return true;
 	}
+	return false;
+}
 
-	if (!takes_value) {
-		if (eq) {
-			snprintf(err, errlen, "option '%.*s' takes no value", optlen, arg);
-			return -1;
-		}
-		return 0;
-	}
+/* The option's value: after '=', the next argument, or (an optional
+ * boolean) "true". */
+static int opt_value(const char *arg, const char *eq, bool optional_bool, int argc, char **argv, int *i, struct opt *o,
+		     char *err, size_t errlen)
+{
 	if (eq) {
 		o->value = eq + 1;
 	} else if (optional_bool) {
@@ -124,6 +117,38 @@ static int next_opt(int argc, char **argv, int *i, struct opt *o, char *err, siz
 		o->value = argv[(*i)++];
 	}
 	return 0;
+}
+
+/* Decodes argv[*i] (and its value argument) into o; advances *i. */
+static int next_opt(int argc, char **argv, int *i, struct opt *o, char *err, size_t errlen)
+{
+	const char *arg = argv[*i];
+	(*i)++;
+	memset(o, 0, sizeof(*o));
+	int s = short_opt(arg, argc, argv, i, o, err, errlen);
+	if (s != 0)
+		return s < 0 ? -1 : 0;
+	if (arg[0] != '-' || !strcmp(arg, "-") || !strcmp(arg, "--")) {
+		snprintf(err, errlen, "unexpected argument '%s' (options only, see --help)", arg);
+		return -1;
+	}
+	char key[64];
+	const char *eq = strchr(arg, '=');
+	int optlen = eq ? (int)(eq - arg) : (int)strlen(arg);
+	bool takes_value, optional_bool;
+	if (arg[1] != '-' || !opt_key(arg, key, sizeof(key)) || !key[0] ||
+	    !classify(key, o, &takes_value, &optional_bool)) {
+		snprintf(err, errlen, "unknown option '%.*s' (see --help)", optlen, arg);
+		return -1;
+	}
+	if (!takes_value) {
+		if (eq) {
+			snprintf(err, errlen, "option '%.*s' takes no value", optlen, arg);
+			return -1;
+		}
+		return 0;
+	}
+	return opt_value(arg, eq, optional_bool, argc, argv, i, o, err, errlen);
 }
 
 static bool ends_with(const char *s, const char *suffix)
@@ -154,6 +179,41 @@ int cli_parse_size(const char *s, int *w, int *h)
 	return 0;
 }
 
+int cli_numbered_name(const char *pattern, int n, char *buf, size_t len)
+{
+	const char *pc = strchr(pattern, '%');
+	if (!pc) {
+		snprintf(buf, len, "%s", pattern);
+		return 0;
+	}
+	const char *q = pc + 1; /* %d, %Nd, %0Nd: printf's flag and width */
+	while (*q >= '0' && *q <= '9')
+		q++;
+	if (*q != 'd' || strchr(q + 1, '%'))
+		return -1;
+	char fmt[32];
+	snprintf(fmt, sizeof(fmt), "%%.%ds%%%.*s%%s", (int)(pc - pattern), (int)(q - pc), pc + 1);
+	snprintf(buf, len, fmt, pattern, n, q + 1);
+	return 1;
+}
+
+int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t errlen)
+{
+	bool y4m = !strcmp(out, "-") || ends_with(out, ".y4m");
+	if (!y4m && !ends_with(out, ".png")) {
+		snprintf(err, errlen, "out: '%s' must end in .png or .y4m (or be - for a Y4M stream on stdout)", out);
+		return -1;
+	}
+	char name[PARAM_STR_MAX + 32];
+	int numbered = cli_numbered_name(out, 0, name, sizeof(name));
+	if (numbered < 0) {
+		snprintf(err, errlen, "--out '%s': only one %%d (or %%0Nd) is allowed in the file name", out);
+		return -1;
+	}
+	*kind = y4m ? CLI_OUT_Y4M : numbered ? CLI_OUT_PNG_SEQUENCE : CLI_OUT_PNG;
+	return 0;
+}
+
 static int validate(const struct params *p, char *err, size_t errlen)
 {
 	int w, h;
@@ -161,10 +221,9 @@ static int validate(const struct params *p, char *err, size_t errlen)
 		snprintf(err, errlen, "size: '%s' is not WxH with W and H in 16..16384", p->size);
 		return -1;
 	}
-	if (!ends_with(p->out, ".png") && !ends_with(p->out, ".y4m") && strcmp(p->out, "-") != 0) {
-		snprintf(err, errlen, "out: '%s' must end in .png or .y4m (or be - for a Y4M stream on stdout)", p->out);
+	enum cli_out_kind kind;
+	if (cli_parse_out(p->out, &kind, err, errlen) < 0)
 		return -1;
-	}
 	if (p->export_mesh[0] && !ends_with(p->export_mesh, ".ply")) {
 		snprintf(err, errlen, "export_mesh: '%s' must end in .ply", p->export_mesh);
 		return -1;

@@ -16,6 +16,17 @@ enum cli_result { CLI_RUN, CLI_EXIT_OK, CLI_ERROR };
 enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, size_t errlen);
 /* Parses "WxH"; 0 or -1. */
 int cli_parse_size(const char *s, int *w, int *h);
+/* What --out names: a PNG (written for the last frame), a PNG sequence (one
+ * %d or %0Nd in the name: every frame) or a Y4M stream (.y4m, or - for
+ * stdout); names end in .png / .y4m in any case.  The one check of the
+ * output name, used by cli_parse and by the sinks.  0, or -1 with err. */
+enum cli_out_kind { CLI_OUT_PNG, CLI_OUT_PNG_SEQUENCE, CLI_OUT_Y4M };
+int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t errlen);
+/* "frame%04d.png" style names (--out, screenshot): pattern with n in place
+ * of its %d / %Nd / %0Nd (printf's meaning) into buf.  1 when the pattern
+ * has one, 0 when it has none (buf = pattern), -1 when it is malformed (more
+ * than one %, or another conversion). */
+int cli_numbered_name(const char *pattern, int n, char *buf, size_t len);
 void cli_print_help(const char *argv0);
 
 #endif

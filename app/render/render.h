@@ -50,12 +50,4 @@ int renderer_read(struct renderer *r, struct image *img);
  * window surface), scaled to w x h.  0 or -1. */
 int renderer_blit_to_default(struct renderer *r, int w, int h);
 
-/* Renders p->count frames with the current context and returns the last
- * one (tests, tools).  0 or -1 with err. */
-int render_to_image(const struct params *p, struct image *img, char *err, size_t errlen);
-
-/* The main job: render p->count frames headless, write p->out (and the mesh
- * to p->export_mesh).  Returns the process exit code. */
-int run_headless(const struct params *p);
-
 #endif

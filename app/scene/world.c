@@ -328,3 +328,96 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 		return -1;
 	return pipeline_read_mesh(w->pl, m);
 }
+
+/* ---- mesh export (--export-mesh) -------------------------------------------
+ * Self-contained: reads the pool as world_draw sees it. */
+
+static int export_read(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
+{
+	if (size <= 0)
+		return 0;
+	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+	glBindBuffer(GL_COPY_READ_BUFFER, buf);
+	void *m = glMapBufferRange(GL_COPY_READ_BUFFER, off, size, GL_MAP_READ_BIT);
+	if (m) {
+		memcpy(out, m, (size_t)size);
+		glUnmapBuffer(GL_COPY_READ_BUFFER);
+	}
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	return m ? 0 : -1;
+}
+
+/* Blocks with a mesh in the pool: generated (ready, or still pending its
+ * empty check) and holding a slot. */
+static bool export_block(const struct block *b)
+{
+	return b->key[3] >= 0 && (b->state == B_READY || b->state == B_PENDING) && b->slot >= 0;
+}
+
+/* The triangles and vertices block b wrote into its slot. */
+static int export_counts(const struct world *w, const struct block *b, uint32_t *tris, uint32_t *verts)
+{
+	uint32_t v[2];
+	if (export_read(w->status, w->sstride * b->slot + ST_TRIS_WRITTEN * 4, sizeof(v), v) < 0)
+		return -1;
+	_Static_assert(ST_VERTS_WRITTEN == ST_TRIS_WRITTEN + 1, "written counters are adjacent");
+	*tris = v[0] < w->tcap ? v[0] : w->tcap;
+	*verts = v[1] < w->vcap ? v[1] : w->vcap;
+	return 0;
+}
+
+/* Block b's mesh appended to m at vertex nv, triangle nt. */
+static int export_append(const struct world *w, const struct block *b, struct mesh *m, uint32_t nv, uint32_t nt,
+			 uint32_t verts, uint32_t tris, float *vb)
+{
+	if (export_read(w->vbo, w->vstride * b->slot, (GLsizeiptr)verts * VERTEX_BYTES, vb) < 0 ||
+	    export_read(w->ibo, w->istride * b->slot, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0)
+		return -1;
+	for (uint32_t i = 0; i < verts; i++)
+		for (int a = 0; a < 3; a++) {
+			m->pos[3 * (size_t)(nv + i) + a] = vb[8 * (size_t)i + a];
+			m->nrm[3 * (size_t)(nv + i) + a] = vb[8 * (size_t)i + 4 + a];
+		}
+	for (size_t k = 3 * (size_t)nt; k < 3 * (size_t)(nt + tris); k++) {
+		if (m->idx[k] >= verts)
+			return -1;
+		m->idx[k] += nv; /* block-local -> the exported mesh's */
+	}
+	return 0;
+}
+
+int world_read_mesh(struct world *w, struct mesh *m)
+{
+	memset(m, 0, sizeof(*m));
+	uint64_t nv = 0, nt = 0;
+	uint32_t tris = 0, verts = 0;
+	for (uint32_t i = 0; i < w->cap; i++) {
+		if (!export_block(&w->blocks[i]))
+			continue;
+		if (export_counts(w, &w->blocks[i], &tris, &verts) < 0)
+			return -1;
+		nv += verts;
+		nt += tris;
+	}
+	if (nv > UINT32_MAX || nt > UINT32_MAX / 3 || mesh_alloc(m, (uint32_t)nv, (uint32_t)nt) < 0)
+		return -1;
+	float *vb = malloc((size_t)VERTEX_BYTES * (w->vcap ? w->vcap : 1));
+	int rc = vb ? 0 : -1;
+	uint32_t at_v = 0, at_t = 0;
+	for (uint32_t i = 0; i < w->cap && rc == 0; i++) {
+		const struct block *b = &w->blocks[i];
+		if (!export_block(b))
+			continue;
+		rc = export_counts(w, b, &tris, &verts);
+		if (rc == 0 && (at_v + (uint64_t)verts > nv || at_t + (uint64_t)tris > nt))
+			rc = -1; /* changed under us: cannot happen without a frame in between */
+		if (rc == 0)
+			rc = export_append(w, b, m, at_v, at_t, verts, tris, vb);
+		at_v += verts;
+		at_t += tris;
+	}
+	free(vb);
+	if (rc < 0)
+		mesh_free(m);
+	return rc;
+}

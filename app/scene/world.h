@@ -56,6 +56,16 @@ int world_block_generations(const struct world *w, int lod, const int idx[3], in
  * its mesh back (positions/normals; indices local). 0/-1. */
 int world_block_mesh(struct world *w, const struct params *p, int lod, const int idx[3], struct mesh *m);
 
+/* The surface the world shows, as one mesh (--export-mesh): every block the
+ * pool holds a mesh for (generated, not known to be empty), each at its own
+ * level of detail, positions in world space (as generated), normals, and
+ * indices rebased from each block's slot to the mesh.  Where a finer block
+ * lies over a coarser one both are in the mesh, as both are drawn (the
+ * coarser eroded by lod_bias of its cells, so slightly inside): with
+ * lod_levels = 1 the mesh is the exact, single surface.  0, or -1 (read-back
+ * failure, out of memory; m is then empty). */
+int world_read_mesh(struct world *w, struct mesh *m);
+
 /* ---- autopilot ----------------------------------------------------------- */
 struct noise_set;
 struct autopilot {

@@ -16,9 +16,8 @@
  *       produce captures by hand when investigating.
  */
 #include "app.h"
-#include "hal.h"
+#include "controls.h"
 #include "convert.h"
-#include "v4l2_out.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -95,10 +94,12 @@ static int convert(int argc, char **argv)
 	glGenFramebuffers(1, &fbo);
 	glBindFramebuffer(GL_FRAMEBUFFER, fbo);
 	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-	struct frame_format f = { .fmt = p.v4l2_format ? p.v4l2_format - 1 : CF_YUYV, .width = w, .height = h,
-				  .matrix = p.v4l2_matrix };
+	struct hal_v4l2_config vc; /* --v4l2-format, --v4l2-matrix as the app maps them */
+	controls_v4l2_config(&p, w, h, &vc);
+	struct frame_format f = { .fmt = vc.format >= 0 ? (enum conv_fmt)vc.format : CF_YUYV, .width = w, .height = h,
+				  .matrix = vc.matrix };
 	conv_fmt_tight(f.fmt, w, h, &f.bytesperline, &f.sizeimage);
-	struct gpu_conv *c = gpu_conv_create(&f, 2, err, sizeof(err));
+	struct gpu_conv *c = gpu_conv_create(&f, 2, controls_hal_gpu(), err, sizeof(err));
 	int rc = 1;
 	const uint8_t *bytes = NULL;
 	if (c && gpu_conv_submit(c, fbo, w, h) == 1 && (bytes = gpu_conv_ready(c, true)) != NULL) {

@@ -1,0 +1,162 @@
+/* isoterra — file sinks: one PNG (the last frame), a PNG sequence (every
+ * frame), a Y4M stream (file or stdout); and the memory sink of
+ * render_to_image.  See sink.h. */
+#include "sink.h"
+#include "cli.h"
+#include "render.h"
+#include "y4m.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+struct file_sink {
+	struct sink base;
+	enum cli_out_kind kind;
+	char name[PARAM_STR_MAX]; /* --out: a name, a pattern, or - */
+	struct y4m y;
+	bool y4m_open, progress;
+};
+
+/* [#####     ] 3/10 on stderr for each frame written. */
+static void progress(int f, int count)
+{
+	int width = 40, done = (f + 1) * width / count;
+	fprintf(stderr, "\r[%.*s%*s] %d/%d", done, "########################################", width - done, "", f + 1,
+		count);
+	if (f + 1 == count)
+		fputc('\n', stderr);
+}
+
+static int write_frame(struct file_sink *fs, struct renderer *r, int f, char *err, size_t errlen)
+{
+	struct image img = { 0 };
+	if (renderer_read(r, &img) < 0) {
+		snprintf(err, errlen, "reading the frame back failed");
+		return -1;
+	}
+	int rc;
+	if (fs->kind == CLI_OUT_Y4M) {
+		rc = y4m_write(&fs->y, &img);
+		if (rc < 0)
+			snprintf(err, errlen, "writing frame %d to '%s' failed", f, fs->name);
+	} else {
+		char name[PARAM_STR_MAX + 32];
+		cli_numbered_name(fs->name, f, name, sizeof(name));
+		rc = image_write_png(&img, name, err, errlen);
+		if (rc == 0 && fs->kind == CLI_OUT_PNG)
+			fs->base.dest = fs->name; /* the last frame is in the file */
+	}
+	image_free(&img);
+	return rc;
+}
+
+static int file_frame(struct sink *s, struct sink_frame *fr, char *err, size_t errlen)
+{
+	struct file_sink *fs = (struct file_sink *)s;
+	if (fs->kind == CLI_OUT_PNG && !fr->last)
+		return 0; /* one PNG: the last frame */
+	int rc = write_frame(fs, fr->r, fr->index, err, errlen);
+	if (fs->progress && fr->count > 0)
+		progress(fr->index, fr->count);
+	return rc;
+}
+
+static int file_finish(struct sink *s, const struct sink_end *end, char *err, size_t errlen)
+{
+	struct file_sink *fs = (struct file_sink *)s;
+	(void)end;
+	if (!fs->y4m_open)
+		return 0;
+	fs->y4m_open = false;
+	if (y4m_close(&fs->y) < 0) {
+		snprintf(err, errlen, "closing '%s' failed", fs->name);
+		return -1;
+	}
+	return 0;
+}
+
+static void file_destroy(struct sink *s)
+{
+	struct file_sink *fs = (struct file_sink *)s;
+	if (fs->y4m_open)
+		y4m_close(&fs->y);
+	free(fs);
+}
+
+static const struct sink_ops file_ops = { .frame = file_frame, .finish = file_finish, .destroy = file_destroy };
+
+struct sink *sink_file_open(const struct params *p, int w, int h, char *err, size_t errlen)
+{
+	struct file_sink *fs = calloc(1, sizeof(*fs));
+	if (!fs) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	fs->base.ops = &file_ops;
+	snprintf(fs->name, sizeof(fs->name), "%s", p->out);
+	if (cli_parse_out(p->out, &fs->kind, err, errlen) < 0) {
+		free(fs);
+		return NULL;
+	}
+	fs->progress = p->count > 1 && isatty(2);
+	if (fs->kind != CLI_OUT_PNG)
+		fs->base.dest = fs->name; /* a stream or a sequence: named whatever it holds */
+	if (fs->kind == CLI_OUT_Y4M) {
+		if (y4m_open(&fs->y, p->out, w, h, (int)lroundf(p->fps), err, errlen) < 0) {
+			free(fs);
+			return NULL;
+		}
+		fs->y4m_open = true;
+	}
+	return &fs->base;
+}
+
+/* ---- memory: the last frame into an image ------------------------------------ */
+struct memory_sink {
+	struct sink base;
+	struct image *img;
+};
+
+static int memory_frame(struct sink *s, struct sink_frame *fr, char *err, size_t errlen)
+{
+	struct memory_sink *ms = (struct memory_sink *)s;
+	if (!fr->last)
+		return 0;
+	image_free(ms->img);
+	if (renderer_read(fr->r, ms->img) < 0) {
+		snprintf(err, errlen, "reading the frame back failed");
+		return -1;
+	}
+	return 0;
+}
+
+static int memory_finish(struct sink *s, const struct sink_end *end, char *err, size_t errlen)
+{
+	(void)s;
+	(void)end;
+	(void)err;
+	(void)errlen;
+	return 0;
+}
+
+static void memory_destroy(struct sink *s)
+{
+	free(s);
+}
+
+static const struct sink_ops memory_ops = { .frame = memory_frame, .finish = memory_finish, .destroy = memory_destroy };
+
+struct sink *sink_memory_open(struct image *img, char *err, size_t errlen)
+{
+	struct memory_sink *ms = calloc(1, sizeof(*ms));
+	if (!ms) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	ms->base.ops = &memory_ops;
+	ms->img = img;
+	return &ms->base;
+}

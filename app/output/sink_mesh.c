@@ -1,0 +1,57 @@
+/* isoterra — the mesh export sink: the scene's mesh (the volume's last
+ * extraction, or the world's blocks: world_read_mesh) as binary PLY at the
+ * end of a run that went well. */
+#include "sink.h"
+#include "ply.h"
+#include "scene.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+struct mesh_sink {
+	struct sink base;
+	char path[PARAM_STR_MAX];
+};
+
+static int mesh_frame(struct sink *s, struct sink_frame *fr, char *err, size_t errlen)
+{
+	(void)s;
+	(void)fr;
+	(void)err;
+	(void)errlen;
+	return 0;
+}
+
+static int mesh_finish(struct sink *s, const struct sink_end *end, char *err, size_t errlen)
+{
+	struct mesh_sink *ms = (struct mesh_sink *)s;
+	if (!end->ok || !end->scene)
+		return 0;
+	struct mesh m;
+	if (end->scene->ops->read_mesh(end->scene, &m) < 0) {
+		snprintf(err, errlen, "reading the mesh back failed");
+		return -1;
+	}
+	int rc = ply_write(&m, ms->path, err, errlen);
+	mesh_free(&m);
+	return rc;
+}
+
+static void mesh_destroy(struct sink *s)
+{
+	free(s);
+}
+
+static const struct sink_ops mesh_ops = { .frame = mesh_frame, .finish = mesh_finish, .destroy = mesh_destroy };
+
+struct sink *sink_mesh_open(const char *path, char *err, size_t errlen)
+{
+	struct mesh_sink *ms = calloc(1, sizeof(*ms));
+	if (!ms) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	ms->base.ops = &mesh_ops;
+	snprintf(ms->path, sizeof(ms->path), "%s", path);
+	return &ms->base;
+}

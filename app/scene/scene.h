@@ -1,0 +1,62 @@
+/* isoterra — what the frame loop draws: a scene behind one small interface.
+ * The volume (one extracted box, orbit camera) and the streaming world
+ * (blocks, levels of detail, autopilot or manual flight) implement it. */
+#ifndef ISOTERRA_SCENE_H
+#define ISOTERRA_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "params.h"
+#include "mesh.h"
+
+struct renderer;
+struct controls;
+
+/* The frame to draw. */
+struct scene_frame {
+	int index;               /* 0, 1, ... */
+	bool live;               /* on a display: wall-clock time, blocks stream
+	                          * under their budget; else each frame is
+	                          * complete and reproducible (time = index / fps) */
+	double start_s;          /* live: the clock (seconds) at the first frame */
+	struct controls *ctl;    /* pause clock, flight keys; may be NULL */
+	struct renderer *r;      /* draw into it */
+	int w, h;
+};
+
+struct scene;
+struct scene_ops {
+	/* Advances to frame fr->index (p->time, the camera), updates and
+	 * draws into fr->r.  0, or -1 with err ("" when the cause is already
+	 * logged, a GL error). */
+	int (*frame)(struct scene *s, struct params *p, const struct scene_frame *fr, char *err, size_t errlen);
+	/* The run's summary after "N frame(s) WxH, ": "grid 48^3: ..." or
+	 * "world: ...", and a warning to give first (or "").  -1 when the
+	 * statistics cannot be read (no summary). */
+	int (*report)(struct scene *s, const struct params *p, char *line, size_t len, char *warn, size_t wlen);
+	/* The mesh the scene shows now, in world space (--export-mesh).  0/-1. */
+	int (*read_mesh)(struct scene *s, struct mesh *m);
+	void (*destroy)(struct scene *s);
+};
+
+struct scene {
+	const struct scene_ops *ops;
+};
+
+/* The scenes.  p must outlive the scene: the world's autopilot reads the
+ * parameters the controls change.  NULL with err. */
+struct scene *scene_volume_create(const struct params *p, char *err, size_t errlen);
+struct scene *scene_world_create(const struct params *p, char *err, size_t errlen);
+/* The scene p->scene names. */
+static inline struct scene *scene_create(const struct params *p, char *err, size_t errlen)
+{
+	return p->scene == SCENE_WORLD ? scene_world_create(p, err, errlen) : scene_volume_create(p, err, errlen);
+}
+static inline void scene_destroy(struct scene *s)
+{
+	if (s)
+		s->ops->destroy(s);
+}
+
+#endif

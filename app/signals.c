@@ -1,0 +1,73 @@
+/* isoterra — signal flags (see signals.h). */
+#include "signals.h"
+
+#include <signal.h>
+#include <string.h>
+
+static volatile sig_atomic_t quit_signal, report_request;
+static struct sigaction old_int, old_term, old_usr1;
+static bool installed, watching;
+
+static void on_quit(int sig)
+{
+	quit_signal = sig;
+}
+
+static void on_usr1(int sig)
+{
+	(void)sig;
+	report_request = 1;
+}
+
+int signals_install(void)
+{
+	quit_signal = 0;
+	report_request = 0;
+	struct sigaction sa;
+	memset(&sa, 0, sizeof(sa));
+	sigemptyset(&sa.sa_mask);
+	sa.sa_handler = on_quit;
+	sa.sa_flags = SA_RESETHAND;
+	struct sigaction *keep_int = installed ? NULL : &old_int, *keep_term = installed ? NULL : &old_term;
+	if (sigaction(SIGINT, &sa, keep_int) != 0 || sigaction(SIGTERM, &sa, keep_term) != 0)
+		return -1;
+	installed = true;
+	return 0;
+}
+
+int signals_watch_report(void)
+{
+	report_request = 0;
+	struct sigaction sa;
+	memset(&sa, 0, sizeof(sa));
+	sigemptyset(&sa.sa_mask);
+	sa.sa_handler = on_usr1;
+	if (sigaction(SIGUSR1, &sa, watching ? NULL : &old_usr1) != 0)
+		return -1;
+	watching = true;
+	return 0;
+}
+
+void signals_restore(void)
+{
+	if (installed) {
+		sigaction(SIGINT, &old_int, NULL);
+		sigaction(SIGTERM, &old_term, NULL);
+	}
+	if (watching)
+		sigaction(SIGUSR1, &old_usr1, NULL);
+	installed = watching = false;
+}
+
+int signals_quit(void)
+{
+	return quit_signal;
+}
+
+bool signals_take_report(void)
+{
+	if (!report_request)
+		return false;
+	report_request = 0;
+	return true;
+}
