@@ -3,23 +3,18 @@
 #ifndef ISOTERRA_APP_H
 #define ISOTERRA_APP_H
 
-#include "log.h"
-#include "params.h"
-#include "cli.h"
-#include "mesh.h"
-#include "grid.h"
-#include "image.h"
-#include "ply.h"
-#include "noise.h"
-#include "density_ref.h"
-#include "curves.h"
-#include "edits.h"
-#include "mc.h"
-#include "gpu.h"
-#include "pipeline.h"
-#include "render.h"
-#include "platform.h"
-#include "controls.h"
-#include "run.h"
+/* one door per folder (docs/ARCHITECTURE.md), in the direction data flows */
+#include "core.h"      /* app/core: log, clock, atomic files, PNG, meshes */
+#include "params.h"    /* app/params: the parameter table, presets, config, CLI */
+#include "gpu.h"       /* app/gpu: GL helpers, shader loader, the shader ABI */
+#include "edit.h"      /* app/edit: curves, heightmaps, the edit state */
+#include "terrain.h"   /* app/terrain: the density field (a field provider) */
+#include "extract.h"   /* app/extract: the extraction engine */
+#include "render.h"    /* app/render: renderer, surface texture, OSD */
+#include "scene.h"     /* app/scene: volume and world, camera, autopilot */
+#include "output.h"    /* app/output: sinks, PLY, Y4M, the display */
+#include "platform.h"  /* platform/: EGL backends */
+#include "controls.h"  /* hal/ events -> parameters, OSD, screenshots */
+#include "run.h"       /* the frame loop */
 
 #endif

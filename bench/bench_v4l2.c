@@ -61,7 +61,7 @@ static void to_file(void *user, const uint8_t *bytes, size_t size)
 		fo->errors++;
 }
 
-struct scene {
+struct bench_scene {
 	struct params p;
 	struct grid g;
 	struct pipeline *pl;
@@ -70,7 +70,7 @@ struct scene {
 };
 
 /* n frames; v: NULL = no video output.  Returns frames per second. */
-static double run(struct scene *s, struct v4l2_out *v, int n)
+static double run(struct bench_scene *s, struct v4l2_out *v, int n)
 {
 	struct pipeline_draw d;
 	struct camera cam;
@@ -127,7 +127,7 @@ static int parse_args(int argc, char **argv, struct options *o)
 }
 
 /* The outputs: paced and (without a device) every-frame.  0 or -1. */
-static int open_outputs(const struct options *o, const struct scene *s, struct file_out *fo, struct v4l2_out **paced,
+static int open_outputs(const struct options *o, const struct bench_scene *s, struct file_out *fo, struct v4l2_out **paced,
 			struct v4l2_out **every)
 {
 	char err[512], found[64], tmpl[] = "/tmp/isoterra-bench-v4l2-XXXXXX";
@@ -172,7 +172,7 @@ static int open_outputs(const struct options *o, const struct scene *s, struct f
  * conversion, read-back and hand-over, each frame finished.  Only unpaced
  * (the sink): a device's output waits for its frame slots.  ms per frame,
  * or -1. */
-static double output_alone(struct scene *s, struct v4l2_out *every, int n)
+static double output_alone(struct bench_scene *s, struct v4l2_out *every, int n)
 {
 	unsigned fbo;
 	int fw, fh;
@@ -193,7 +193,7 @@ static double median(double *v, int n)
 }
 
 /* Rounds of A (no output), B (paced), C (every frame); the medians. */
-static int measure(struct scene *s, const struct options *o, struct v4l2_out *paced, struct v4l2_out *every)
+static int measure(struct bench_scene *s, const struct options *o, struct v4l2_out *paced, struct v4l2_out *every)
 {
 	run(s, paced, 3); /* warm-up: shaders, converter */
 	if (every)
@@ -235,7 +235,7 @@ int main(int argc, char **argv)
 		return 2;
 	log_set_level(LOG_WARN);
 	char err[512];
-	struct scene s;
+	struct bench_scene s;
 	memset(&s, 0, sizeof(s));
 	s.w = 640;
 	s.h = 480;

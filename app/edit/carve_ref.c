@@ -258,8 +258,7 @@ static float hm_texel(const struct heightmap *hm, int x, int z)
 	return hm->v[(size_t)z * (size_t)hm->w + (size_t)x];
 }
 
-float heightmap_ref_height(const struct edits *e, const struct params *p, const struct noise_set *ns, float x,
-			   float z, bool detail)
+float heightmap_ref_base(const struct edits *e, const struct params *p, float x, float z)
 {
 	const struct heightmap *hm = &e->hm;
 	if (!hm->w)
@@ -274,23 +273,7 @@ float heightmap_ref_height(const struct edits *e, const struct params *p, const 
 	float a = h00 + (h10 - h00) * fx;
 	float b = h01 + (h11 - h01) * fx;
 	float v = a + (b - a) * fz;
-	float h = p->heightmap_base + v * (p->heightmap_height * (1.0f / 65535.0f));
-	if (detail && p->heightmap_detail != 0.0f) {
-		float m00 = sqrtf(fx * fx + fz * fz), m10 = sqrtf((fx - 1.0f) * (fx - 1.0f) + fz * fz);
-		float m01 = sqrtf(fx * fx + (fz - 1.0f) * (fz - 1.0f));
-		float m11 = sqrtf((fx - 1.0f) * (fx - 1.0f) + (fz - 1.0f) * (fz - 1.0f));
-		float sm = m00 + m10 + m01 + m11;
-		float sm2 = sm * sm;
-		float bump = 256.0f * (m00 * m10 * m01 * m11) / (sm2 * sm2);
-		float n = 0.0f, amp = 0.5f, fr = 1.0f;
-		for (int i = 0; i < p->heightmap_octaves; i++) {
-			n += amp * noise_perlin(ns, gx * fr + (float)i * 17.31f, 0.5f, gz * fr - (float)i * 9.17f);
-			fr *= 2.0f;
-			amp *= 0.5f;
-		}
-		h += p->heightmap_detail * bump * n;
-	}
-	return h;
+	return p->heightmap_base + v * (p->heightmap_height * (1.0f / 65535.0f));
 }
 
 void carve_ref_bake(const struct edits *e, const struct params *p, const struct bake_opts *o, float *out)
@@ -302,7 +285,7 @@ void carve_ref_bake(const struct edits *e, const struct params *p, const struct 
 			float z = o->origin[1] + ((float)j + 0.5f) * tz;
 			float ev[4];
 			carve_ref_eval(e, p, x, z, o->iterative, ev);
-			float base = e->hm.w ? heightmap_ref_height(e, p, NULL, x, z, false) : 0.0f;
+			float base = e->hm.w ? heightmap_ref_base(e, p, x, z) : 0.0f;
 			out[(size_t)j * (size_t)o->res[0] + (size_t)i] = ev[1] * (ev[0] - base);
 		}
 }

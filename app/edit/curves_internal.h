@@ -1,6 +1,6 @@
 /* isoterra — what the curve file readers (geojson.c, csv_curves.c) share:
  * kinds and per-path parameters by name, with the same range checks in
- * both formats.  Defined in curves_io.c; not part of the curves API. */
+ * both formats.  Defined in curve_params.c; not part of the curves API. */
 #ifndef ISOTERRA_CURVES_INTERNAL_H
 #define ISOTERRA_CURVES_INTERNAL_H
 

@@ -18,7 +18,6 @@
 #include <GLES3/gl31.h>
 
 #include "curves.h"
-#include "noise.h"
 #include "params.h"
 
 /* ---- heightmap (heightmap.c) ---------------------------------------------- */
@@ -135,9 +134,9 @@ void carve_ref_closest(const float c[3][4], const float pos[2], float out[4]);
 void carve_ref_eval(const struct edits *e, const struct params *p, float x, float z, bool iterative, float out[4]);
 float carve_ref_density(const struct edits *e, const struct params *p, float x, float y, float z, float d);
 float carve_ref_theta(float d, float hw, float lam);
-/* Heightmap height (detail: the fractal interpolation). */
-float heightmap_ref_height(const struct edits *e, const struct params *p, const struct noise_set *ns, float x,
-			   float z, bool detail);
+/* Heightmap height, bilinear (the fractal interpolation's detail on top:
+ * heightmap_ref_height, app/terrain/density_ref.h). */
+float heightmap_ref_base(const struct edits *e, const struct params *p, float x, float z);
 /* CPU displacement map, as curves_bake(). */
 void carve_ref_bake(const struct edits *e, const struct params *p, const struct bake_opts *o, float *out);
 

@@ -1,6 +1,6 @@
 /* isoterra — inside the extraction engine: the pipeline's state and what
  * its files share (pipeline.c: buffers, programs, passes; histopyramid.c:
- * the pyramid's levels, reduction and down-sweep; readback.c).  Nothing
+ * the pyramid's levels, reduction and down-sweep; buffers.c).  Nothing
  * outside app/extract/ includes this. */
 #ifndef ISOTERRA_EXTRACT_INT_H
 #define ISOTERRA_EXTRACT_INT_H
@@ -77,7 +77,7 @@ struct pipeline {
 /* A shader storage buffer of size bytes (at least 4), data may be NULL. */
 GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage);
 
-/* ---- read-back (readback.c) ------------------------------------------------- */
+/* ---- read-back (buffers.c) ------------------------------------------------- */
 
 /* size bytes of buf at off into out.  0 or -1. */
 int extract_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);

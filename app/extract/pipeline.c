@@ -98,16 +98,6 @@ static void set_caps(GLuint prog, uint32_t tri_cap, uint32_t vert_cap)
 	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_vert_cap"), vert_cap);
 }
 
-GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage)
-{
-	GLuint b = 0;
-	glGenBuffers(1, &b);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-	glBufferData(GL_SHADER_STORAGE_BUFFER, size > 0 ? size : 4, data, usage);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	return b;
-}
-
 static void upload_tables(struct pipeline *pl)
 {
 	struct mc_tables t;

@@ -88,7 +88,7 @@ struct pipeline_draw {
 };
 void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d);
 
-/* ---- read-back (readback.c; tests, export, reports; never in the frame
+/* ---- read-back (buffers.c; tests, export, reports; never in the frame
  * loop).  Each waits for the GPU. ------------------------------------------ */
 /* grid_dens_count() densities (the grid's corners and margin), x fastest. */
 int pipeline_read_density(struct pipeline *pl, float *out);

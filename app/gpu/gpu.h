@@ -13,6 +13,7 @@
 #include <GLES3/gl31.h>
 
 #include "params.h"
+#include "abi.h" /* binding points, units, status words: shared with the shaders */
 
 struct embedded_file {
 	const char *name;

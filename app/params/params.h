@@ -90,4 +90,7 @@ int params_apply_preset(struct params *p, const char *name, char *err, size_t er
 int params_load_config_text(struct params *p, const char *text, const char *fname, char *err, size_t errlen);
 int params_load_config_file(struct params *p, const char *path, char *err, size_t errlen);
 
+/* the command line over the table */
+#include "cli.h"
+
 #endif

@@ -50,4 +50,7 @@ int renderer_read(struct renderer *r, struct image *img);
  * window surface), scaled to w x h.  0 or -1. */
 int renderer_blit_to_default(struct renderer *r, int w, int h);
 
+/* the on-screen display */
+#include "osd.h"
+
 #endif

@@ -59,4 +59,7 @@ static inline void scene_destroy(struct scene *s)
 		s->ops->destroy(s);
 }
 
+/* the streaming world, its camera and autopilot */
+#include "world.h"
+
 #endif

@@ -190,6 +190,36 @@ static float shelf_term(const struct params *p, float y)
 /* no curves, no heightmap (ed == NULL) */
 static const struct edits no_edits;
 
+/* heightmap.glsl's height: bilinear (heightmap_ref_base) plus, with detail,
+ * the fractal interpolation (Clua §4.1.1): noise octaves weighted by a bump
+ * that vanishes at the samples. */
+float heightmap_ref_height(const struct edits *e, const struct params *p, const struct noise_set *ns, float x,
+			   float z, bool detail)
+{
+	const struct heightmap *hm = &e->hm;
+	if (!hm->w)
+		return 0.0f;
+	float h = heightmap_ref_base(e, p, x, z);
+	if (!detail || p->heightmap_detail == 0.0f)
+		return h;
+	float gx = x / p->heightmap_scale + 0.5f * (float)(hm->w - 1);
+	float gz = z / p->heightmap_scale + 0.5f * (float)(hm->h - 1);
+	float fx = gx - floorf(gx), fz = gz - floorf(gz);
+	float m00 = sqrtf(fx * fx + fz * fz), m10 = sqrtf((fx - 1.0f) * (fx - 1.0f) + fz * fz);
+	float m01 = sqrtf(fx * fx + (fz - 1.0f) * (fz - 1.0f));
+	float m11 = sqrtf((fx - 1.0f) * (fx - 1.0f) + (fz - 1.0f) * (fz - 1.0f));
+	float sm = m00 + m10 + m01 + m11;
+	float sm2 = sm * sm;
+	float bump = 256.0f * (m00 * m10 * m01 * m11) / (sm2 * sm2);
+	float n = 0.0f, amp = 0.5f, fr = 1.0f;
+	for (int i = 0; i < p->heightmap_octaves; i++) {
+		n += amp * noise_perlin(ns, gx * fr + (float)i * 17.31f, 0.5f, gz * fr - (float)i * 9.17f);
+		fr *= 2.0f;
+		amp *= 0.5f;
+	}
+	return h + p->heightmap_detail * bump * n;
+}
+
 float density_ref(const struct params *p, const struct noise_set *ns, const struct edits *ed, float x, float y,
 		  float z)
 {

@@ -31,4 +31,8 @@ void terrain_destroy(struct terrain *t);
 /* The field for pipeline_create(), valid while t lives; NULL for NULL. */
 const struct field *terrain_field(const struct terrain *t);
 
+/* the rest of the folder: noise tables and the CPU reference of the field */
+#include "noise.h"
+#include "density_ref.h"
+
 #endif

@@ -1,12 +1,23 @@
-/* isoterra — reading the extraction's results back: densities, the status
- * block's counters, the mesh, the canaries after the output buffers.  For
- * tests, export and end-of-run reports; never in the frame loop. */
+/* isoterra — the engine's storage buffers: made, and read back (densities,
+ * the status block's counters, the mesh, the canaries after the output
+ * buffers).  Read-back is for tests, export and end-of-run reports; never in
+ * the frame loop. */
 #include "extract_int.h"
 #include "gpu.h"
 #include "abi.h"
 
 #include <stdlib.h>
 #include <string.h>
+
+GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage)
+{
+	GLuint b = 0;
+	glGenBuffers(1, &b);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+	glBufferData(GL_SHADER_STORAGE_BUFFER, size > 0 ? size : 4, data, usage);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	return b;
+}
 
 int extract_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
 {
