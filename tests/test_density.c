@@ -299,15 +299,29 @@ static void test_fields(void)
 	CHECK_NEAR(a, density_ref(&p, &ns_a, NULL, -2.0f, -1.0f, 2.0f), 1e-5, "scroll (terrain)");
 }
 
+/* The f-th fractal family's name, from the parameter table (so a family
+ * added there is tested here without an edit). */
+static const char *family(int f)
+{
+	static char names[FRACTAL_COUNT][32];
+	const char *c = params_find("fractal")->choices;
+	for (int i = 0; i < f && c; i++) {
+		c = strchr(c, '|');
+		c = c ? c + 1 : NULL;
+	}
+	const char *bar = c ? strchr(c, '|') : NULL;
+	snprintf(names[f], sizeof(names[f]), "%.*s", c ? (int)(bar ? (size_t)(bar - c) : strlen(c)) : 0, c ? c : "");
+	return names[f];
+}
+
 static void test_terrain(void)
 {
-	static const char *families[] = { "geiss", "fbm", "turbulence", "ridged", "multifractal", "hetero", "worley" };
 	struct params p;
-	for (int f = 0; f < 7; f++)
+	for (int f = 0; f < FRACTAL_COUNT; f++)
 		for (int n = 0; n < 2; n++) {
 			params_defaults(&p);
 			char kv[128];
-			snprintf(kv, sizeof(kv), "fractal=%s;noise=%s", families[f], n ? "texture" : "alu");
+			snprintf(kv, sizeof(kv), "fractal=%s;noise=%s", family(f), n ? "texture" : "alu");
 			set(&p, kv);
 			struct noise_set *ns = &ns_a;
 			int rock_deep = 0, air_high = 0, floor_rock = 0, pos = 0, neg = 0, bad = 0;
@@ -479,7 +493,6 @@ static void test_gpu(void)
 	printf("GPU: %s / %s\n", caps.renderer, caps.version);
 
 	static const char *fields[] = { "torus", "bumps", "ripple", "sphere", "checker" };
-	static const char *families[] = { "geiss", "fbm", "turbulence", "ridged", "multifractal", "hetero", "worley" };
 	char kv[256], what[128];
 	for (int gi = 0; gi < 2; gi++) {
 		int n = gi ? 33 : 17;
@@ -491,15 +504,15 @@ static void test_gpu(void)
 		/* checker at one cell per sign change: the worst case */
 		snprintf(kv, sizeof(kv), "field=checker;field_scale=%g", 32.0 / n);
 		gpu_compare("field=checker (one cell per check)", n, kv, false);
-		for (int f = 0; f < 7; f++) {
-			snprintf(kv, sizeof(kv), "fractal=%s;noise=alu", families[f]);
-			snprintf(what, sizeof(what), "fractal=%s noise=alu", families[f]);
+		for (int f = 0; f < FRACTAL_COUNT; f++) {
+			snprintf(kv, sizeof(kv), "fractal=%s;noise=alu", family(f));
+			snprintf(what, sizeof(what), "fractal=%s noise=alu", family(f));
 			gpu_compare(what, n, kv, false);
 		}
 	}
-	for (int f = 0; f < 7; f++) {
-		snprintf(kv, sizeof(kv), "fractal=%s;noise=texture", families[f]);
-		snprintf(what, sizeof(what), "fractal=%s noise=texture", families[f]);
+	for (int f = 0; f < FRACTAL_COUNT; f++) {
+		snprintf(kv, sizeof(kv), "fractal=%s;noise=texture", family(f));
+		snprintf(what, sizeof(what), "fractal=%s noise=texture", family(f));
 		gpu_compare(what, 17, kv, true);
 	}
 	gpu_compare("noise=texture rotated_octaves=0 far away", 17, "noise=texture;rotated_octaves=0;vol_x=1000;vol_z=-3000",
