@@ -162,9 +162,11 @@ static int assemble(struct srcbuf *b, const char *stage_define, const char *file
 	memset(b, 0, sizeof(*b));
 	snprintf(b->names[0], sizeof(b->names[0]), "<prelude>");
 	b->nfiles = 1;
-	static char decls[16384];
-	if (params_glsl_decls(decls, sizeof(decls)) < 0) {
-		snprintf(err, errlen, "parameter declarations too long");
+	enum { DECLS_MAX = 16384 };
+	char *decls = malloc(DECLS_MAX);
+	if (!decls || params_glsl_decls(decls, DECLS_MAX) < 0) {
+		snprintf(err, errlen, decls ? "parameter declarations too long" : "out of memory");
+		free(decls);
 		return -1;
 	}
 	const char *head = "#version 310 es\n"
@@ -176,11 +178,15 @@ static int assemble(struct srcbuf *b, const char *stage_define, const char *file
 	const char *abi = embedded_text("abi.h");
 	if (!abi) {
 		snprintf(err, errlen, "abi.h is not embedded in this binary");
+		free(decls);
 		return -1;
 	}
 	/* the caller's defines come first: they may specialize parameters */
-	if (sb_add(b, head, strlen(head)) || sb_add(b, abi, strlen(abi)) || sb_add(b, stage_define, strlen(stage_define)) ||
-	    (defines && sb_add(b, defines, strlen(defines))) || sb_add(b, decls, strlen(decls))) {
+	int rc = sb_add(b, head, strlen(head)) || sb_add(b, abi, strlen(abi)) ||
+		 sb_add(b, stage_define, strlen(stage_define)) || (defines && sb_add(b, defines, strlen(defines))) ||
+		 sb_add(b, decls, strlen(decls));
+	free(decls);
+	if (rc) {
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}

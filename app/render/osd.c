@@ -34,7 +34,7 @@ struct osd *osd_create(char *err, size_t errlen)
 	o->l_font = glGetUniformLocation(o->prog, "u_font");
 	/* the font as an R8UI texture: one 6x8 cell per character */
 	enum { TW = FONT_COUNT * FONT_W };
-	static uint8_t texels[FONT_H][TW];
+	uint8_t texels[FONT_H][TW];
 	for (int c = 0; c < FONT_COUNT; c++) {
 		const uint8_t *g = font_glyph(FONT_FIRST + c);
 		for (int y = 0; y < FONT_H; y++)
