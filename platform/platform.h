@@ -1,9 +1,9 @@
 /* isoterra — platform layer: EGL display, GLES 3.1 context and (for windowed
- * backends, later) a surface, behind one small interface.
+ * backends) a surface, behind one small interface.
  *
  * Backends are plain structs of function pointers (kmscube style).  The
  * renderer never sees which one is active: headless backends render into the
- * application's FBO; windowed ones (GBM/KMS, Wayland, X11 — later) also give a
+ * application's FBO; windowed ones (GBM/KMS, Wayland, X11) also give a
  * window surface and a present() that swaps/flips. */
 #ifndef ISOTERRA_PLATFORM_H
 #define ISOTERRA_PLATFORM_H

@@ -2,8 +2,8 @@
  *
  * Every tunable lives in one table (params.def): name, type, range, default
  * and help.  The table drives the command line (--name value), the config
- * file (name = value), the shader uniforms (u_name, for P_SHADER entries) and,
- * later, the GPIO controls. */
+ * file (name = value), the shader uniforms (u_name, for P_SHADER entries) and
+ * the GPIO knobs (app/controls.c). */
 #ifndef ISOTERRA_PARAMS_H
 #define ISOTERRA_PARAMS_H
 

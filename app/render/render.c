@@ -276,7 +276,7 @@ int renderer_read(struct renderer *r, struct image *img)
 	return 0;
 }
 
-/* ---- display platforms: the frame to the window (issue 4) ---------------- */
+/* ---- display platforms: the frame to the window -------------------------- */
 int renderer_blit_to_default(struct renderer *r, int w, int h)
 {
 	if (r->samples) {
