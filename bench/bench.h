@@ -13,6 +13,26 @@
 #include "gpu.h"
 #include "log.h"
 #include "platform.h"
+#include "pipeline.h"
+
+/* The extraction engine's passes, the reason printed on failure: 0 or -1. */
+static inline int bench_run(struct pipeline *pl, const struct params *p)
+{
+	char err[512];
+	int rc = pipeline_run(pl, p, err, sizeof(err));
+	if (rc < 0 && err[0])
+		fprintf(stderr, "pipeline_run: %s\n", err);
+	return rc;
+}
+
+static inline int bench_density(struct pipeline *pl, const struct params *p)
+{
+	char err[512];
+	int rc = pipeline_density(pl, p, err, sizeof(err));
+	if (rc < 0 && err[0])
+		fprintf(stderr, "pipeline_density: %s\n", err);
+	return rc;
+}
 
 static inline int bench_cmp_double(const void *a, const void *b)
 {

@@ -29,13 +29,13 @@ static double time_runs(struct pipeline *pl, const struct params *p, enum what w
 	double start = clock_ms();
 	/* warm-up (shader JIT, first-touch of buffers) */
 	if (w == DENSITY_ONLY)
-		pipeline_density(pl, p);
+		bench_density(pl, p);
 	else
-		pipeline_run(pl, p);
+		bench_run(pl, p);
 	glFinish();
 	while (n < 64 && (n < min_reps || clock_ms() - start < budget)) {
 		double t0 = clock_ms();
-		int rc = w == DENSITY_ONLY ? pipeline_density(pl, p) : pipeline_run(pl, p);
+		int rc = w == DENSITY_ONLY ? bench_density(pl, p) : bench_run(pl, p);
 		glFinish();
 		if (rc < 0)
 			return -1;
@@ -75,7 +75,7 @@ static void measure_size(const struct field *f, int n, double budget, char *brea
 	/* one profiled run: where the time goes */
 	double ms[PASS_COUNT];
 	pipeline_profile(pl, true, NULL);
-	pipeline_run(pl, &p);
+	bench_run(pl, &p);
 	glFinish();
 	pipeline_profile(pl, false, ms);
 	snprintf(breakdown, len, "%-6d density %8.2f  classify %8.2f  reduce+setup %8.2f  vertices %8.2f  indices %8.2f",

@@ -79,7 +79,7 @@ static double run(struct bench_scene *s, struct v4l2_out *v, int n)
 	for (int i = 0; i < n; i++, s->frame++) {
 		float t = (float)s->frame / 30.0f;
 		s->p.time = t;
-		if (pipeline_run(s->pl, &s->p) < 0)
+		if (bench_run(s->pl, &s->p) < 0)
 			return -1;
 		pipeline_draw_info(s->pl, &d);
 		camera_orbit(&cam, &s->p, &s->g, t, (float)s->w / (float)s->h);

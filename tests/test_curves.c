@@ -957,7 +957,7 @@ static void check_density(struct edits *ed, const char *what, const struct param
 		terrain_destroy(tr);
 		return;
 	}
-	CHECK(pipeline_density(pl, &q) == 0, "%s: density pass", what);
+	CHECK(fixture_density(pl, &q) == 0, "%s: density pass", what);
 	long nd = grid_dens_count(&g);
 	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
 	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read", what);
@@ -1031,7 +1031,7 @@ static void test_road_centreline(struct edits *ed)
 	}
 	long nd = grid_dens_count(&g);
 	float *dens = malloc(sizeof(float) * (size_t)nd);
-	CHECK(pipeline_density(pl, &p) == 0 && pipeline_read_density(pl, dens) == 0, "uncarved density");
+	CHECK(fixture_density(pl, &p) == 0 && pipeline_read_density(pl, dens) == 0, "uncarved density");
 	/* heights of the uncarved terrain at the road's vertices; road at their median */
 	float tops[5], sorted[5];
 	for (int v = 0; v < NP; v++) {
@@ -1051,7 +1051,7 @@ static void test_road_centreline(struct edits *ed)
 	struct curve_path rp = make_path(NP, pts, 4.0f, 3.0f, 0.0f, 0.5f);
 	struct curve_set rs = { &rp, 1 };
 	CHECK(edits_set_curves(ed, &rs, 16, err, sizeof(err)) == 0, "road: %s", err);
-	CHECK(pipeline_run(pl, &p) == 0, "carved pipeline run");
+	CHECK(fixture_run(pl, &p) == 0, "carved pipeline run");
 	struct mesh m;
 	CHECK(pipeline_read_mesh(pl, &m) == 0, "read mesh");
 	CHECK(pipeline_read_density(pl, dens) == 0, "carved density");

@@ -443,8 +443,8 @@ static void gpu_compare(const char *what, int n, const char *settings, bool text
 	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
 	CHECK(pl != NULL, "%s: pipeline_create: %s", what, err);
 	if (pl) {
-		int rc = pipeline_density(pl, &p);
-		CHECK(rc == 0, "%s: pipeline_density", what);
+		int rc = pipeline_density(pl, &p, err, sizeof(err));
+		CHECK(rc == 0, "%s: pipeline_density: %s", what, err);
 		rc = pipeline_read_density(pl, gv);
 		CHECK(rc == 0, "%s: pipeline_read_density", what);
 		pipeline_destroy(pl);

@@ -64,7 +64,7 @@ static void check_field(const char *what, const struct params *p, const struct g
 		edits_destroy(ed);
 		return;
 	}
-	CHECK(pipeline_run(pl, p) == 0, "%s: pipeline_run", what);
+	CHECK(fixture_run(pl, p) == 0, "%s: pipeline_run", what);
 	long nd = grid_dens_count(g);
 	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
 	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read density", what);
@@ -114,13 +114,13 @@ static void check_field(const char *what, const struct params *p, const struct g
 	/* atomic append and no compaction give the same triangles */
 	struct params q = *p;
 	q.compaction = COMPACTION_ATOMIC;
-	CHECK(pipeline_run(pl, &q) == 0, "%s: atomic run", what);
+	CHECK(fixture_run(pl, &q) == 0, "%s: atomic run", what);
 	struct extract_stats sa;
 	pipeline_read_stats(pl, &sa);
 	CHECK(sa.triangles == gm.ntris, "%s: atomic append %u triangles vs HP %u", what, sa.triangles, gm.ntris);
 	if (g->nx <= 64) {
 		q.compaction = COMPACTION_NONE;
-		CHECK(pipeline_run(pl, &q) == 0, "%s: no-compaction run", what);
+		CHECK(fixture_run(pl, &q) == 0, "%s: no-compaction run", what);
 		struct mesh nm;
 		CHECK(pipeline_read_mesh(pl, &nm) == 0, "%s: read no-compaction mesh", what);
 		uint32_t real = 0;
@@ -179,7 +179,7 @@ static void check_worst_case(void)
 		CHECK(pl != NULL, "checker: %s", err);
 		if (!pl)
 			break;
-		CHECK(pipeline_run(pl, &p) == 0, "checker run");
+		CHECK(fixture_run(pl, &p) == 0, "checker run");
 		struct extract_stats st;
 		pipeline_read_stats(pl, &st);
 		printf("checker cap %u/%u: needs %llu tris %llu verts, wrote %u/%u, overflow %d\n", st.triangle_capacity,
@@ -202,7 +202,7 @@ static void check_worst_case(void)
 		/* the same through atomic append */
 		struct params q = p;
 		q.compaction = COMPACTION_ATOMIC;
-		CHECK(pipeline_run(pl, &q) == 0, "checker atomic run");
+		CHECK(fixture_run(pl, &q) == 0, "checker atomic run");
 		pipeline_read_stats(pl, &st);
 		CHECK(st.overflow && st.triangles <= st.triangle_capacity, "checker atomic clamped");
 		CHECK(pipeline_check_guards(pl) == 0, "checker atomic: wrote past a capacity");
@@ -230,12 +230,12 @@ static void check_determinism(void)
 		return;
 	}
 	struct mesh a, b, c;
-	pipeline_run(pl, &p);
+	fixture_run(pl, &p);
 	pipeline_read_mesh(pl, &a);
-	pipeline_run(pl, &p);
+	fixture_run(pl, &p);
 	pipeline_read_mesh(pl, &b);
 	p.seed = 7;
-	pipeline_run(pl, &p);
+	fixture_run(pl, &p);
 	pipeline_read_mesh(pl, &c);
 	CHECK(a.ntris == b.ntris && a.nverts == b.nverts && !memcmp(a.pos, b.pos, 12 * (size_t)a.nverts) &&
 		      !memcmp(a.idx, b.idx, 12 * (size_t)a.ntris),

@@ -177,15 +177,10 @@ static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *
 	return variant_program(pl, "mc_vertices.comp", "", p, err, errlen);
 }
 
-/* The field's resources and uniforms for prog; logs what went wrong. */
-static int bind_field(struct pipeline *pl, GLuint prog, const struct params *p)
+/* The field's resources and uniforms for prog.  0, or -1 with err. */
+static int bind_field(struct pipeline *pl, GLuint prog, const struct params *p, char *err, size_t errlen)
 {
-	char err[512] = "";
-	if (pl->field->bind(pl->field->ctx, prog, p, err, sizeof(err)) == 0)
-		return 0;
-	if (err[0])
-		log_error("%s", err);
-	return -1;
+	return pl->field->bind(pl->field->ctx, prog, p, err, errlen) == 0 ? 0 : -1;
 }
 
 static int ensure_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen)
@@ -343,18 +338,16 @@ static void bind_all(const struct pipeline *pl)
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, pl->b_status);
 }
 
-int pipeline_density(struct pipeline *pl, const struct params *p)
+int pipeline_density(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	char err[512] = "";
-	pl->p_density = density_program(pl, p, err, sizeof(err));
-	if (!pl->p_density) {
-		log_error("%s", err);
+	err[0] = 0;
+	pl->p_density = density_program(pl, p, err, errlen);
+	if (!pl->p_density)
 		return -1;
-	}
 	double t = clock_ms();
 	bind_all(pl);
 	set_common(pl, pl->p_density, p);
-	if (bind_field(pl, pl->p_density, p) < 0)
+	if (bind_field(pl, pl->p_density, p, err, errlen) < 0)
 		return -1;
 	glUseProgram(pl->p_density);
 	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
@@ -396,17 +389,15 @@ static GLuint setup_pass(struct pipeline *pl, const struct params *p, GLintptr *
 }
 
 /* The vertex and index passes, sized by the indirect commands in status. */
-static int output_passes(struct pipeline *pl, const struct params *p, GLuint status, GLintptr status_off, double *t)
+static int output_passes(struct pipeline *pl, const struct params *p, GLuint status, GLintptr status_off, double *t,
+			 char *err, size_t errlen)
 {
-	char err[512] = "";
-	pl->p_vertices = vertex_program(pl, p, err, sizeof(err));
-	if (!pl->p_vertices) {
-		log_error("%s", err);
+	pl->p_vertices = vertex_program(pl, p, err, errlen);
+	if (!pl->p_vertices)
 		return -1;
-	}
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
-	if (p->ao_rays > 0 && bind_field(pl, pl->p_vertices, p) < 0) /* the AO rays read the field */
+	if (p->ao_rays > 0 && bind_field(pl, pl->p_vertices, p, err, errlen) < 0) /* the AO rays read the field */
 		return -1;
 	glUseProgram(pl->p_vertices);
 	glDispatchComputeIndirect(status_off + ST_DISPATCH_VERTS * 4);
@@ -419,7 +410,7 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 	return 0;
 }
 
-static int run_hp(struct pipeline *pl, const struct params *p)
+static int run_hp(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
 	double t = clock_ms();
 	set_common(pl, pl->p_classify, p);
@@ -434,27 +425,20 @@ static int run_hp(struct pipeline *pl, const struct params *p)
 	GLintptr status_off;
 	GLuint status = setup_pass(pl, p, &status_off);
 	mark(pl, PASS_REDUCE, &t);
-	return output_passes(pl, p, status, status_off, &t);
+	return output_passes(pl, p, status, status_off, &t, err, errlen);
 }
 
-static int run_append(struct pipeline *pl, const struct params *p, bool nocompact)
+static int run_append(struct pipeline *pl, const struct params *p, bool nocompact, char *err, size_t errlen)
 {
-	char err[512];
 	uint64_t ncells = (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz;
 	GLuint *prog = nocompact ? &pl->p_nocompact : &pl->p_atomic;
-	if (!*prog && !(*prog = program(nocompact ? "mc_nocompact.comp" : "mc_atomic.comp", err, sizeof(err)))) {
-		log_error("%s", err);
+	if (!*prog && !(*prog = program(nocompact ? "mc_nocompact.comp" : "mc_atomic.comp", err, errlen)))
 		return -1;
-	}
-	if (!pl->p_finish && !(pl->p_finish = program("mc_finish.comp", err, sizeof(err)))) {
-		log_error("%s", err);
+	if (!pl->p_finish && !(pl->p_finish = program("mc_finish.comp", err, errlen)))
 		return -1;
-	}
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
-	if (ensure_vertex_room(pl, need, err, sizeof(err)) < 0) {
-		log_error("%s", err);
+	if (ensure_vertex_room(pl, need, err, errlen) < 0)
 		return -1;
-	}
 	bind_all(pl);
 	uint32_t zero = 0;
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_status);
@@ -474,15 +458,15 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	return 0;
 }
 
-int pipeline_run(struct pipeline *pl, const struct params *p)
+int pipeline_run(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	if (pipeline_density(pl, p) < 0)
+	if (pipeline_density(pl, p, err, errlen) < 0)
 		return -1;
 	int rc;
 	switch (pl->has_target ? COMPACTION_HP : p->compaction) {
-	case COMPACTION_ATOMIC: rc = run_append(pl, p, false); break;
-	case COMPACTION_NONE: rc = run_append(pl, p, true); break;
-	default: rc = run_hp(pl, p); break;
+	case COMPACTION_ATOMIC: rc = run_append(pl, p, false, err, errlen); break;
+	case COMPACTION_NONE: rc = run_append(pl, p, true, err, errlen); break;
+	default: rc = run_hp(pl, p, err, errlen); break;
 	}
 	pl->last_mode = p->compaction;
 	glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |

@@ -12,7 +12,7 @@
  *   struct pipeline *pl = pipeline_create(&grid, p, field, err, errlen);   1. with a field
  *   pipeline_set_grid(pl, &grid2, bias);   2. optional: another grid of the same size
  *   pipeline_set_target(pl, &slot);           and/or someone else's output buffers
- *   pipeline_run(pl, p);                   3. density + extraction (every frame)
+ *   pipeline_run(pl, p, err, errlen);      3. density + extraction (every frame)
  *   pipeline_draw_info(pl, &draw);         4. what the renderer draws, indirectly
  *   pipeline_destroy(pl);                  5.
  *
@@ -72,11 +72,12 @@ void pipeline_set_target(struct pipeline *pl, const struct pipeline_target *t);
 /* Points the pipeline at another grid of the same size (a world block). */
 void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_bias);
 
-/* Runs the density pass only (benchmarks, tests).  0, or -1 (logged). */
-int pipeline_density(struct pipeline *pl, const struct params *p);
+/* Runs the density pass only (benchmarks, tests).  0, or -1 with err (left
+ * empty when the cause, a GL error, was already logged by gpu_check). */
+int pipeline_density(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
 /* Runs density + extraction with the compaction method in p->compaction
- * (HistoPyramid always with a target).  0, or -1 (logged). */
-int pipeline_run(struct pipeline *pl, const struct params *p);
+ * (HistoPyramid always with a target).  0, or -1 with err as above. */
+int pipeline_run(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
 /* Draw state for the renderer: vertex buffer (vec4 position, vec4 normal per
  * vertex, 32 bytes), element buffer (uint32, may be 0 when not indexed) and
  * the indirect command buffer (DrawElementsIndirectCommand at offset 0, or

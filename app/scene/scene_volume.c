@@ -25,7 +25,7 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 	float t = controls_time(fr->ctl, (float)fr->index / p->fps);
 	p->time = vs->t0 + t;
 	err[0] = 0;
-	if (pipeline_run(vs->pl, p) < 0)
+	if (pipeline_run(vs->pl, p, err, errlen) < 0)
 		return -1;
 	struct pipeline_draw d;
 	struct camera cam;

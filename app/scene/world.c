@@ -324,8 +324,12 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 	struct params q = *p;
 	q.closed = false;
 	q.compaction = COMPACTION_HP;
-	if (pipeline_run(w->pl, &q) < 0)
+	char err[512];
+	if (pipeline_run(w->pl, &q, err, sizeof(err)) < 0) {
+		if (err[0])
+			log_error("%s", err);
 		return -1;
+	}
 	return pipeline_read_mesh(w->pl, m);
 }
 

@@ -3,6 +3,7 @@
  * their results learnt a few frames on, through a fence and a 16-byte copy
  * of the block's status, without stalling the frame. */
 #include "world_int.h"
+#include "log.h"
 #include "gpu.h"
 
 #include <string.h>
@@ -115,8 +116,12 @@ int generate_block(struct world *w, const struct params *p, int b, int slot, dou
 	pipeline_set_target(w->pl, &t);
 	struct params q = *p;
 	q.closed = false;
-	if (pipeline_run(w->pl, &q) < 0)
+	char err[512];
+	if (pipeline_run(w->pl, &q, err, sizeof(err)) < 0) {
+		if (err[0])
+			log_error("%s", err);
 		return -1;
+	}
 	bool in_place = blk->stale && blk->slot == slot;
 	blk->slot = slot;
 	w->slot_block[slot] = b;
