@@ -157,8 +157,8 @@ static int open_outputs(const struct options *o, const struct bench_scene *s, st
 		unlink(tmpl);
 	struct frame_format f = { .fmt = CF_YUYV, .width = s->w, .height = s->h, .matrix = CM_BT601 };
 	conv_fmt_tight(f.fmt, s->w, s->h, &f.bytesperline, &f.sizeimage);
-	*paced = v4l2_out_open_sink(&f, o->fps, to_file, fo, controls_hal_gpu(), err, sizeof(err));
-	*every = *paced ? v4l2_out_open_sink(&f, 0, to_file, fo, controls_hal_gpu(), err, sizeof(err)) : NULL;
+	*paced = v4l2_out_open_bytes(&f, o->fps, to_file, fo, controls_hal_gpu(), err, sizeof(err));
+	*every = *paced ? v4l2_out_open_bytes(&f, 0, to_file, fo, controls_hal_gpu(), err, sizeof(err)) : NULL;
 	if (!*every) {
 		fprintf(stderr, "bench: %s\n", err);
 		return -1;

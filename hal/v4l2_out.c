@@ -39,9 +39,9 @@ struct v4l2_out {
 	enum hal_v4l2_io io;
 	int width, height;     /* requested (the render size) */
 	double fps;
-	v4l2_sink_fn sink;     /* sink mode when set or when path is empty */
+	v4l2_bytes_fn deliver; /* bytes mode when set or when path is empty */
 	void *user;
-	bool sink_mode;
+	bool bytes_mode;
 	struct hal_gpu gpu;
 	struct hal_log log;
 	/* device state */
@@ -378,13 +378,13 @@ static void put_mmap(struct v4l2_out *v, const uint8_t *bytes, size_t size)
 	v->st.written++;
 }
 
-/* Hands one converted frame to the device (or the sink). */
+/* Hands one converted frame to the device (or the bytes callback). */
 static void put_frame(struct v4l2_out *v, const uint8_t *bytes)
 {
 	size_t size = v->f.sizeimage;
-	if (v->sink_mode) {
-		if (v->sink)
-			v->sink(v->user, bytes, size);
+	if (v->bytes_mode) {
+		if (v->deliver)
+			v->deliver(v->user, bytes, size);
 		v->st.written++;
 	} else if (v->fd < 0) {
 		v->st.dropped_off++;
@@ -444,7 +444,7 @@ struct v4l2_out *v4l2_out_open(const struct hal_v4l2_config *cfg, char *err, siz
 	return v;
 }
 
-struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4l2_sink_fn sink, void *user,
+struct v4l2_out *v4l2_out_open_bytes(const struct frame_format *f, double fps, v4l2_bytes_fn deliver, void *user,
 				    const struct hal_gpu *gpu, char *err, size_t errlen)
 {
 	struct v4l2_out *v = alloc_out(fps);
@@ -452,9 +452,9 @@ struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	snprintf(v->path, sizeof(v->path), "(sink)");
-	v->sink_mode = true;
-	v->sink = sink;
+	snprintf(v->path, sizeof(v->path), "(bytes)");
+	v->bytes_mode = true;
+	v->deliver = deliver;
 	v->user = user;
 	v->f = *f;
 	if (gpu) {
@@ -481,7 +481,7 @@ int v4l2_out_frame(struct v4l2_out *v, GLuint fbo, int w, int h)
 	if (!v)
 		return 0;
 	uint64_t now = hal_now_ns();
-	if (!v->sink_mode && v->fd < 0) {
+	if (!v->bytes_mode && v->fd < 0) {
 		if (v->gave_up || now < v->next_try) {
 			v->st.dropped_off++;
 			return 0;

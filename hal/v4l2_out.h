@@ -12,12 +12,12 @@
 
 struct v4l2_stats {
 	unsigned long submitted;     /* frames converted on the GPU */
-	unsigned long written;       /* frames handed to the device (or sink) */
+	unsigned long written;       /* frames handed to the device (or the bytes callback) */
 	unsigned long dropped_busy;  /* no free read-back slot / device buffer */
 	unsigned long dropped_off;   /* device absent or failed */
 };
 
-typedef void (*v4l2_sink_fn)(void *user, const uint8_t *bytes, size_t size);
+typedef void (*v4l2_bytes_fn)(void *user, const uint8_t *bytes, size_t size);
 
 enum hal_v4l2_io { HAL_V4L2_IO_AUTO, HAL_V4L2_IO_WRITE, HAL_V4L2_IO_MMAP };
 
@@ -37,9 +37,9 @@ struct v4l2_out;
  * configuration (a device that is not a video output, an odd size); a
  * missing or busy device is reported and retried. */
 struct v4l2_out *v4l2_out_open(const struct hal_v4l2_config *cfg, char *err, size_t errlen);
-/* No device: the same conversion and read-back, frames go to sink (NULL:
+/* No device: the same conversion and read-back, frames go to deliver (NULL:
  * dropped after mapping). */
-struct v4l2_out *v4l2_out_open_sink(const struct frame_format *f, double fps, v4l2_sink_fn sink, void *user,
+struct v4l2_out *v4l2_out_open_bytes(const struct frame_format *f, double fps, v4l2_bytes_fn deliver, void *user,
 				    const struct hal_gpu *gpu, char *err, size_t errlen);
 /* Per frame, after drawing into fbo (w x h): hands finished read-backs to
  * the device, waits for the next frame time when pacing, submits this

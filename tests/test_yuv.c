@@ -245,7 +245,7 @@ int main(void)
 		gpu_conv_destroy(c);
 		/* the paced sink: 12 frames at 100 fps take >= 110 ms */
 		if (s == 0) {
-			struct v4l2_out *v = v4l2_out_open_sink(&f, 100.0, sink, NULL, controls_hal_gpu(), err, sizeof(err));
+			struct v4l2_out *v = v4l2_out_open_bytes(&f, 100.0, sink, NULL, controls_hal_gpu(), err, sizeof(err));
 			CHECK(v != NULL, "sink: %s", err);
 			uint64_t t0 = hal_now_ns();
 			for (int i = 0; v && i < 12; i++)
