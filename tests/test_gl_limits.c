@@ -139,9 +139,11 @@ static void check_pass(const struct gl_pass *p, bool exact)
 		      "%s %s: table says %d images, the driver counts %d", p->name, stage_name[s], t->images, g->images);
 		CHECK(t->ubos >= g->ubos && (!exact || t->ubos == g->ubos),
 		      "%s %s: table says %d uniform blocks, the driver counts %d", p->name, stage_name[s], t->ubos, g->ubos);
-		CHECK(t->components >= g->components && (!exact || t->components == g->components),
-		      "%s %s: table says %d uniform components, the driver counts %d", p->name, stage_name[s],
-		      t->components, g->components);
+		/* which stage a uniform lands in varies with the compiler (Mesa 25
+		 * moves some of sky's from the fragment to the vertex stage): the
+		 * table holds the largest count seen, the driver's must not exceed it */
+		CHECK(t->components >= g->components, "%s %s: table says %d uniform components, the driver counts %d",
+		      p->name, stage_name[s], t->components, g->components);
 	}
 	CHECK(p->max_binding >= got.max_binding && (!exact || p->max_binding == got.max_binding),
 	      "%s: table says binding %d at most, the driver reports %d", p->name, p->max_binding, got.max_binding);
