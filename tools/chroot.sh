@@ -85,6 +85,7 @@ d13_rm() {
 
 d13_cleanup() {
 	for m in $D13_MOUNTS; do
+		[ -n "$(awk -v p="$m" '$2 == p' /proc/mounts)" ] || continue # already undone
 		umount "$m" 2>/dev/null || umount -l "$m" 2>/dev/null || d13_log "cannot unmount $m"
 	done
 	D13_MOUNTS=""
@@ -194,16 +195,18 @@ d13_update() {
 	touch "$1/.isoterra-updated"
 }
 
-# the source tree, copied into ROOT/src (not bind-mounted: packaging writes
-# into it); unchanged files keep their times, so warm builds are incremental
+# d13_copy_src ROOT [DIR]: the source tree, copied into ROOT/DIR (default
+# /src; not bind-mounted: packaging writes into it); unchanged files keep
+# their times, so warm builds are incremental
 d13_copy_src() {
 	r=$1
-	d13_rm "$r/src.new" || return 1
-	mkdir -p "$r/src.new"
+	dst=$r${2:-/src}
+	d13_rm "$dst.new" || return 1
+	mkdir -p "$dst.new"
 	rel=${D13#"$D13_SRC"/}
 	(cd "$D13_SRC" && tar --exclude=./.git --exclude='./build*' --exclude="./$rel" --exclude='./obj-*' \
 		--exclude=./debian/.debhelper --exclude=./debian/isoterra --exclude=./debian/files \
 		--exclude='./debian/*.substvars' --exclude=./debian/debhelper-build-stamp -cf - .) |
-		tar -C "$r/src.new" -xf - || return 1
-	d13_rm "$r/src" && mv "$r/src.new" "$r/src"
+		tar -C "$dst.new" -xf - || return 1
+	d13_rm "$dst" && mv "$dst.new" "$dst"
 }
