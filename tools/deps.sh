@@ -28,3 +28,7 @@ $SUDO apt-get install -y -q --no-install-recommends \
 	xvfb x11-apps weston \
 	qemu-system-x86 busybox-static linux-image-amd64 kmod cpio python3 \
 	kmscube glmark2-es2-drm
+# Debian 13 in a chroot, the arm64 cross build and the Debian package
+# (tools/debian13.sh, arm64.sh, debpkg.sh): debootstrap fetches everything
+# else from Debian's archive into build-d13/
+$SUDO apt-get install -y -q --no-install-recommends debootstrap

@@ -1,6 +1,7 @@
 #!/bin/sh
 # isoterra — the whole test suite: a -Werror build and its tests, then the
-# same tests built with AddressSanitizer + UndefinedBehaviorSanitizer.
+# same tests built with AddressSanitizer + UndefinedBehaviorSanitizer, then
+# Debian 13, arm64 and the Debian package in chroots (as root).
 # GPU tests run on Mesa's llvmpipe through EGL_MESA_platform_surfaceless
 # unless ISOTERRA_PLATFORM names another backend.
 set -u
@@ -45,5 +46,42 @@ export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 run_suite "ASan+UBSan" build-asan -Dwerror=true -Dbuildtype=debug -Db_sanitize=address,undefined \
 	-Db_lundef=false -Dc_args=-fno-sanitize-recover=all || status=1
+
+# Debian 13 (trixie) in a chroot, as root (tools/chroot.sh; cached in
+# build-d13/): the tests with Mesa 25 and GCC 14, the arm64 cross build run
+# under qemu-user, the Debian package built, linted and installed.  Each
+# script ends with "== debian13 NAME: P passed, F failed".
+# ISOTERRA_SKIP_CHROOT_SUITES=1 leaves them out (say, without root).
+run_chroot_suite() { # title script
+	echo "=== $1"
+	mkdir -p build-d13/logs
+	log=build-d13/logs/suite-$2.log
+	{ $AS_ROOT sh "tools/$2.sh"; echo $? >"$log.rc"; } 2>&1 | tee "$log"
+	rc=$(cat "$log.rc" 2>/dev/null || echo 1)
+	line=$(grep -E '^== debian13 [a-z0-9]+: [0-9]+ passed, [0-9]+ failed' "$log" | tail -1)
+	p=$(echo "$line" | awk '{print $4+0}')
+	f=$(echo "$line" | awk '{print $6+0}')
+	[ -n "$line" ] || f=1
+	total_pass=$((total_pass + p))
+	total_fail=$((total_fail + f))
+	[ "$rc" -eq 0 ] || { [ "$f" -gt 0 ] || total_fail=$((total_fail + 1)); return 1; }
+}
+if [ "${ISOTERRA_SKIP_CHROOT_SUITES:-0}" != 1 ]; then
+	AS_ROOT=""
+	if [ "$(id -u)" -ne 0 ]; then
+		if command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+			AS_ROOT="sudo -n"
+		else
+			echo "=== Debian 13 suites: need root (run as root, or ISOTERRA_SKIP_CHROOT_SUITES=1)"
+			total_fail=$((total_fail + 1))
+			status=1
+		fi
+	fi
+	if [ "$(id -u)" -eq 0 ] || [ -n "$AS_ROOT" ]; then
+		run_chroot_suite "Debian 13 (chroot): build -Werror, tests" debian13 || status=1
+		run_chroot_suite "arm64: cross build, qemu-user smoke run" arm64 || status=1
+		run_chroot_suite "Debian package: build, lintian, install" debpkg || status=1
+	fi
+fi
 echo "all suites: $total_pass passed, $total_fail failed"
 exit $status

@@ -1,5 +1,6 @@
 /* isoterra — GLES 3.1 capability checks, KHR_debug routing, error checks. */
 #include "gpu.h"
+#include "gl_limits.h"
 #include "log.h"
 
 #include <EGL/egl.h>
@@ -52,6 +53,9 @@ int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen)
 	}
 	snprintf(caps->version, sizeof(caps->version), "%s", ver);
 	snprintf(caps->renderer, sizeof(caps->renderer), "%s", ren ? ren : "?");
+	/* every limit the passes rely on, or one line naming the one too small */
+	if (gl_limits_check(NULL, err, errlen) < 0)
+		return -1;
 	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &caps->max_ssbo_size);
 	for (int i = 0; i < 3; i++)
 		glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, (GLuint)i, &caps->max_group_count[i]);
