@@ -1,9 +1,11 @@
 // isoterra — noise sources (GLSL ES 3.10).  Mirrored operation by operation
 // in app/terrain/noise.c; change both together.
 //
-//  * perlin(p): Ken Perlin's improved noise (2002): seeded permutation from
-//    the NoiseTables block, 16 gradients via the hash's low 4 bits, quintic
-//    fade 6t^5-15t^4+10t^3.  Zero at lattice points, about [-1,1].
+//  * perlin(p): Ken Perlin's improved noise (2002) — the 12 gradient
+//    directions in his 16-entry set, quintic fade 6t^5-15t^4+10t^3 — with
+//    each lattice corner's gradient chosen by an integer hash of the corner
+//    and the seed instead of the permutation table: no table, no gathers.
+//    Zero at lattice points, about [-1,1], std 0.271.
 //  * noise_tex_hw / noise_tex_manual: the three 16^3 RGBA16F volumes with
 //    values in [-1,1] (GPU Gems 3 ch.1), repeating, one lattice cell per
 //    texel.  _hw uses the sampler's trilinear filter; _manual does the
@@ -13,19 +15,19 @@
 //    cube, seed, salt), 27 cubes searched.
 
 layout(std140, binding = UBIND_NOISE) uniform NoiseTables {
-	ivec4 nt_perm[64]; // 256 permutation entries, 4 per ivec4
-	vec4 nt_rot[12];   // 4 row-major 3x3 rotations, one vec4 per row
-	ivec4 nt_info;     // x = seed
+	vec4 nt_rot[12]; // 4 row-major 3x3 rotations, one vec4 per row
+	ivec4 nt_info;   // x = seed, y = Perlin's seed key (uint bits: noise_perlin_key)
 };
+
+// Perlin's lattice hash: odd multipliers of the corner's coordinates (the
+// Worley cube hash's), as noise.h's NOISE_KX..KZ.
+#define NOISE_KX 0x8da6b343u
+#define NOISE_KY 0xd8163841u
+#define NOISE_KZ 0xcb1ab31fu
 
 layout(binding = TEX_NOISE0) uniform highp sampler3D u_noise0;
 layout(binding = TEX_NOISE1) uniform highp sampler3D u_noise1;
 layout(binding = TEX_NOISE2) uniform highp sampler3D u_noise2;
-
-int nperm(int i)
-{
-	return nt_perm[i >> 2][i & 3];
-}
 
 float nfade(float t)
 {
@@ -37,28 +39,57 @@ float nlerp(float t, float a, float b)
 	return a + t * (b - a);
 }
 
-float ngrad(int h, float x, float y, float z)
+uint nhash(uint x)
 {
-	h &= 15;
-	float u = h < 8 ? x : y;
-	float v = h < 4 ? y : ((h == 12 || h == 14) ? x : z);
-	return ((h & 1) == 0 ? u : -u) + ((h & 2) == 0 ? v : -v);
+	// "lowbias32" (Chris Wellons' hash prospector)
+	x ^= x >> 16;
+	x *= 0x7feb352du;
+	x ^= x >> 15;
+	x *= 0x846ca68bu;
+	x ^= x >> 16;
+	return x;
 }
 
+uvec4 nhash(uvec4 x)
+{
+	x ^= x >> 16;
+	x *= 0x7feb352du;
+	x ^= x >> 15;
+	x *= 0x846ca68bu;
+	x ^= x >> 16;
+	return x;
+}
+
+// Perlin's 16 gradients (12 cube-edge directions, 4 of them twice), h in 0..15.
+float ngrad(uint h, float x, float y, float z)
+{
+	float u = h < 8u ? x : y;
+	float v = h < 4u ? y : ((h == 12u || h == 14u) ? x : z);
+	return ((h & 1u) == 0u ? u : -u) + ((h & 2u) == 0u ? v : -v);
+}
+
+// Lattice corner (X,Y,Z) gets gradient nhash((X*KX + key) ^ Y*KY ^ Z*KZ) >> 28
+// (uint arithmetic, wrapping; the top bits are the best mixed).  X+1 is
+// X*KX + KX, so the eight corners cost three multiplies and eight hashes, in
+// two uvec4s (corners z and z+1; x fastest, then y).  Beyond 2^23 every
+// float is a lattice point and the noise 0 whatever int(P) gives (undefined
+// beyond 2^31); noise.c clamps P to 2^30 to keep C's conversion defined.
 float perlin(vec3 p)
 {
 	vec3 P = floor(p);
 	vec3 f = p - P;
-	P = P - 256.0 * floor(P * (1.0 / 256.0));
-	int X = int(P.x) & 255, Y = int(P.y) & 255, Z = int(P.z) & 255;
+	ivec3 I = ivec3(P);
+	uint hx0 = uint(I.x) * NOISE_KX + uint(nt_info.y), hx1 = hx0 + NOISE_KX;
+	uint hy0 = uint(I.y) * NOISE_KY, hy1 = hy0 + NOISE_KY;
+	uint hz0 = uint(I.z) * NOISE_KZ, hz1 = hz0 + NOISE_KZ;
+	uvec4 hxy = uvec4(hx0 ^ hy0, hx1 ^ hy0, hx0 ^ hy1, hx1 ^ hy1);
+	uvec4 g0 = nhash(hxy ^ hz0) >> 28u, g1 = nhash(hxy ^ hz1) >> 28u;
 	float u = nfade(f.x), v = nfade(f.y), w = nfade(f.z);
-	int A = nperm(X) + Y, AA = nperm(A & 255) + Z, AB = nperm((A + 1) & 255) + Z;
-	int B = nperm((X + 1) & 255) + Y, BA = nperm(B & 255) + Z, BB = nperm((B + 1) & 255) + Z;
 	float gx0 = f.x - 1.0, gy0 = f.y - 1.0, gz0 = f.z - 1.0;
-	float x00 = nlerp(u, ngrad(nperm(AA & 255), f.x, f.y, f.z), ngrad(nperm(BA & 255), gx0, f.y, f.z));
-	float x10 = nlerp(u, ngrad(nperm(AB & 255), f.x, gy0, f.z), ngrad(nperm(BB & 255), gx0, gy0, f.z));
-	float x01 = nlerp(u, ngrad(nperm((AA + 1) & 255), f.x, f.y, gz0), ngrad(nperm((BA + 1) & 255), gx0, f.y, gz0));
-	float x11 = nlerp(u, ngrad(nperm((AB + 1) & 255), f.x, gy0, gz0), ngrad(nperm((BB + 1) & 255), gx0, gy0, gz0));
+	float x00 = nlerp(u, ngrad(g0.x, f.x, f.y, f.z), ngrad(g0.y, gx0, f.y, f.z));
+	float x10 = nlerp(u, ngrad(g0.z, f.x, gy0, f.z), ngrad(g0.w, gx0, gy0, f.z));
+	float x01 = nlerp(u, ngrad(g1.x, f.x, f.y, gz0), ngrad(g1.y, gx0, f.y, gz0));
+	float x11 = nlerp(u, ngrad(g1.z, f.x, gy0, gz0), ngrad(g1.w, gx0, gy0, gz0));
 	return nlerp(w, nlerp(v, x00, x10), nlerp(v, x01, x11));
 }
 
@@ -112,17 +143,6 @@ vec4 noise_tex_hw(int k, vec3 p)
 	else if (k == 1)
 		return textureLod(u_noise1, uv, 0.0);
 	return textureLod(u_noise2, uv, 0.0);
-}
-
-uint nhash(uint x)
-{
-	// "lowbias32" (Chris Wellons' hash prospector)
-	x ^= x >> 16;
-	x *= 0x7feb352du;
-	x ^= x >> 15;
-	x *= 0x846ca68bu;
-	x ^= x >> 16;
-	return x;
 }
 
 // F1..F4 (sorted distances to the 4 nearest feature points).

@@ -222,8 +222,13 @@ static int world_image(const struct params *p, double t, struct image *img)
 	return rc;
 }
 
-static void check_determinism_and_golden(const struct params *p)
+static void check_determinism_and_golden(const struct params *p_in)
 {
+	/* seed 7: at t = 4 the autopilot looks at hills, spires and floating
+	 * rock (the default seed's frame is mostly sky) */
+	struct params q = *p_in;
+	q.seed = 7;
+	const struct params *p = &q;
 	struct image a = { 0 }, b = { 0 }, ref = { 0 };
 	CHECK(world_image(p, 4.0, &a) == 0, "world image");
 	CHECK(world_image(p, 4.0, &b) == 0, "world image again");

@@ -26,7 +26,7 @@
 #define BIND_AUX_B 13      /* pass-specific: curve bake tiles, curve test output */
 
 /* ---- uniform buffers --------------------------------------------------- */
-#define UBIND_NOISE 0      /* permutation and gradient tables (terrain/noise_gl.c) */
+#define UBIND_NOISE 0      /* noise rotations and seed keys (terrain/noise_gl.c) */
 
 /* ---- texture units ------------------------------------------------------ */
 #define TEX_NOISE0 0       /* 16^3 repeating noise textures, three of them */

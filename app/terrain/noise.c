@@ -8,22 +8,6 @@
 #include <math.h>
 #include <string.h>
 
-/* Ken Perlin's reference permutation (ImprovedNoise.java), used for seed 0. */
-static const uint8_t perlin_ref_perm[256] = {
-	151, 160, 137, 91,  90,  15,  131, 13,  201, 95,  96,  53,  194, 233, 7,   225, 140, 36,  103, 30,  69,  142,
-	8,   99,  37,  240, 21,  10,  23,  190, 6,   148, 247, 120, 234, 75,  0,   26,  197, 62,  94,  252, 219, 203,
-	117, 35,  11,  32,  57,  177, 33,  88,  237, 149, 56,  87,  174, 20,  125, 136, 171, 168, 68,  175, 74,  165,
-	71,  134, 139, 48,  27,  166, 77,  146, 158, 231, 83,  111, 229, 122, 60,  211, 133, 230, 220, 105, 92,  41,
-	55,  46,  245, 40,  244, 102, 143, 54,  65,  25,  63,  161, 1,   216, 80,  73,  209, 76,  132, 187, 208, 89,
-	18,  169, 200, 196, 135, 130, 116, 188, 159, 86,  164, 100, 109, 198, 173, 186, 3,   64,  52,  217, 226, 250,
-	124, 123, 5,   202, 38,  147, 118, 126, 255, 82,  85,  212, 207, 206, 59,  227, 47,  16,  58,  17,  182, 189,
-	28,  42,  223, 183, 170, 213, 119, 248, 152, 2,   44,  154, 163, 70,  221, 153, 101, 155, 167, 43,  172, 9,
-	129, 22,  39,  253, 19,  98,  108, 110, 79,  113, 224, 232, 178, 185, 112, 104, 218, 246, 97,  228, 251, 34,
-	242, 193, 238, 210, 144, 12,  191, 179, 162, 241, 81,  51,  145, 235, 249, 14,  239, 107, 49,  192, 214, 31,
-	181, 199, 106, 157, 184, 84,  204, 176, 115, 121, 50,  45,  127, 4,   150, 254, 138, 236, 205, 93,  222, 114,
-	67,  29,  24,  72,  243, 141, 128, 195, 78,  66,  215, 61,  156, 180,
-};
-
 static uint64_t splitmix64(uint64_t *s)
 {
 	uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
@@ -36,17 +20,6 @@ static uint64_t splitmix64(uint64_t *s)
 static double rnd01(uint64_t *s)
 {
 	return (double)(splitmix64(s) >> 11) * (1.0 / 9007199254740992.0);
-}
-
-/* uniform integer in [0, n) without modulo bias */
-static uint32_t rnd_below(uint64_t *s, uint32_t n)
-{
-	uint64_t lim = UINT64_MAX - UINT64_MAX % n;
-	uint64_t r;
-	do
-		r = splitmix64(s);
-	while (r >= lim);
-	return (uint32_t)(r % n);
 }
 
 /* ---- half floats --------------------------------------------------------- */
@@ -109,19 +82,7 @@ void noise_set_init(struct noise_set *ns, int seed)
 	ns->seed = seed;
 	uint64_t s = 0x1505c0de00000000ull ^ (uint64_t)(uint32_t)seed;
 	splitmix64(&s);
-
-	if (seed == 0) {
-		memcpy(ns->perm, perlin_ref_perm, sizeof(ns->perm));
-	} else {
-		for (int i = 0; i < 256; i++)
-			ns->perm[i] = (uint8_t)i;
-		for (int i = 255; i > 0; i--) { /* Fisher-Yates */
-			int j = (int)rnd_below(&s, (uint32_t)i + 1u);
-			uint8_t t = ns->perm[i];
-			ns->perm[i] = ns->perm[j];
-			ns->perm[j] = t;
-		}
-	}
+	ns->perlin_key = noise_perlin_key(seed);
 
 	for (int k = 0; k < NOISE_TEX_COUNT; k++)
 		for (int i = 0; i < NOISE_TEX_TEXELS * 4; i++) {
@@ -164,16 +125,13 @@ void noise_set_init(struct noise_set *ns, int seed)
 void noise_ubo_pack(const struct noise_set *ns, unsigned char out[NOISE_UBO_SIZE])
 {
 	memset(out, 0, NOISE_UBO_SIZE);
-	for (int i = 0; i < 256; i++) {
-		int32_t v = ns->perm[i];
-		memcpy(out + i * 4, &v, 4);
-	}
 	for (int r = 0; r < 4; r++)
 		for (int i = 0; i < 3; i++)
 			for (int j = 0; j < 3; j++)
-				memcpy(out + 1024 + (r * 3 + i) * 16 + j * 4, &ns->rot[r][i * 3 + j], 4);
+				memcpy(out + (r * 3 + i) * 16 + j * 4, &ns->rot[r][i * 3 + j], 4);
 	int32_t seed = ns->seed;
-	memcpy(out + 1216, &seed, 4);
+	memcpy(out + 192, &seed, 4);
+	memcpy(out + 196, &ns->perlin_key, 4);
 }
 
 /* ---- improved Perlin noise (mirror of perlin() in noise.glsl) ------------ */
@@ -188,31 +146,55 @@ static inline float nlerp(float t, float a, float b)
 	return a + t * (b - a);
 }
 
-static inline float ngrad(int h, float x, float y, float z)
+/* Perlin's 16 gradients (12 cube-edge directions, 4 of them twice), h in 0..15 */
+static inline float ngrad(uint32_t h, float x, float y, float z)
 {
-	h &= 15;
-	float u = h < 8 ? x : y;
-	float v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
-	return ((h & 1) == 0 ? u : -u) + ((h & 2) == 0 ? v : -v);
+	float u = h < 8u ? x : y;
+	float v = h < 4u ? y : (h == 12u || h == 14u ? x : z);
+	return ((h & 1u) == 0u ? u : -u) + ((h & 2u) == 0u ? v : -v);
+}
+
+/* lowbias32 is a bijection, so is this (0x5851f42d: any odd salt; it keeps
+ * seed 0 away from the hash's fixed point 0). */
+uint32_t noise_perlin_key(int seed)
+{
+	return noise_hash((uint32_t)seed ^ 0x5851f42du);
+}
+
+/* The lattice's floor as int32_t.  Beyond 2^31 GLSL's int() gives some value
+ * and C's conversion is undefined behaviour, so C clamps to 2^30 (GLSL does
+ * not spend the instructions): the noise is 0 there whatever gradients the
+ * corners get, since every float beyond 2^23 is a lattice point (f = 0). */
+static inline int32_t lattice(float P)
+{
+	return (int32_t)fminf(fmaxf(P, -0x1p30f), 0x1p30f);
+}
+
+unsigned noise_perlin_gradient(const struct noise_set *ns, int32_t X, int32_t Y, int32_t Z)
+{
+	uint32_t h = ((uint32_t)X * NOISE_KX + ns->perlin_key) ^ ((uint32_t)Y * NOISE_KY) ^ ((uint32_t)Z * NOISE_KZ);
+	return noise_hash(h) >> 28;
 }
 
 float noise_perlin(const struct noise_set *ns, float x, float y, float z)
 {
-	const uint8_t *p = ns->perm;
 	float Px = floorf(x), Py = floorf(y), Pz = floorf(z);
 	float fx = x - Px, fy = y - Py, fz = z - Pz;
-	Px = Px - 256.0f * floorf(Px * (1.0f / 256.0f));
-	Py = Py - 256.0f * floorf(Py * (1.0f / 256.0f));
-	Pz = Pz - 256.0f * floorf(Pz * (1.0f / 256.0f));
-	int X = (int)Px & 255, Y = (int)Py & 255, Z = (int)Pz & 255;
+	uint32_t hx0 = (uint32_t)lattice(Px) * NOISE_KX + ns->perlin_key, hx1 = hx0 + NOISE_KX;
+	uint32_t hy0 = (uint32_t)lattice(Py) * NOISE_KY, hy1 = hy0 + NOISE_KY;
+	uint32_t hz0 = (uint32_t)lattice(Pz) * NOISE_KZ, hz1 = hz0 + NOISE_KZ;
+	const uint32_t hxy[4] = { hx0 ^ hy0, hx1 ^ hy0, hx0 ^ hy1, hx1 ^ hy1 };
+	uint32_t g0[4], g1[4]; /* corners at z and z+1; x fastest, then y */
+	for (int i = 0; i < 4; i++) {
+		g0[i] = noise_hash(hxy[i] ^ hz0) >> 28;
+		g1[i] = noise_hash(hxy[i] ^ hz1) >> 28;
+	}
 	float u = nfade(fx), v = nfade(fy), w = nfade(fz);
-	int A = p[X] + Y, AA = p[A & 255] + Z, AB = p[(A + 1) & 255] + Z;
-	int B = p[(X + 1) & 255] + Y, BA = p[B & 255] + Z, BB = p[(B + 1) & 255] + Z;
 	float gx0 = fx - 1.0f, gy0 = fy - 1.0f, gz0 = fz - 1.0f;
-	float x00 = nlerp(u, ngrad(p[AA & 255], fx, fy, fz), ngrad(p[BA & 255], gx0, fy, fz));
-	float x10 = nlerp(u, ngrad(p[AB & 255], fx, gy0, fz), ngrad(p[BB & 255], gx0, gy0, fz));
-	float x01 = nlerp(u, ngrad(p[(AA + 1) & 255], fx, fy, gz0), ngrad(p[(BA + 1) & 255], gx0, fy, gz0));
-	float x11 = nlerp(u, ngrad(p[(AB + 1) & 255], fx, gy0, gz0), ngrad(p[(BB + 1) & 255], gx0, gy0, gz0));
+	float x00 = nlerp(u, ngrad(g0[0], fx, fy, fz), ngrad(g0[1], gx0, fy, fz));
+	float x10 = nlerp(u, ngrad(g0[2], fx, gy0, fz), ngrad(g0[3], gx0, gy0, fz));
+	float x01 = nlerp(u, ngrad(g1[0], fx, fy, gz0), ngrad(g1[1], gx0, fy, gz0));
+	float x11 = nlerp(u, ngrad(g1[2], fx, gy0, gz0), ngrad(g1[3], gx0, gy0, gz0));
 	return nlerp(w, nlerp(v, x00, x10), nlerp(v, x01, x11));
 }
 

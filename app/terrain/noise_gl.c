@@ -1,7 +1,8 @@
 /* isoterra — GL resources of the noise: three 16^3 GL_RGBA16F repeating
- * volumes (trilinear, texture units 0..2) and the std140 NoiseTables uniform
- * block (permutation, rotations, seed; UBO binding 0).  See noise.h and
- * shaders/noise.glsl. */
+ * volumes (trilinear, texture units TEX_NOISE0..2) and the std140
+ * NoiseTables uniform block (the low octaves' rotations, the seed and
+ * Perlin's seed key; UBIND_NOISE).  Perlin noise itself needs no table.
+ * See noise.h and shaders/noise.glsl. */
 #include "noise.h"
 #include "abi.h"
 
