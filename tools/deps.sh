@@ -28,3 +28,8 @@ $SUDO apt-get install -y -q --no-install-recommends \
 	xvfb x11-apps weston \
 	qemu-system-x86 busybox-static linux-image-amd64 kmod cpio python3 \
 	kmscube glmark2-es2-drm
+# optional, bench only: the peers of build/bench/bench_pipeline (libnoise's
+# Perlin fBm, linked when found; VTK's flying edges through python3, found
+# at run time).  The build and the tests work without them; python3-vtk9
+# pulls VTK, MPI and Qt libraries (~400 MB), so CI may leave this line out.
+$SUDO apt-get install -y -q --no-install-recommends libnoise-dev python3-vtk9
