@@ -15,7 +15,8 @@
  *  4. the compaction methods with identical work (AO off on all three:
  *     only the HistoPyramid path has an AO pass);
  *  5. the noise sources (ALU, 16^3 textures) for the density pass;
- *  6. with --sizes, density and whole pipeline at other grid sizes.
+ *  6. with --sizes, density, whole pipeline and compaction methods at
+ *     other grid sizes.
  *
  * Wall time around glFinish(), median [min-max] of the runs; series are
  * interleaved in rounds (bench_pipeline.h).  The load average is printed
@@ -46,7 +47,7 @@ static void usage(const char *argv0)
 	printf("usage: %s [--quick] [--runs N] [--sizes 64,128] [--peer-threads N] [--no-peers] [--] [isoterra flags]\n"
 	       "  --quick            5 runs per series (default 9), no noise-source table\n"
 	       "  --runs N           runs per series (at least 5)\n"
-	       "  --sizes LIST       also density and whole pipeline at these grid sizes\n"
+	       "  --sizes LIST       also density, whole pipeline and compaction at these grids\n"
 	       "  --peer-threads N   libnoise and VTK threads (default 2)\n"
 	       "  --no-peers         skip libnoise and VTK\n"
 	       "Everything else (and everything after --) is isoterra's own flags: the field,\n"
@@ -299,16 +300,39 @@ static void measure_grid(const struct params *p, const struct field *f, const st
 	pipeline_destroy(pl);
 }
 
-/* 4: the same field through the three compaction methods, AO off on all. */
-static void measure_compaction(const struct params *p, const struct field *f, int runs)
+/* Rows: wall and CPU median [min-max], their medians' ratios to row 0's
+ * and, with counts, the triangles and vertices written. */
+static void print_ratio_table(const struct series *m, int n, bool counts)
+{
+	char a[64], b[64];
+	printf("  %-40s %-26s %-26s %6s %6s%s\n", "", "wall", "process CPU", "r.wall", "r.CPU",
+	       counts ? " triangles  vertices" : "");
+	for (int i = 0; i < n; i++) {
+		if (!m[i].n || !m[0].n) {
+			printf("  %-40s n/a\n", m[i].name);
+			continue;
+		}
+		printf("  %-40s %-26s %-26s %6.3f %6.3f", m[i].name, stat_str(&m[i], V_WALL, a, sizeof(a)),
+		       stat_str(&m[i], V_CPU, b, sizeof(b)), series_stat(&m[i], V_WALL).med / series_stat(&m[0], V_WALL).med,
+		       series_stat(&m[i], V_CPU).med / series_stat(&m[0], V_CPU).med);
+		if (counts && m[i].triangles >= 0)
+			printf(" %9ld %9ld", m[i].triangles, m[i].vertices);
+		printf("\n");
+	}
+}
+
+/* 4: the same field at grid n through the three compaction methods, AO
+ * off on all. */
+static void measure_compaction(const struct params *p, int n, const struct field *f, int runs)
 {
 	static const char *const names[3] = { "HistoPyramid (shared vertices, indexed)", "atomic append (unshared)",
 					      "none (15 vertices per cell)" };
 	struct params q = *p;
 	q.ao_rays = 0;
+	q.grid = n;
 	struct grid g;
 	printf("\ncompaction methods, identical work: AO off on all three (only the HistoPyramid path has an AO pass),\n"
-	       "grid %d, whole runs, ms median [min-max], ratio = median / HistoPyramid's:\n", p->grid);
+	       "grid %d, whole runs, ms median [min-max], ratios of the medians to HistoPyramid's:\n", n);
 	struct pipeline *pl = open_pipeline(&q, &g, f);
 	if (!pl)
 		return;
@@ -319,18 +343,7 @@ static void measure_compaction(const struct params *p, const struct field *f, in
 		s[i] = &m[i];
 	}
 	series_rounds(s, 3, runs);
-	char a[64], b[64];
-	double base = m[0].n ? series_stat(&m[0], V_WALL).med : 0;
-	printf("  %-40s %-26s %-26s %6s %9s %9s\n", "method", "wall", "process CPU", "ratio", "triangles", "vertices");
-	for (int i = 0; i < 3; i++) {
-		if (!m[i].n) {
-			printf("  %-40s n/a\n", names[i]);
-			continue;
-		}
-		printf("  %-40s %-26s %-26s %6.3f %9ld %9ld\n", names[i], stat_str(&m[i], V_WALL, a, sizeof(a)),
-		       stat_str(&m[i], V_CPU, b, sizeof(b)), base > 0 ? series_stat(&m[i], V_WALL).med / base : 0,
-		       m[i].triangles, m[i].vertices);
-	}
+	print_ratio_table(m, 3, true);
 	pipeline_destroy(pl);
 }
 
@@ -339,7 +352,7 @@ static void measure_noise(const struct params *p, const struct field *f, int run
 {
 	struct params q = *p;
 	struct grid g;
-	printf("\nnoise source, density pass, grid %d, ms median [min-max], ratio = median / ALU's:\n", p->grid);
+	printf("\nnoise source, density pass, grid %d, ms median [min-max], ratios of the medians to ALU's:\n", p->grid);
 	struct pipeline *pl = open_pipeline(&q, &g, f);
 	if (!pl)
 		return;
@@ -349,40 +362,33 @@ static void measure_noise(const struct params *p, const struct field *f, int run
 	q.noise = NOISE_TEXTURE;
 	isoterra_series(&m[1], "texture (16^3 volumes)", pl, &q, S_DENSITY);
 	series_rounds(s, 2, runs);
-	char a[64];
-	for (int i = 0; i < 2; i++)
-		if (m[i].n)
-			printf("  %-26s %-28s ratio %.3f\n", m[i].name, stat_str(&m[i], V_WALL, a, sizeof(a)),
-			       series_stat(&m[i], V_WALL).med / series_stat(&m[0], V_WALL).med);
+	print_ratio_table(m, 2, false);
 	pipeline_destroy(pl);
 }
 
 /* 6: density pass and whole pipeline at other grid sizes. */
 static void measure_sizes(const struct params *p, const struct field *f, const struct options *o)
 {
-	printf("\ngrid sizes (the flags' field and AO), ms median [min-max]:\n");
-	printf("  %-6s %-26s %-26s %7s %8s %8s %9s\n", "grid", "density", "whole", "ratio", "Mvox/s", "Mtris/s",
-	       "triangles");
 	for (int i = 0; i < o->nsizes; i++) {
 		struct params q = *p;
 		q.grid = o->sizes[i];
 		struct grid g;
+		printf("\ngrid %d (the flags' field and AO), ms median [min-max], ratios of the medians to the density pass's:\n",
+		       q.grid);
 		struct pipeline *pl = open_pipeline(&q, &g, f);
 		if (!pl)
 			continue;
-		struct series d, w, *s[2] = { &d, &w };
-		isoterra_series(&d, "density", pl, &q, S_DENSITY);
-		isoterra_series(&w, "whole", pl, &q, S_FULL);
+		struct series m[2], *s[2] = { &m[0], &m[1] };
+		isoterra_series(&m[0], "density pass alone", pl, &q, S_DENSITY);
+		isoterra_series(&m[1], "whole pipeline", pl, &q, S_FULL);
 		series_rounds(s, 2, o->runs);
-		if (d.n && w.n) {
-			char a[64], b[64];
-			double td = series_stat(&d, V_WALL).med, tw = series_stat(&w, V_WALL).med;
-			double vox = (double)g.nx * g.ny * g.nz;
-			printf("  %-6d %-26s %-26s %7.3f %8.2f %8.3f %9ld\n", q.grid, stat_str(&d, V_WALL, a, sizeof(a)),
-			       stat_str(&w, V_WALL, b, sizeof(b)), tw / td, vox / (tw * 1e3), w.triangles / (tw * 1e3),
-			       w.triangles);
-		}
+		print_ratio_table(m, 2, true);
+		if (m[1].n)
+			printf("  %.2f Mvoxels/s, %.3f Mtriangles/s (whole, wall)\n",
+			       (double)g.nx * g.ny * g.nz / (series_stat(&m[1], V_WALL).med * 1e3),
+			       m[1].triangles / (series_stat(&m[1], V_WALL).med * 1e3));
 		pipeline_destroy(pl);
+		measure_compaction(p, q.grid, f, o->runs);
 	}
 }
 
@@ -411,7 +417,7 @@ int main(int argc, char **argv)
 	struct terrain *tr = terrain_create(ed);
 	const struct field *f = terrain_field(tr);
 	measure_grid(&p, f, &o);
-	measure_compaction(&p, f, o.runs);
+	measure_compaction(&p, p.grid, f, o.runs);
 	if (!o.quick)
 		measure_noise(&p, f, o.runs);
 	if (o.nsizes)

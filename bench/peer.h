@@ -25,7 +25,7 @@ struct peer_fbm {
 	int threads;
 };
 
-/* NULL when libnoise is built in, else why not. */
+/* NULL when libnoise is built in, else a line that says it is not. */
 const char *peer_libnoise_missing(void);
 /* Fills the volume with `threads` threads (slabs of z).  0, or -1. */
 int peer_libnoise_volume(const struct peer_fbm *f, float *out);

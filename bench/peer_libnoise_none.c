@@ -4,7 +4,7 @@
 
 const char *peer_libnoise_missing(void)
 {
-	return "libnoise not installed (Debian: libnoise-dev; rebuild after installing it)";
+	return "libnoise not installed: peer skipped (Debian: libnoise-dev, then rebuild)";
 }
 
 int peer_libnoise_volume(const struct peer_fbm *f, float *out)

@@ -113,7 +113,7 @@ static int open_libnoise(struct peers *pe, const struct params *p, const struct 
 {
 	const char *missing = peer_libnoise_missing();
 	if (missing) {
-		printf("  libnoise peer skipped: %s\n", missing);
+		printf("  %s\n", missing);
 		return 0;
 	}
 	int m = grid_margin(g);
@@ -137,7 +137,7 @@ static int open_libnoise(struct peers *pe, const struct params *p, const struct 
 	pe->samples = (long)f->dims[0] * f->dims[1] * f->dims[2];
 	pe->lib_vol = malloc((size_t)pe->samples * sizeof(float));
 	if (!pe->lib_vol || peer_libnoise_volume(f, pe->lib_vol) < 0 || !(pe->vols[1] = corners_of(pe->lib_vol, g, pe->corners))) {
-		printf("  libnoise peer skipped: out of memory\n");
+		printf("  libnoise peer skipped: its volume could not be computed (out of memory?)\n");
 		return 0;
 	}
 	printf("  libnoise 1.0 Perlin module: %d octaves, frequency %g, lacunarity %g, persistence %.5f, seed %d,\n"
@@ -164,7 +164,7 @@ static void open_vtk(struct peers *pe, const struct params *p, const struct grid
 	char err[256];
 	pe->vtk = peer_vtk_open(vols, pe->vols[1] ? 2 : 1, pe->corners, p->iso, threads, err, sizeof(err));
 	if (!pe->vtk) {
-		printf("  VTK peer skipped: %s\n", err);
+		printf("  %s: VTK peer skipped\n", err);
 		return;
 	}
 	printf("  vtkFlyingEdges3D (%s): normals on, contour %g, on the grid's %d x %d x %d corners\n",
@@ -178,18 +178,17 @@ struct peers *peers_open(const struct params *p, const struct grid *g, struct pi
 			 struct series **s, int *ns)
 {
 	printf("\npeers, same field and grid:\n");
-	const char *why = field_mismatch(p);
-	if (why) {
-		printf("  peers skipped: libnoise's Perlin fBm does not compute this field: %s\n", why);
-		return NULL;
-	}
 	struct peers *pe = calloc(1, sizeof(*pe));
 	if (!pe)
 		return NULL;
 	pe->corners[0] = g->nx + 1;
 	pe->corners[1] = g->ny + 1;
 	pe->corners[2] = g->nz + 1;
-	open_libnoise(pe, p, g, threads);
+	const char *why = field_mismatch(p);
+	if (why)
+		printf("  libnoise peer skipped: its Perlin fBm does not compute this field: %s\n", why);
+	else
+		open_libnoise(pe, p, g, threads);
 	open_vtk(pe, p, g, pl, threads);
 	if (!pe->lib && !pe->fe[0]) {
 		peers_close(pe);
