@@ -34,6 +34,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 struct options {
 	int quick, runs, threads, peers;
@@ -142,13 +143,16 @@ void series_rounds(struct series *const *s, int ns, int runs)
 			s[i]->failed = true;
 			printf("  %s: n/a (failed, see above)\n", s[i]->name);
 		}
+	bool dots = isatty(STDERR_FILENO); /* progress, one dot a round */
 	for (int r = 0; r < runs && r < MAX_RUNS; r++) {
 		for (int i = 0; i < ns; i++)
 			if (!s[i]->failed && s[i]->run(s[i], &s[i]->r[s[i]->n]) == 0)
 				s[i]->n++;
-		fprintf(stderr, ".");
+		if (dots)
+			fprintf(stderr, ".");
 	}
-	fprintf(stderr, "\n");
+	if (dots)
+		fprintf(stderr, "\n");
 }
 
 struct bench_stat series_stat(const struct series *s, int what)
@@ -395,6 +399,7 @@ static void measure_sizes(const struct params *p, const struct field *f, const s
 int main(int argc, char **argv)
 {
 	struct options o;
+	setvbuf(stdout, NULL, _IOLBF, 0); /* in order with the GL and pipeline messages on stderr */
 	int rc = parse_options(argc, argv, &o);
 	if (rc)
 		return rc == 1 ? 0 : 2;
