@@ -31,5 +31,6 @@ $SUDO apt-get install -y -q --no-install-recommends \
 # optional, bench only: the peers of build/bench/bench_pipeline (libnoise's
 # Perlin fBm, linked when found; VTK's flying edges through python3, found
 # at run time).  The build and the tests work without them; python3-vtk9
-# pulls VTK, MPI and Qt libraries (~400 MB), so CI may leave this line out.
+# pulls VTK, MPI and Qt libraries (~210 MB on Debian 12), so CI may leave
+# this line out.
 $SUDO apt-get install -y -q --no-install-recommends libnoise-dev python3-vtk9
