@@ -5,6 +5,7 @@
 #define ISOTERRA_BENCH_H
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -38,6 +39,36 @@ static inline int bench_cmp_double(const void *a, const void *b)
 {
 	double x = *(const double *)a, y = *(const double *)b;
 	return x < y ? -1 : x > y;
+}
+
+/* The spread of repeated measurements: median, minimum, maximum of n. */
+struct bench_stat {
+	double med, min, max;
+	int n;
+};
+
+static inline struct bench_stat bench_stat_of(const double *v, int n)
+{
+	struct bench_stat s = { 0, 0, 0, 0 };
+	double t[256];
+	if (n > 256)
+		n = 256;
+	if (n <= 0)
+		return s;
+	memcpy(t, v, (size_t)n * sizeof(double));
+	qsort(t, (size_t)n, sizeof(double), bench_cmp_double);
+	s.med = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+	s.min = t[0];
+	s.max = t[n - 1];
+	s.n = n;
+	return s;
+}
+
+/* "median [min-max]" with the given decimals, into buf (returned). */
+static inline const char *bench_stat_str(struct bench_stat s, int decimals, char *buf, size_t len)
+{
+	snprintf(buf, len, "%.*f [%.*f-%.*f]", decimals, s.med, decimals, s.min, decimals, s.max);
+	return buf;
 }
 
 /* This process's CPU time in ms (llvmpipe's threads included). */

@@ -1,187 +1,433 @@
 /* isoterra — pipeline benchmark.
  *
- * For 64^3, 128^3 and 256^3 cells (7 octaves, the GPU Gems density with ALU
- * Perlin noise): the bare density pass, the full pipeline (density +
- * HistoPyramid extraction), their ratio, Mvoxels/s and triangles/s; then the
- * same field through the three compaction methods (HistoPyramid, atomic
- * append, none) and the two noise sources (ALU, 16^3 textures), all as
- * ratios against a baseline measured in the same run.
+ * The field comes from isoterra's own flags (everything after --, and every
+ * option the bench does not know, parsed by cli_parse), so a comparison on
+ * a given field is one command.  On that field and grid (--grid):
  *
- * usage: bench_pipeline [--quick] [--platform NAME] [--sizes 64,128,256]
- * Times are wall-clock around glFinish(), median of repeated runs. */
+ *  1. every pass apart (density, classify, pyramid = reduce + setup,
+ *     vertices, indices; pipeline_profile: glFinish after every pass), with
+ *     the flags' ambient occlusion and without it; AO = the vertex pass
+ *     with AO minus without;
+ *  2. whole runs: the density pass alone, the whole pipeline with and
+ *     without AO, with the process's CPU time;
+ *  3. the peers, when installed (bench/peer.h): libnoise's Perlin module as
+ *     the same fBm, VTK's flying edges on the same volume;
+ *  4. the compaction methods with identical work (AO off on all three:
+ *     only the HistoPyramid path has an AO pass);
+ *  5. the noise sources (ALU, 16^3 textures) for the density pass;
+ *  6. with --sizes, density, whole pipeline and compaction methods at
+ *     other grid sizes.
+ *
+ * Wall time around glFinish(), median [min-max] of the runs; series are
+ * interleaved in rounds (bench_pipeline.h).  The load average is printed
+ * at the start and at the end.
+ *
+ * usage: bench_pipeline [--quick] [--runs N] [--sizes 64,128] [--peer-threads N]
+ *                       [--no-peers] [--] [isoterra flags]
+ * e.g.   bench_pipeline -- --preset fbm --octaves 7 --warp-amp 0 --grid 128 */
 #include "app.h"
 #include "bench.h"
+#include "bench_pipeline.h"
 #include "terrain.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
-enum what { DENSITY_ONLY, FULL };
+struct options {
+	int quick, runs, threads, peers;
+	int sizes[8], nsizes;
+	int argc;          /* isoterra's flags, argv[0] = "isoterra" */
+	char *argv[256];
+};
 
-/* median ms of repeated runs (at least min_reps, until ~budget ms) */
-static double time_runs(struct pipeline *pl, const struct params *p, enum what w, int min_reps, double budget)
+static void usage(const char *argv0)
 {
-	double t[64];
-	int n = 0;
-	double start = clock_ms();
-	/* warm-up (shader JIT, first-touch of buffers) */
-	if (w == DENSITY_ONLY)
-		bench_density(pl, p);
-	else
-		bench_run(pl, p);
-	glFinish();
-	while (n < 64 && (n < min_reps || clock_ms() - start < budget)) {
-		double t0 = clock_ms();
-		int rc = w == DENSITY_ONLY ? bench_density(pl, p) : bench_run(pl, p);
-		glFinish();
-		if (rc < 0)
-			return -1;
-		t[n++] = clock_ms() - t0;
-	}
-	qsort(t, (size_t)n, sizeof(double), bench_cmp_double);
-	return t[n / 2];
+	printf("usage: %s [--quick] [--runs N] [--sizes 64,128] [--peer-threads N] [--no-peers] [--] [isoterra flags]\n"
+	       "  --quick            5 runs per series (default 9), no noise-source table\n"
+	       "  --runs N           runs per series (at least 5)\n"
+	       "  --sizes LIST       also density, whole pipeline and compaction at these grids\n"
+	       "  --peer-threads N   libnoise and VTK threads (default 2)\n"
+	       "  --no-peers         skip libnoise and VTK\n"
+	       "Everything else (and everything after --) is isoterra's own flags: the field,\n"
+	       "--grid, --platform, ... (isoterra --help).\n",
+	       argv0);
 }
 
-/* Default parameters at grid size n (octaves: 0 keeps the default's) and
- * their pipeline; NULL with err when it cannot be created. */
-static struct pipeline *open_pipeline(struct params *p, struct grid *g, int n, int octaves, const struct field *f,
-				      char *err, size_t errlen)
+/* The bench's options; the rest into o->argv for cli_parse.  0 to run, 1
+ * to exit with 0, 2 on a usage error. */
+static int parse_options(int argc, char **argv, struct options *o)
 {
-	params_defaults(p);
-	if (octaves)
-		p->octaves = octaves;
-	p->grid = n;
-	grid_from_params(g, p);
-	return pipeline_create(g, p, f, err, errlen);
-}
-
-/* Fixed field at grid size n: density pass, full pipeline and, from one
- * profiled run, where the time goes (written to breakdown). */
-static void measure_size(const struct field *f, int n, double budget, char *breakdown, size_t len)
-{
-	char err[512];
-	struct params p;
-	struct grid g;
-	struct pipeline *pl = open_pipeline(&p, &g, n, 7, f, err, sizeof(err));
-	if (!pl) {
-		printf("%-6d n/a: %s\n", n, err);
-		return;
-	}
-	double td = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-	double tf = time_runs(pl, &p, FULL, 3, budget);
-	/* one profiled run: where the time goes */
-	double ms[PASS_COUNT];
-	pipeline_profile(pl, true, NULL);
-	bench_run(pl, &p);
-	glFinish();
-	pipeline_profile(pl, false, ms);
-	snprintf(breakdown, len, "%-6d density %8.2f  classify %8.2f  reduce+setup %8.2f  vertices %8.2f  indices %8.2f",
-		 n, ms[PASS_DENSITY], ms[PASS_CLASSIFY], ms[PASS_REDUCE], ms[PASS_VERTICES], ms[PASS_INDICES]);
-	struct extract_stats st;
-	pipeline_read_stats(pl, &st);
-	double vox = (double)g.nx * g.ny * g.nz;
-	printf("%-6d %12.2f %12.2f %8.3f %10.1f %12.2f %10u%s\n", n, td, tf, tf / td, vox / (tf * 1e3),
-	       st.triangles / (tf * 1e3), st.triangles, st.overflow ? " (overflow)" : "");
-	pipeline_destroy(pl);
-}
-
-/* The same field at grid gsz through the three compaction methods. */
-static void measure_compaction(const struct field *f, int gsz, double budget)
-{
-	char err[512];
-	struct params p;
-	struct grid g;
-	struct pipeline *pl = open_pipeline(&p, &g, gsz, 7, f, err, sizeof(err));
-	if (!pl) {
-		printf("  %d^3: n/a: %s\n", gsz, err);
-		return;
-	}
-	double base = 0;
-	const char *names[] = { "histopyramid", "atomic-append", "none (15 verts/cell)" };
-	for (int m = 0; m < 3; m++) {
-		p.compaction = m;
-		double t = time_runs(pl, &p, FULL, 3, budget);
-		struct extract_stats st;
-		pipeline_read_stats(pl, &st);
-		if (t < 0) {
-			printf("  %d^3 %-22s n/a (buffer over the GL limit)\n", gsz, names[m]);
-			continue;
+	memset(o, 0, sizeof(*o));
+	o->threads = 2;
+	o->peers = 1;
+	o->argv[o->argc++] = "isoterra";
+	for (int i = 1; i < argc; i++) {
+		const char *a = argv[i];
+		bool has_val = i + 1 < argc;
+		if (o->argc >= 255)
+			return 2;
+		if (!strcmp(a, "--")) {
+			while (++i < argc && o->argc < 255)
+				o->argv[o->argc++] = argv[i];
+		} else if (!strcmp(a, "--quick")) {
+			o->quick = 1;
+		} else if (!strcmp(a, "--no-peers")) {
+			o->peers = 0;
+		} else if (!strcmp(a, "--runs") && has_val) {
+			o->runs = atoi(argv[++i]);
+		} else if (!strcmp(a, "--peer-threads") && has_val) {
+			o->threads = atoi(argv[++i]);
+		} else if (!strcmp(a, "--sizes") && has_val) {
+			for (char *s = strtok(argv[++i], ","); s && o->nsizes < 8; s = strtok(NULL, ","))
+				o->sizes[o->nsizes++] = atoi(s);
+		} else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			usage(argv[0]);
+			return 1;
+		} else {
+			o->argv[o->argc++] = argv[i];
 		}
-		if (m == 0)
-			base = t;
-		printf("  %d^3 %-22s %10.2f ms  ratio %6.3f  drawn triangles %u\n", gsz, names[m], t, t / base,
-		       st.triangles);
 	}
-	pipeline_destroy(pl);
+	if (!o->runs)
+		o->runs = o->quick ? 5 : 9;
+	if (o->runs < 5 || o->runs > MAX_RUNS || o->threads < 1) {
+		fprintf(stderr, "bench_pipeline: --runs 5..%d, --peer-threads 1 or more\n", MAX_RUNS);
+		return 2;
+	}
+	return 0;
 }
 
-/* The density pass with ALU noise and with 16^3 noise textures. */
-static void measure_noise(const struct field *f, int n, double budget)
+/* ---- series (bench_pipeline.h) ------------------------------------------ */
+
+static int run_isoterra(struct series *s, struct run_sample *o)
+{
+	memset(o, 0, sizeof(*o));
+	if (s->mode == S_PROFILED)
+		pipeline_profile(s->pl, true, NULL);
+	double t0 = clock_ms(), c0 = bench_cpu_ms();
+	int rc = s->mode == S_DENSITY ? bench_density(s->pl, &s->p) : bench_run(s->pl, &s->p);
+	glFinish();
+	o->wall = clock_ms() - t0;
+	o->cpu = bench_cpu_ms() - c0;
+	if (s->mode == S_PROFILED)
+		pipeline_profile(s->pl, false, o->pass);
+	struct extract_stats st;
+	if (rc == 0 && s->mode != S_DENSITY && s->triangles < 0 && pipeline_read_stats(s->pl, &st) == 0) {
+		s->triangles = st.triangles;
+		s->vertices = st.vertices;
+		if (st.overflow)
+			printf("  %s: output clamped to the capacity (raise --max-triangles)\n", s->name);
+	}
+	return rc;
+}
+
+static void isoterra_series(struct series *s, const char *name, struct pipeline *pl, const struct params *p,
+			    enum series_mode mode)
+{
+	memset(s, 0, sizeof(*s));
+	s->name = name;
+	s->run = run_isoterra;
+	s->pl = pl;
+	s->p = *p;
+	s->mode = mode;
+	s->triangles = s->vertices = -1;
+}
+
+void series_rounds(struct series *const *s, int ns, int runs)
+{
+	struct run_sample warm;
+	for (int i = 0; i < ns; i++)
+		if (s[i]->run(s[i], &warm) < 0) {
+			s[i]->failed = true;
+			printf("  %s: n/a (failed, see above)\n", s[i]->name);
+		}
+	bool dots = isatty(STDERR_FILENO); /* progress, one dot a round */
+	for (int r = 0; r < runs && r < MAX_RUNS; r++) {
+		for (int i = 0; i < ns; i++)
+			if (!s[i]->failed && s[i]->run(s[i], &s[i]->r[s[i]->n]) == 0)
+				s[i]->n++;
+		if (dots)
+			fprintf(stderr, ".");
+	}
+	if (dots)
+		fprintf(stderr, "\n");
+}
+
+struct bench_stat series_stat(const struct series *s, int what)
+{
+	double v[MAX_RUNS];
+	for (int i = 0; i < s->n; i++) {
+		const struct run_sample *r = &s->r[i];
+		if (what == V_WALL)
+			v[i] = r->wall;
+		else if (what == V_CPU)
+			v[i] = r->cpu;
+		else if (what == V_AFTER_DENSITY)
+			v[i] = r->pass[PASS_CLASSIFY] + r->pass[PASS_REDUCE] + r->pass[PASS_VERTICES] + r->pass[PASS_INDICES];
+		else
+			v[i] = r->pass[what];
+	}
+	return bench_stat_of(v, s->n);
+}
+
+/* ---- reports -------------------------------------------------------------- */
+
+static void print_field(const struct options *o, const struct params *p)
+{
+	printf("field: isoterra");
+	for (int i = 1; i < o->argc; i++)
+		printf(" %s", o->argv[i]);
+	printf("%s\n ", o->argc > 1 ? "" : " (the defaults)");
+	static const char *const names[] = { "field",	  "shape",	    "fractal",	       "noise",	   "octaves",
+					     "noise_freq", "lacunarity",    "hurst",	       "gain",	   "noise_amp",
+					     "ground_slope", "seed",	    "warp_amp",	       "floor_strength", "rotated_octaves",
+					     "closed",	  "ao_rays",	    "iso" };
+	for (size_t i = 0; i < sizeof(names) / sizeof(names[0]); i++) {
+		char v[64];
+		params_format(p, params_find(names[i]), v, sizeof(v));
+		printf(" %s %s%s", names[i], v, i + 1 < sizeof(names) / sizeof(names[0]) ? "," : "\n");
+	}
+	struct grid g;
+	grid_from_params(&g, p);
+	printf("  grid %d x %d x %d cells of %g, from (%g, %g, %g); %ld density samples (corners + margin)\n", g.nx, g.ny,
+	       g.nz, g.cell, g.origin[0], g.origin[1], g.origin[2], grid_dens_count(&g));
+	if (p->fractal == FRACTAL_FBM)
+		printf("  fbm octave weights: lacunarity^-hurst = %.5f per octave\n", pow(p->lacunarity, -p->hurst));
+}
+
+static const char *stat_str(const struct series *s, int what, char *buf, size_t len)
+{
+	if (!s || s->failed || !s->n)
+		return "n/a";
+	return bench_stat_str(series_stat(s, what), 1, buf, len);
+}
+
+/* Per pass, with the flags' AO and without (off may be NULL: AO off in
+ * the flags already). */
+static void print_passes(const struct series *on, const struct series *off, int runs)
+{
+	static const char *const names[PASS_COUNT] = { "density", "classify", "pyramid (reduce+setup)", "vertices",
+						       "indices" };
+	char a[64], b[64];
+	printf("\nper pass, HistoPyramid (glFinish after every pass), wall ms median [min-max] of %d runs:\n", runs);
+	printf("  %-24s %-28s %s\n", "pass", on->p.ao_rays ? "AO as given" : "AO off (as given)",
+	       off ? "AO off (--ao-rays 0)" : "");
+	for (int k = 0; k < PASS_COUNT; k++)
+		printf("  %-24s %-28s %s\n", names[k], stat_str(on, k, a, sizeof(a)), off ? stat_str(off, k, b, sizeof(b)) : "");
+	printf("  %-24s %-28s %s\n", "all but density", stat_str(on, V_AFTER_DENSITY, a, sizeof(a)),
+	       off ? stat_str(off, V_AFTER_DENSITY, b, sizeof(b)) : "");
+	printf("  %-24s %-28s %s\n", "whole run (wall)", stat_str(on, V_WALL, a, sizeof(a)),
+	       off ? stat_str(off, V_WALL, b, sizeof(b)) : "");
+	printf("  %-24s %-28s %s\n", "whole run (process CPU)", stat_str(on, V_CPU, a, sizeof(a)),
+	       off ? stat_str(off, V_CPU, b, sizeof(b)) : "");
+	if (off && on->n && off->n) {
+		double ao = series_stat(on, PASS_VERTICES).med - series_stat(off, PASS_VERTICES).med;
+		printf("  AO (%d rays x (%d short + %d long) steps) = vertex pass with AO - without (medians): %.1f ms,"
+		       " %.0f%% of the run\n",
+		       on->p.ao_rays, on->p.ao_short_steps, on->p.ao_long_steps, ao, 100 * ao / series_stat(on, V_WALL).med);
+	}
+}
+
+/* Whole runs (no glFinish between passes) against the density pass alone;
+ * full[0] with the flags' AO, full[1] (if nfull is 2) without. */
+static void print_whole(const struct series *dens, const struct series *const *full, int nfull, const struct grid *g)
+{
+	char a[64], b[64];
+	printf("\nwhole runs (glFinish at the end only), ms median [min-max]; /dens: ratio of the medians to the density pass's:\n");
+	printf("  %-28s %-26s %-26s %9s %8s %7s %8s %9s %9s\n", "", "wall", "process CPU", "wall/dens", "CPU/dens",
+	       "Mvox/s", "Mtris/s", "triangles", "vertices");
+	printf("  %-28s %-26s %-26s\n", "density pass alone", stat_str(dens, V_WALL, a, sizeof(a)),
+	       stat_str(dens, V_CPU, b, sizeof(b)));
+	if (!dens->n)
+		return;
+	double dw = series_stat(dens, V_WALL).med, dc = series_stat(dens, V_CPU).med;
+	double vox = (double)g->nx * g->ny * g->nz;
+	for (int i = 0; i < nfull; i++) {
+		const struct series *s = full[i];
+		if (!s->n)
+			continue;
+		double t = series_stat(s, V_WALL).med;
+		printf("  %-28s %-26s %-26s %9.3f %8.3f %7.2f %8.3f %9ld %9ld\n", s->name, stat_str(s, V_WALL, a, sizeof(a)),
+		       stat_str(s, V_CPU, b, sizeof(b)), t / dw, series_stat(s, V_CPU).med / dc, vox / (t * 1e3),
+		       s->triangles / (t * 1e3), s->triangles, s->vertices);
+	}
+	if (nfull == 2 && full[0]->n && full[1]->n)
+		printf("  AO, process CPU: whole run with AO - without (medians): %.1f ms\n",
+		       series_stat(full[0], V_CPU).med - series_stat(full[1], V_CPU).med);
+}
+
+/* ---- measurements ----------------------------------------------------------- */
+
+static struct pipeline *open_pipeline(const struct params *p, struct grid *g, const struct field *f)
 {
 	char err[512];
-	struct params p;
+	grid_from_params(g, p);
+	struct pipeline *pl = pipeline_create(g, p, f, err, sizeof(err));
+	if (!pl)
+		printf("  grid %d: n/a: %s\n", p->grid, err);
+	return pl;
+}
+
+/* 1-3: the passes, whole runs and peers at the flags' grid. */
+static void measure_grid(const struct params *p, const struct field *f, const struct options *o)
+{
 	struct grid g;
-	struct pipeline *pl = open_pipeline(&p, &g, n, 0, f, err, sizeof(err));
+	struct pipeline *pl = open_pipeline(p, &g, f);
 	if (!pl)
 		return;
-	double ta = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-	p.noise = NOISE_TEXTURE;
-	double tt = time_runs(pl, &p, DENSITY_ONLY, 3, budget);
-	printf("  alu (improved Perlin)   %10.2f ms  ratio 1.000\n", ta);
-	printf("  texture (16^3 volumes)  %10.2f ms  ratio %.3f\n", tt, tt / ta);
+	struct params off = *p;
+	off.ao_rays = 0;
+	bool ao = p->ao_rays > 0;
+	struct series dens, full, full_off, prof, prof_off;
+	isoterra_series(&dens, "density pass alone", pl, p, S_DENSITY);
+	isoterra_series(&full, ao ? "whole pipeline, AO as given" : "whole pipeline (AO off)", pl, p, S_FULL);
+	isoterra_series(&full_off, "whole pipeline, AO off", pl, &off, S_FULL);
+	isoterra_series(&prof, "profiled, AO as given", pl, p, S_PROFILED);
+	isoterra_series(&prof_off, "profiled, AO off", pl, &off, S_PROFILED);
+	struct series *s[5 + PEER_SERIES] = { &dens, &full, &prof };
+	int ns = 3;
+	if (ao) {
+		s[ns++] = &full_off;
+		s[ns++] = &prof_off;
+	}
+	struct peers *pe = o->peers ? peers_open(p, &g, pl, o->threads, s, &ns) : NULL;
+	printf("\nmeasuring: %d series x %d runs, interleaved (one run of each per round)\n", ns, o->runs);
+	fflush(stdout);
+	series_rounds(s, ns, o->runs);
+	print_passes(&prof, ao ? &prof_off : NULL, o->runs);
+	const struct series *fulls[2] = { &full, &full_off };
+	print_whole(&dens, fulls, ao ? 2 : 1, &g);
+	peers_report(pe, &dens, ao ? &prof_off : &prof, ao ? &full_off : &full);
+	peers_close(pe);
 	pipeline_destroy(pl);
+}
+
+/* Rows: wall and CPU median [min-max], their medians' ratios to row 0's
+ * and, with counts, the triangles and vertices written. */
+static void print_ratio_table(const struct series *m, int n, bool counts)
+{
+	char a[64], b[64];
+	printf("  %-40s %-26s %-26s %6s %6s%s\n", "", "wall", "process CPU", "r.wall", "r.CPU",
+	       counts ? " triangles  vertices" : "");
+	for (int i = 0; i < n; i++) {
+		if (!m[i].n || !m[0].n) {
+			printf("  %-40s n/a\n", m[i].name);
+			continue;
+		}
+		printf("  %-40s %-26s %-26s %6.3f %6.3f", m[i].name, stat_str(&m[i], V_WALL, a, sizeof(a)),
+		       stat_str(&m[i], V_CPU, b, sizeof(b)), series_stat(&m[i], V_WALL).med / series_stat(&m[0], V_WALL).med,
+		       series_stat(&m[i], V_CPU).med / series_stat(&m[0], V_CPU).med);
+		if (counts && m[i].triangles >= 0)
+			printf(" %9ld %9ld", m[i].triangles, m[i].vertices);
+		printf("\n");
+	}
+}
+
+/* 4: the same field at grid n through the three compaction methods, AO
+ * off on all. */
+static void measure_compaction(const struct params *p, int n, const struct field *f, int runs)
+{
+	static const char *const names[3] = { "HistoPyramid (shared vertices, indexed)", "atomic append (unshared)",
+					      "none (15 vertices per cell)" };
+	struct params q = *p;
+	q.ao_rays = 0;
+	q.grid = n;
+	struct grid g;
+	printf("\ncompaction methods, identical work: AO off on all three (only the HistoPyramid path has an AO pass),\n"
+	       "grid %d, whole runs, ms median [min-max], ratios of the medians to HistoPyramid's:\n", n);
+	struct pipeline *pl = open_pipeline(&q, &g, f);
+	if (!pl)
+		return;
+	struct series m[3], *s[3];
+	for (int i = 0; i < 3; i++) {
+		q.compaction = i;
+		isoterra_series(&m[i], names[i], pl, &q, S_FULL);
+		s[i] = &m[i];
+	}
+	series_rounds(s, 3, runs);
+	print_ratio_table(m, 3, true);
+	pipeline_destroy(pl);
+}
+
+/* 5: the density pass with ALU noise and with the 16^3 noise textures. */
+static void measure_noise(const struct params *p, const struct field *f, int runs)
+{
+	struct params q = *p;
+	struct grid g;
+	printf("\nnoise source, density pass, grid %d, ms median [min-max], ratios of the medians to ALU's:\n", p->grid);
+	struct pipeline *pl = open_pipeline(&q, &g, f);
+	if (!pl)
+		return;
+	struct series m[2], *s[2] = { &m[0], &m[1] };
+	q.noise = NOISE_ALU;
+	isoterra_series(&m[0], "alu (improved Perlin)", pl, &q, S_DENSITY);
+	q.noise = NOISE_TEXTURE;
+	isoterra_series(&m[1], "texture (16^3 volumes)", pl, &q, S_DENSITY);
+	series_rounds(s, 2, runs);
+	print_ratio_table(m, 2, false);
+	pipeline_destroy(pl);
+}
+
+/* 6: density pass and whole pipeline at other grid sizes. */
+static void measure_sizes(const struct params *p, const struct field *f, const struct options *o)
+{
+	for (int i = 0; i < o->nsizes; i++) {
+		struct params q = *p;
+		q.grid = o->sizes[i];
+		struct grid g;
+		printf("\ngrid %d (the flags' field and AO), ms median [min-max], ratios of the medians to the density pass's:\n",
+		       q.grid);
+		struct pipeline *pl = open_pipeline(&q, &g, f);
+		if (!pl)
+			continue;
+		struct series m[2], *s[2] = { &m[0], &m[1] };
+		isoterra_series(&m[0], "density pass alone", pl, &q, S_DENSITY);
+		isoterra_series(&m[1], "whole pipeline", pl, &q, S_FULL);
+		series_rounds(s, 2, o->runs);
+		print_ratio_table(m, 2, true);
+		if (m[1].n)
+			printf("  %.2f Mvoxels/s, %.3f Mtriangles/s (whole, wall)\n",
+			       (double)g.nx * g.ny * g.nz / (series_stat(&m[1], V_WALL).med * 1e3),
+			       m[1].triangles / (series_stat(&m[1], V_WALL).med * 1e3));
+		pipeline_destroy(pl);
+		measure_compaction(p, q.grid, f, o->runs);
+	}
 }
 
 int main(int argc, char **argv)
 {
-	const char *plat_name = "auto";
-	int quick = 0;
-	int sizes[8] = { 64, 128, 256 }, nsizes = 3;
-	for (int i = 1; i < argc; i++) {
-		if (!strcmp(argv[i], "--quick"))
-			quick = 1;
-		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
-			plat_name = argv[++i];
-		else if (!strcmp(argv[i], "--sizes") && i + 1 < argc) {
-			nsizes = 0;
-			for (char *s = strtok(argv[++i], ","); s && nsizes < 8; s = strtok(NULL, ","))
-				sizes[nsizes++] = atoi(s);
-		} else {
-			fprintf(stderr, "usage: %s [--quick] [--platform NAME] [--sizes 64,128,256]\n", argv[0]);
-			return 2;
-		}
+	struct options o;
+	setvbuf(stdout, NULL, _IOLBF, 0); /* in order with the GL and pipeline messages on stderr */
+	int rc = parse_options(argc, argv, &o);
+	if (rc)
+		return rc == 1 ? 0 : 2;
+	struct params p;
+	char err[512];
+	enum cli_result cr = cli_parse(o.argc, o.argv, &p, err, sizeof(err));
+	if (cr != CLI_RUN) {
+		if (cr == CLI_ERROR)
+			fprintf(stderr, "bench_pipeline: %s\n", err);
+		return cr == CLI_ERROR ? 2 : 0;
 	}
-	struct platform *plat = bench_open(plat_name, 64, 64);
+	struct platform *plat = bench_open(p.platform, 64, 64);
 	if (!plat)
 		return 1;
+	print_field(&o, &p);
+	printf("  %d runs per series%s; wall ms around glFinish; CPU = this process's CPU time (llvmpipe's and\n"
+	       "  libnoise's threads included; VTK's: its child's)\n",
+	       o.runs, o.quick ? " (--quick)" : "");
 	struct edits *ed = edits_create();
 	struct terrain *tr = terrain_create(ed);
 	const struct field *f = terrain_field(tr);
-	printf("field: GPU Gems density, 7 octaves, ALU Perlin noise, default volume\n\n");
-	double budget = quick ? 300 : 2000;
-
-	char breakdown[8][160];
-	memset(breakdown, 0, sizeof(breakdown));
-	printf("%-6s %12s %12s %8s %10s %12s %10s\n", "grid", "density ms", "full ms", "ratio", "Mvox/s", "Mtris/s",
-	       "triangles");
-	for (int s = 0; s < nsizes; s++)
-		measure_size(f, sizes[s], budget, breakdown[s], sizeof(breakdown[s]));
-
-	printf("\nper pass (ms, one run with glFinish after every pass):\n");
-	for (int s = 0; s < nsizes; s++)
-		if (breakdown[s][0])
-			printf("  %s\n", breakdown[s]);
-
-	int cmp_grid = quick ? 64 : 128;
-	printf("\ncompaction methods, same field, grid %d^3 (ratio = time / HistoPyramid time):\n", cmp_grid);
-	for (int gsz = 64; gsz <= cmp_grid; gsz *= 2)
-		measure_compaction(f, gsz, budget);
-
-	printf("\nnoise source, density pass, grid %d^3, 9 octaves (ratio = time / ALU time):\n", cmp_grid);
-	measure_noise(f, cmp_grid, budget);
+	measure_grid(&p, f, &o);
+	measure_compaction(&p, p.grid, f, o.runs);
+	if (!o.quick)
+		measure_noise(&p, f, o.runs);
+	if (o.nsizes)
+		measure_sizes(&p, f, &o);
+	printf("\nload average %.2f at the end\n", bench_loadavg());
 	terrain_destroy(tr);
 	edits_destroy(ed);
 	platform_close(plat);

@@ -10,7 +10,7 @@ $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
 	libegl-dev libgles-dev libpng-dev \
 	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
-# issue 5 (hal/): GPIO controls (libgpiod 1.6); the VM tests (tests/vm/,
+# the hardware layer (hal/): GPIO controls (libgpiod); the VM tests (tests/vm/,
 # suite 'vm'): QEMU, Debian's kernel with headers and source (gpio-sim is
 # built out of tree), busybox + cpio for the initramfs, v4l-utils (vivid)
 $SUDO apt-get install -y -q --no-install-recommends \
@@ -32,3 +32,8 @@ $SUDO apt-get install -y -q --no-install-recommends \
 # (tools/debian13.sh, arm64.sh, debpkg.sh): debootstrap fetches everything
 # else from Debian's archive into build-d13/
 $SUDO apt-get install -y -q --no-install-recommends debootstrap
+# optional, bench only: the peers of build/bench/bench_pipeline (libnoise's
+# Perlin fBm, linked when found; VTK's flying edges through python3, found
+# at run time).  The build and the tests work without them; python3-vtk9
+# pulls VTK, MPI and Qt libraries (~210 MB on Debian 12).
+$SUDO apt-get install -y -q --no-install-recommends libnoise-dev python3-vtk9
