@@ -39,8 +39,10 @@
 vec3 octave_point(vec3 ws, int i, float freq)
 {
 	vec3 p = ws * freq;
+#if TERM_ROTATED_OCTAVES // 0: no rotation code
 	if (i < u_rotated_octaves && i < 4)
 		p = noise_rotate(i, p);
+#endif
 	return p + float(i) * OCTAVE_SHIFT;
 }
 
@@ -51,7 +53,11 @@ float octave_noise(vec3 p, int i)
 		int k = i % 3;
 		int ch = (i / 3) & 3;
 		// the lowest (rotated) octaves: manual fp32 trilinear (GPU Gems' advice)
+#if TERM_ROTATED_OCTAVES
 		vec4 t = (i < u_rotated_octaves) ? noise_tex_manual(k, p) : noise_tex_hw(k, p);
+#else
+		vec4 t = noise_tex_hw(k, p);
+#endif
 		return t[ch] * NOISE_TEX_GAIN;
 	}
 	return perlin(p);
