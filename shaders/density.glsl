@@ -5,6 +5,9 @@
 //
 // Needs (from the host prelude): the u_* parameter uniforms and the enum
 // #defines (FIELD_*, SHAPE_*, NOISE_*, FRACTAL_*, TERRACE_*, SHELF_*).
+// Resources: NoiseTables UBO (UBIND_NOISE), u_noise0..2 (TEX_NOISE0..2),
+// uploaded by app/terrain/noise_gl.c; the curves and the heightmap
+// (app/edit/curves_gl.c); bound by the terrain field (app/terrain/terrain.c).
 //
 // Code for a term that is off is not compiled (llvmpipe and small GPUs run
 // both sides of a uniform branch): the enum terms are constants in a
@@ -13,9 +16,6 @@
 // 0|1 in the specialization, 1 where a program is not specialized); the
 // curves under HAS_CURVES (carve.glsl), which the terrain provider defines
 // from the edit state.  docs/PIPELINE.md, "Specialization".
-// Resources: NoiseTables UBO (UBIND_NOISE), u_noise0..2 (TEX_NOISE0..2),
-// uploaded by app/terrain/noise_gl.c; the curves and the heightmap
-// (app/edit/curves_gl.c); bound by the terrain field (app/terrain/terrain.c).
 //
 //   float density(vec3 ws);
 //   float density_far(vec3 ws);  // three octaves fewer (long AO rays)

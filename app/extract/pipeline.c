@@ -200,8 +200,9 @@ static GLuint variant_program(struct pipeline *pl, const char *file, const char 
 	if (!prog)
 		return 0;
 	pl->compiles++;
-	log_debug("pipeline: compiled a variant of %s in %.1f ms%s", file, clock_ms() - t0,
-		  victim->prog ? " (evicted the least recently used)" : "");
+	log_debug("pipeline: a new variant of %s, linked in %.1f ms (the driver may compile more at its first "
+		  "dispatch)%s",
+		  file, clock_ms() - t0, victim->prog ? "; the least recently used one evicted" : "");
 	if (victim->prog)
 		glDeleteProgram(victim->prog);
 	snprintf(victim->key, sizeof(victim->key), "%s", key);
