@@ -13,11 +13,23 @@
 #include "curves.glsl"
 #include "heightmap.glsl"
 
+// HAS_CURVES 0: the edit state holds no curves, so the carve is not
+// compiled (the field provider, app/terrain/terrain.c, defines it in the
+// terrain's programs; every other program keeps the code and its
+// u_curve_count check).
+#ifndef HAS_CURVES
+#define HAS_CURVES 1
+#endif
+
 float carve_density(vec3 ws, float d)
 {
+#if HAS_CURVES && TERM_CURVE_STRENGTH
 	if (u_curve_count == 0)
 		return d;
 	vec4 e = curve_eval(ws.xz);
 	float k = e.y * u_curve_strength;
 	return d + k * ((e.x - ws.y) - d);
+#else
+	return d;
+#endif
 }

@@ -9,6 +9,14 @@
 // uploaded by app/terrain/noise_gl.c; the curves and the heightmap
 // (app/edit/curves_gl.c); bound by the terrain field (app/terrain/terrain.c).
 //
+// Code for a term that is off is not compiled (llvmpipe and small GPUs run
+// both sides of a uniform branch): the enum terms are constants in a
+// specialized program (#define u_field 0, ...), and each term a parameter
+// value of 0 turns off is compiled under TERM_<NAME> (P_TERM in params.def,
+// 0|1 in the specialization, 1 where a program is not specialized); the
+// curves under HAS_CURVES (carve.glsl), which the terrain provider defines
+// from the edit state.  docs/PIPELINE.md, "Specialization".
+//
 //   float density(vec3 ws);
 //   float density_far(vec3 ws);  // three octaves fewer (long AO rays)
 
@@ -84,19 +92,25 @@ float shelf_term(float y)
 
 float density(vec3 ws)
 {
+#if TERM_SCROLL_SPEED
 	ws.x += u_time * u_scroll_speed; // animation: the field scrolls along x
+#endif
 	if (u_field == FIELD_HEIGHTMAP) { // heightmap base (+ 3D noise detail), then the curves
 		float hd = hm_height(ws.xz, true) - ws.y;
+#if TERM_HEIGHTMAP_NOISE && TERM_NOISE_AMP
 		if (u_heightmap_noise != 0.0)
 			hd += u_heightmap_noise * u_noise_amp * fractal(ws);
+#endif
 		return carve_density(ws, hd);
 	}
 	if (u_field != FIELD_TERRAIN)
 		return test_field(ws);
 
 	vec3 ws_orig = ws;
+#if TERM_WARP_AMP
 	if (u_warp_amp != 0.0)
 		ws += domain_warp(ws) * u_warp_amp;
+#endif
 
 	float d;
 	if (u_shape == SHAPE_PLANET) {
@@ -108,10 +122,14 @@ float density(vec3 ws)
 		d = -ws.y * u_ground_slope;
 	}
 
+#if TERM_NOISE_AMP
 	d += u_noise_amp * fractal(ws);
+#endif
 
+#if TERM_FLOOR_STRENGTH
 	// hard floor on the pre-warp height ("sediment")
 	d += dens_sat((u_floor_y - ws_orig.y) * u_floor_sharpness) * u_floor_strength;
+#endif
 
 	if (u_terrace == TERRACE_PRE)
 		d += terrace_term(ws_orig.y);

@@ -36,22 +36,27 @@
 #define WORLEY_MEAN vec4(0.5205, 0.7167, 0.8451, 0.9437)
 #define OCTAVE_SHIFT vec3(17.31, -9.17, 23.53)
 
-vec3 octave_point(vec3 ws, int i, float freq)
+// The octaves below rotated_octaves (the rotated ones) and those above
+// run in separate loops, each with only its own code: a branch on the
+// octave index would make llvmpipe and small GPUs run the rotation and
+// (texture noise) the manual trilinear for every octave.  `rotated` is a
+// constant at each call, so the other side is not compiled.
+vec3 octave_point(vec3 ws, int i, float freq, bool rotated)
 {
 	vec3 p = ws * freq;
-	if (i < u_rotated_octaves && i < 4)
+	if (rotated && i < 4)
 		p = noise_rotate(i, p);
 	return p + float(i) * OCTAVE_SHIFT;
 }
 
 // Noise basis of octave i at lattice-space point p.
-float octave_noise(vec3 p, int i)
+float octave_noise(vec3 p, int i, bool rotated)
 {
 	if (u_noise == NOISE_TEXTURE) {
 		int k = i % 3;
 		int ch = (i / 3) & 3;
 		// the lowest (rotated) octaves: manual fp32 trilinear (GPU Gems' advice)
-		vec4 t = (i < u_rotated_octaves) ? noise_tex_manual(k, p) : noise_tex_hw(k, p);
+		vec4 t = rotated ? noise_tex_manual(k, p) : noise_tex_hw(k, p);
 		return t[ch] * NOISE_TEX_GAIN;
 	}
 	return perlin(p);
@@ -60,60 +65,84 @@ float octave_noise(vec3 p, int i)
 // Octaves left out (the "lightweight" density of long AO rays drops 3).
 int g_octave_drop = 0;
 
+// The running state of the fractal sum, octave to octave.
+struct FractalSum {
+	float freq;   // f_i
+	float ga;     // gain^i
+	float hw;     // (f_i/f_0)^-H
+	float sum;
+	float center;
+	float weight; // ridged
+	float ew;     // ridged: approximate E[w_i]
+};
+
+// Octave i added to s (hstep = lacunarity^-H, es and wc: the ridged and
+// Worley expectations, constant over the octaves).
+void fractal_octave(inout FractalSum s, vec3 ws, int i, bool rotated, float hstep, float es, float wc)
+{
+	vec3 p = octave_point(ws, i, s.freq, rotated);
+	if (u_fractal == FRACTAL_WORLEY) {
+		vec4 F = worley(p, i);
+		float v = u_worley_c1 * F.x + u_worley_c2 * F.y + u_worley_c3 * F.z + u_worley_c4 * F.w;
+		s.sum += s.ga * (v - wc);
+	} else {
+		float n = octave_noise(p, i, rotated);
+		if (u_fractal == FRACTAL_FBM) {
+			s.sum += s.hw * n;
+		} else if (u_fractal == FRACTAL_TURBULENCE) {
+			s.sum += s.ga * (abs(n) - NOISE_MEAN_ABS);
+		} else if (u_fractal == FRACTAL_RIDGED) {
+			float r = u_ridge_offset - abs(n);
+			r = r * r * s.weight;
+			s.sum += s.hw * r;
+			s.weight = clamp(r * u_ridge_gain, 0.0, 1.0);
+			s.center += s.hw * es * s.ew;
+			s.ew = min(es * s.ew * u_ridge_gain, 1.0);
+		} else if (u_fractal == FRACTAL_MULTIFRACTAL) {
+			s.sum *= u_mf_offset + u_mf_contrast * s.hw * n;
+			s.center *= u_mf_offset;
+		} else if (u_fractal == FRACTAL_HETERO) {
+			if (i == 0) {
+				s.sum = u_mf_offset + n;
+				s.center = u_mf_offset;
+			} else {
+				s.sum += (n + u_mf_offset) * s.hw * s.sum;
+				s.center += u_mf_offset * s.hw * s.center;
+			}
+		} else { // FRACTAL_GEISS
+			s.sum += s.ga * n;
+		}
+	}
+	s.freq *= u_lacunarity;
+	s.ga *= u_gain;
+	s.hw *= hstep;
+}
+
 float fractal(vec3 ws)
 {
-	float freq = u_noise_freq;
-	float ga = 1.0;                            // gain^i
-	float hw = 1.0;                            // (f_i/f_0)^-H
+	FractalSum s;
+	s.freq = u_noise_freq;
+	s.ga = 1.0;
+	s.hw = 1.0;
 	float hstep = pow(u_lacunarity, -u_hurst);
-	float sum = 0.0;
-	float center = 0.0;
-	float weight = 1.0;                        // ridged
+	s.sum = 0.0;
+	s.center = 0.0;
+	s.weight = 1.0;
 	float es = u_ridge_offset * u_ridge_offset - 2.0 * u_ridge_offset * NOISE_MEAN_ABS + NOISE_MEAN_SQ;
-	float ew = 1.0;                            // ridged: approximate E[w_i]
+	s.ew = 1.0;
 	float wc = u_worley_c1 * WORLEY_MEAN.x + u_worley_c2 * WORLEY_MEAN.y + u_worley_c3 * WORLEY_MEAN.z +
 		   u_worley_c4 * WORLEY_MEAN.w;
 	if (u_fractal == FRACTAL_MULTIFRACTAL) {
-		sum = 1.0;
-		center = 1.0;
+		s.sum = 1.0;
+		s.center = 1.0;
 	}
-	for (int i = 0; i < u_octaves - g_octave_drop; i++) {
-		vec3 p = octave_point(ws, i, freq);
-		if (u_fractal == FRACTAL_WORLEY) {
-			vec4 F = worley(p, i);
-			float v = u_worley_c1 * F.x + u_worley_c2 * F.y + u_worley_c3 * F.z + u_worley_c4 * F.w;
-			sum += ga * (v - wc);
-		} else {
-			float n = octave_noise(p, i);
-			if (u_fractal == FRACTAL_FBM) {
-				sum += hw * n;
-			} else if (u_fractal == FRACTAL_TURBULENCE) {
-				sum += ga * (abs(n) - NOISE_MEAN_ABS);
-			} else if (u_fractal == FRACTAL_RIDGED) {
-				float s = u_ridge_offset - abs(n);
-				s = s * s * weight;
-				sum += hw * s;
-				weight = clamp(s * u_ridge_gain, 0.0, 1.0);
-				center += hw * es * ew;
-				ew = min(es * ew * u_ridge_gain, 1.0);
-			} else if (u_fractal == FRACTAL_MULTIFRACTAL) {
-				sum *= u_mf_offset + u_mf_contrast * hw * n;
-				center *= u_mf_offset;
-			} else if (u_fractal == FRACTAL_HETERO) {
-				if (i == 0) {
-					sum = u_mf_offset + n;
-					center = u_mf_offset;
-				} else {
-					sum += (n + u_mf_offset) * hw * sum;
-					center += u_mf_offset * hw * center;
-				}
-			} else { // FRACTAL_GEISS
-				sum += ga * n;
-			}
-		}
-		freq *= u_lacunarity;
-		ga *= u_gain;
-		hw *= hstep;
-	}
-	return sum - center;
+	int n = u_octaves - g_octave_drop;
+	int i = 0;
+#if TERM_ROTATED_OCTAVES // 0: no rotation code
+	for (int nr = min(u_rotated_octaves, n); i < nr; i++)
+		fractal_octave(s, ws, i, true, hstep, es, wc);
+#endif
+	for (; i < n; i++)
+		fractal_octave(s, ws, i, false, hstep, es, wc);
+	return s.sum - s.center;
 }

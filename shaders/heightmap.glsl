@@ -37,6 +37,7 @@ float hm_height(vec2 xz, bool detail)
 	float b = h01 + (h11 - h01) * f.x;
 	float v = a + (b - a) * f.y;
 	float h = u_heightmap_base + v * (u_heightmap_height * (1.0 / 65535.0));
+#if TERM_HEIGHTMAP_DETAIL // 0: bilinear only, the detail is not compiled
 	if (detail && u_heightmap_detail != 0.0) {
 		float m00 = length(f), m10 = length(f - vec2(1.0, 0.0));
 		float m01 = length(f - vec2(0.0, 1.0)), m11 = length(f - vec2(1.0, 1.0));
@@ -51,5 +52,6 @@ float hm_height(vec2 xz, bool detail)
 		}
 		h += u_heightmap_detail * bump * n;
 	}
+#endif
 	return h;
 }

@@ -33,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static struct noise_set ns_a, ns_b;
 
@@ -585,6 +586,43 @@ static void test_gpu(void)
 	gpu_compare("terrace=post shelf=pre", 17, "terrace=post;shelf=pre", false);
 	gpu_compare("shape=planet seed=3", 17, "shape=planet;planet_radius=12;seed=3", false);
 	gpu_compare("shape=caves seed=0", 17, "shape=caves;cave_bias=2;seed=0", false);
+	/* the terms a zero turns off (P_TERM: compiled out), off beside the
+	 * defaults' on above */
+	gpu_compare("warp_amp=0", 17, "warp_amp=0", false);
+	gpu_compare("floor_strength=0", 17, "floor_strength=0", false);
+	gpu_compare("noise_amp=0", 17, "noise_amp=0", false);
+	gpu_compare("rotated_octaves=0 noise=alu", 17, "rotated_octaves=0", false);
+	gpu_compare("rotated_octaves=4 noise=alu", 17, "rotated_octaves=4", false);
+	gpu_compare("time=1.5 scroll_speed=0", 17, "time=1.5;scroll_speed=0", false);
+	gpu_compare("time=1.5 scroll_speed=-1", 17, "time=1.5;scroll_speed=-1", false);
+	gpu_compare("field=bumps time=2 scroll_speed=0", 17, "field=bumps;field_scale=8;time=2;scroll_speed=0", false);
+	gpu_compare("every term off (warp, floor, rotation, scroll)", 17,
+		    "warp_amp=0;floor_strength=0;rotated_octaves=0;time=2;scroll_speed=0", false);
+	gpu_compare("noise=texture warp_amp=0 floor_strength=0", 17, "noise=texture;warp_amp=0;floor_strength=0", true);
+	gpu_compare("plain fBm, 7 octaves (benchmark field)", 33,
+		    "fractal=fbm;octaves=7;warp_amp=0;floor_strength=0;rotated_octaves=0;closed=false;vol_height=1;"
+		    "vol_y=0;noise_freq=0.125;lacunarity=2.03;hurst=0.9785;noise_amp=3.9",
+		    false);
+	/* the heightmap's detail and 3D noise terms, off and on */
+	{
+		char dir[] = "/tmp/isoterra-density-XXXXXX", hm[64], e[256];
+		CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+		snprintf(hm, sizeof(hm), "%s/hm.png", dir);
+		uint16_t v[9 * 7];
+		for (int i = 0; i < 9 * 7; i++)
+			v[i] = (uint16_t)((i * 7919u + 1237u) % 65536u);
+		CHECK(heightmap_write_png16(hm, v, 9, 7, e, sizeof(e)) == 0, "heightmap: %s", e);
+		static const char *hm_terms[] = { "heightmap_detail=0;heightmap_noise=0", "heightmap_detail=2;heightmap_noise=0",
+						  "heightmap_detail=0;heightmap_noise=0.3", "heightmap_detail=2;heightmap_noise=0.3",
+						  "heightmap_detail=2;heightmap_noise=0.3;noise_amp=0" };
+		for (int i = 0; i < 5; i++) {
+			snprintf(kv, sizeof(kv), "field=heightmap;heightmap=%s;heightmap_scale=4;octaves=4;%s", hm, hm_terms[i]);
+			snprintf(what, sizeof(what), "field=heightmap %s", hm_terms[i]);
+			gpu_compare(what, 17, kv, false);
+		}
+		unlink(hm);
+		rmdir(dir);
+	}
 	platform_close(pf);
 }
 

@@ -13,7 +13,11 @@
 
 #define GUARD_BYTES 1024u      /* canary after every output buffer */
 #define GUARD_WORD 0xa5c3e1f7u
-#define PROGRAM_VARIANTS 12    /* specialized programs kept per pipeline */
+/* Specialized programs kept per pipeline (least recently used evicted):
+ * each parameter state needs two (density pass, vertex pass with AO), so
+ * 16 keep eight states, the terms a knob flips among them. */
+#define PROGRAM_VARIANTS 16
+#define VARIANT_KEY_MAX 1024   /* its #defines (the cache key) */
 
 static inline uint32_t div_up(uint64_t a, uint64_t b)
 {
@@ -46,17 +50,20 @@ void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint
 
 /* ---- the pipeline (pipeline.c) ---------------------------------------------- */
 
-/* A program specialized on the code-path parameters; compiled on first use. */
+/* A program specialized on the code-path parameters and the field's
+ * defines (key: the #define text); compiled on first use. */
 struct program_variant {
-	char key[512];
+	char key[VARIANT_KEY_MAX];
 	GLuint prog;
+	uint64_t used; /* variant_clock at its last use (LRU) */
 };
 
 struct pipeline {
 	struct grid g;
 	const struct field *field;     /* borrowed */
 	struct program_variant variants[PROGRAM_VARIANTS];
-	int next_variant;
+	uint64_t variant_clock;        /* ticks at every variant lookup */
+	unsigned compiles;             /* programs compiled (pipeline_compiles) */
 	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;

@@ -19,9 +19,12 @@
  *     FIELD_PASS_VERTICES  the vertex pass when it computes ambient
  *                          occlusion (WITH_AO; main() in mc_vertices.comp):
  *                          the long rays read density_far()
- * defined, after the parameters' specialization #defines; the parameter
+ * defined, after the parameters' specialization #defines
+ * (params_glsl_specialization: the enum terms as constants, TERM_<NAME>
+ * 0|1) and the provider's own (`defines` below); the parameter
  * uniforms (u_<name>) are declared by the shader prelude and set by the
- * engine.  A field may use the binding points, texture units and uniform
+ * engine.  A program is compiled once per distinct set of #defines and
+ * kept in the engine's cache (docs/PIPELINE.md, "Specialization").  A field may use the binding points, texture units and uniform
  * buffers app/gpu/abi.h gives no engine pass (BIND_CURVE_*, TEX_NOISE*,
  * TEX_HEIGHTMAP, UBIND_NOISE, ...). */
 #ifndef ISOTERRA_FIELD_H
@@ -39,7 +42,16 @@ struct field {
 	 * dispatch of a program made from the file.  0, or -1 with err (left
 	 * empty when the failure was already logged as a GL error). */
 	int (*bind)(void *ctx, GLuint prog, const struct params *p, char *err, size_t errlen);
-	void *ctx;           /* the provider's, passed to bind */
+	/* Optional (NULL: none).  The provider's specialization for p: GLSL
+	 * #define lines that switch off code its data leaves unused (say, no
+	 * curves loaded), written to buf (NUL-terminated); called before
+	 * every dispatch of a program made from the file, before bind.  The
+	 * text is part of the program's cache key, so it must only carry
+	 * on/off flags, never values that move (counts, positions): those are
+	 * uniforms set in bind.  Returns the length written, or -1 with err
+	 * (buf too small: err may stay empty). */
+	int (*defines)(void *ctx, const struct params *p, char *buf, size_t len, char *err, size_t errlen);
+	void *ctx;           /* the provider's, passed to bind and defines */
 };
 
 #endif

@@ -62,6 +62,16 @@ void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT])
 	pl->profile = on;
 }
 
+unsigned pipeline_compiles(const struct pipeline *pl)
+{
+	return pl->compiles;
+}
+
+GLuint pipeline_density_program(const struct pipeline *pl)
+{
+	return pl->p_density;
+}
+
 static void set_common(const struct pipeline *pl, GLuint prog, const struct params *p)
 {
 	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_cells"), pl->g.nx, pl->g.ny, pl->g.nz);
@@ -121,9 +131,12 @@ static void upload_tables(struct pipeline *pl)
 	pl->b_tables = extract_buffer(sizeof(buf), buf, GL_STATIC_DRAW);
 }
 
-static GLuint program(const char *file, char *err, size_t errlen)
+/* One of the engine's own passes (not specialized). */
+static GLuint program(struct pipeline *pl, const char *file, char *err, size_t errlen)
 {
-	return gpu_compute_program(file, NULL, err, errlen);
+	GLuint prog = gpu_compute_program(file, NULL, err, errlen);
+	pl->compiles += prog != 0;
+	return prog;
 }
 
 static void write_guard(GLintptr at)
@@ -134,47 +147,85 @@ static void write_guard(GLintptr at)
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, at, GUARD_BYTES, g);
 }
 
-/* Program `file` with `defines`, specialized on the code-path parameters
- * (params_glsl_specialization); compiled on first use, the last
- * PROGRAM_VARIANTS kept. */
-static GLuint variant_program(struct pipeline *pl, const char *file, const char *defines, const struct params *p,
-			      char *err, size_t errlen)
+/* The cache key of program `file` with `defines`: for a field program
+ * also the parameters' specialization (params_glsl_specialization: the
+ * enum terms' values, the TERM_<NAME> switches) and the field's own
+ * defines.  0, or -1 with err. */
+static int variant_key(struct pipeline *pl, const char *file, const char *defines, const struct params *p, bool field,
+		       char *key, size_t len, char *err, size_t errlen)
 {
-	char key[512];
-	int n = snprintf(key, sizeof(key), "// %s\n%s", file, defines);
-	if (n < 0 || (size_t)n >= sizeof(key) || params_glsl_specialization(p, key + n, sizeof(key) - (size_t)n) < 0) {
-		snprintf(err, errlen, "shader specialization key too long");
-		return 0;
+	int n = snprintf(key, len, "// %s\n%s", file, defines);
+	size_t used = n < 0 ? len : (size_t)n;
+	if (field && used < len) {
+		n = params_glsl_specialization(p, key + used, len - used);
+		used = n < 0 ? len : used + (size_t)n;
 	}
-	for (int i = 0; i < PROGRAM_VARIANTS; i++)
-		if (pl->variants[i].prog && !strcmp(pl->variants[i].key, key))
-			return pl->variants[i].prog;
+	if (field && pl->field->defines && used < len) {
+		err[0] = 0;
+		n = pl->field->defines(pl->field->ctx, p, key + used, len - used, err, errlen);
+		if (n < 0 && err[0])
+			return -1;
+		used = n < 0 ? len : used + (size_t)n;
+	}
+	if (used >= len) {
+		snprintf(err, errlen, "shader specialization key of %s too long", file);
+		return -1;
+	}
+	return 0;
+}
+
+/* Program `file` with `defines` (field: specialized as variant_key says);
+ * compiled on first use, the PROGRAM_VARIANTS most recently used kept
+ * (least recently used evicted), so a knob that switches a term on or off
+ * compiles once and switching back finds the program again. */
+static GLuint variant_program(struct pipeline *pl, const char *file, const char *defines, const struct params *p,
+			      bool field, char *err, size_t errlen)
+{
+	char key[VARIANT_KEY_MAX];
+	if (variant_key(pl, file, defines, p, field, key, sizeof(key), err, errlen) < 0)
+		return 0;
+	pl->variant_clock++;
+	struct program_variant *victim = NULL;
+	for (int i = 0; i < PROGRAM_VARIANTS; i++) {
+		struct program_variant *v = &pl->variants[i];
+		if (v->prog && !strcmp(v->key, key)) {
+			v->used = pl->variant_clock;
+			return v->prog;
+		}
+		if (!victim || (victim->prog && (!v->prog || v->used < victim->used)))
+			victim = v;
+	}
+	double t0 = clock_ms();
 	GLuint prog = gpu_compute_program(file, key, err, errlen);
 	if (!prog)
 		return 0;
-	struct program_variant *v = &pl->variants[pl->next_variant];
-	pl->next_variant = (pl->next_variant + 1) % PROGRAM_VARIANTS;
-	if (v->prog)
-		glDeleteProgram(v->prog);
-	snprintf(v->key, sizeof(v->key), "%s", key);
-	v->prog = prog;
+	pl->compiles++;
+	log_debug("pipeline: a new variant of %s, linked in %.1f ms (the driver may compile more at its first "
+		  "dispatch)%s",
+		  file, clock_ms() - t0, victim->prog ? "; the least recently used one evicted" : "");
+	if (victim->prog)
+		glDeleteProgram(victim->prog);
+	snprintf(victim->key, sizeof(victim->key), "%s", key);
+	victim->prog = prog;
+	victim->used = pl->variant_clock;
 	return prog;
 }
 
 /* The density pass: the field's program. */
 static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	return variant_program(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, err, errlen);
+	return variant_program(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, true, err, errlen);
 }
 
 /* The vertex pass: with ambient occlusion its rays read the field, so it is
- * the field's program; without, the engine's own. */
+ * the field's program; without, the engine's own (not specialized: it reads
+ * no parameter that selects code). */
 static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
 	if (p->ao_rays > 0)
 		return variant_program(pl, pl->field->program, "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n", p,
-				       err, errlen);
-	return variant_program(pl, "mc_vertices.comp", "", p, err, errlen);
+				       true, err, errlen);
+	return variant_program(pl, "mc_vertices.comp", "", p, false, err, errlen);
 }
 
 /* The field's resources and uniforms for prog.  0, or -1 with err. */
@@ -234,12 +285,12 @@ static void plan_capacities(struct pipeline *pl, const struct params *p)
 static int create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
 	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
-	    !(pl->p_classify = program("mc_classify.comp", err, errlen)) ||
-	    !(pl->p_reduce = program("hp_reduce.comp", err, errlen)) ||
-	    !(pl->p_downsweep = program("hp_downsweep.comp", err, errlen)) ||
-	    !(pl->p_setup = program("mc_setup.comp", err, errlen)) ||
+	    !(pl->p_classify = program(pl, "mc_classify.comp", err, errlen)) ||
+	    !(pl->p_reduce = program(pl, "hp_reduce.comp", err, errlen)) ||
+	    !(pl->p_downsweep = program(pl, "hp_downsweep.comp", err, errlen)) ||
+	    !(pl->p_setup = program(pl, "mc_setup.comp", err, errlen)) ||
 	    !(pl->p_vertices = vertex_program(pl, p, err, errlen)) ||
-	    !(pl->p_indices = program("mc_indices.comp", err, errlen)))
+	    !(pl->p_indices = program(pl, "mc_indices.comp", err, errlen)))
 		return -1;
 	return 0;
 }
@@ -432,9 +483,9 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 {
 	uint64_t ncells = (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz;
 	GLuint *prog = nocompact ? &pl->p_nocompact : &pl->p_atomic;
-	if (!*prog && !(*prog = program(nocompact ? "mc_nocompact.comp" : "mc_atomic.comp", err, errlen)))
+	if (!*prog && !(*prog = program(pl, nocompact ? "mc_nocompact.comp" : "mc_atomic.comp", err, errlen)))
 		return -1;
-	if (!pl->p_finish && !(pl->p_finish = program("mc_finish.comp", err, errlen)))
+	if (!pl->p_finish && !(pl->p_finish = program(pl, "mc_finish.comp", err, errlen)))
 		return -1;
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
 	if (ensure_vertex_room(pl, need, err, errlen) < 0)

@@ -54,6 +54,14 @@ void pipeline_destroy(struct pipeline *pl);
  * since the last call (ms may be NULL) and resets them. */
 enum { PASS_DENSITY, PASS_CLASSIFY, PASS_REDUCE, PASS_VERTICES, PASS_INDICES, PASS_COUNT };
 void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT]);
+/* Programs the pipeline has compiled since it was made: its own passes
+ * and every specialized variant of the field's program (a variant found
+ * in the cache compiles nothing).  Tests and benchmarks: a knob that
+ * moves a value within "on" must not add to it. */
+unsigned pipeline_compiles(const struct pipeline *pl);
+/* The density pass's program of the last pipeline_density/pipeline_run
+ * (tests: which uniforms a variant still reads). */
+GLuint pipeline_density_program(const struct pipeline *pl);
 
 /* Output into a slot of someone else's buffers (the world's block pool)
  * instead of the pipeline's own: vertices at vbo_offset (vert_cap of them),

@@ -236,6 +236,17 @@ void params_print_help(FILE *out, unsigned flag_mask)
 	}
 }
 
+/* "TERM_<NAME>" of a P_TERM entry. */
+static void term_name(const struct param_info *pi, char *buf, size_t len)
+{
+	size_t j = 0;
+	for (const char *c = "TERM_"; *c && j + 1 < len; c++)
+		buf[j++] = *c;
+	for (const char *q = pi->name; *q && j + 1 < len; q++)
+		buf[j++] = (char)toupper((unsigned char)*q);
+	buf[j] = 0;
+}
+
 int params_glsl_decls(char *buf, size_t len)
 {
 	size_t used = 0;
@@ -254,6 +265,14 @@ int params_glsl_decls(char *buf, size_t len)
 		if (n < 0 || (size_t)n >= len - used)
 			return -1;
 		used += (size_t)n;
+		if (pi->flags & P_TERM) {
+			char t[80];
+			term_name(pi, t, sizeof(t));
+			n = snprintf(buf + used, len - used, "#ifndef %s\n#define %s 1\n#endif\n", t, t);
+			if (n < 0 || (size_t)n >= len - used)
+				return -1;
+			used += (size_t)n;
+		}
 		if (pi->type == PT_ENUM) {
 			const char *c = pi->choices;
 			for (int k = 0; c; k++) {
@@ -284,9 +303,16 @@ int params_glsl_specialization(const struct params *p, char *buf, size_t len)
 	buf[0] = 0;
 	for (size_t i = 0; i < param_count; i++) {
 		const struct param_info *pi = &param_table[i];
-		if (!(pi->flags & P_SPECIALIZE) || pi->type == PT_FLOAT || pi->type == PT_STRING)
+		int n;
+		if ((pi->flags & P_TERM) && pi->type != PT_STRING) {
+			char t[80];
+			term_name(pi, t, sizeof(t));
+			n = snprintf(buf + used, len - used, "#define %s %d\n", t, params_get_number(p, pi) != 0);
+		} else if ((pi->flags & P_SPECIALIZE) && pi->type != PT_FLOAT && pi->type != PT_STRING) {
+			n = snprintf(buf + used, len - used, "#define u_%s %d\n", pi->name, (int)params_get_number(p, pi));
+		} else {
 			continue;
-		int n = snprintf(buf + used, len - used, "#define u_%s %d\n", pi->name, (int)params_get_number(p, pi));
+		}
 		if (n < 0 || (size_t)n >= len - used)
 			return -1;
 		used += (size_t)n;

@@ -22,6 +22,11 @@ enum param_flags {
 	P_SPECIALIZE = 1 << 3, /* P_SHADER that selects code paths: compiled in as a
 	                        * constant (#define u_name V) where the host asks,
 	                        * so drivers need not run every branch */
+	P_TERM = 1 << 4,       /* P_SHADER number whose 0 turns a term off: the
+	                        * specialization carries TERM_<NAME> 0|1 and the
+	                        * term's code is compiled only under TERM_<NAME>;
+	                        * the value stays a uniform while the term is on
+	                        * (a knob moving within "on" never recompiles) */
 };
 
 #define PARAM_STR_MAX 256
@@ -67,11 +72,15 @@ void params_set_number(struct params *p, const struct param_info *pi, double v);
 int params_enum_index(const struct param_info *pi, const char *choice);
 /* Help text: one entry a line (or two), for --help. */
 void params_print_help(FILE *f, unsigned flag_mask);
-/* GLSL declarations of every P_SHADER entry and enum constants, NUL-terminated;
- * returns the number of bytes written (excluding NUL) or -1 if buf too small. */
+/* GLSL declarations of every P_SHADER entry and enum constants, and for
+ * every P_TERM entry "#define TERM_<NAME> 1" unless the program's
+ * specialization set it (an unspecialized program keeps every term: its
+ * uniform checks decide), NUL-terminated; returns the number of bytes
+ * written (excluding NUL) or -1 if buf too small. */
 int params_glsl_decls(char *buf, size_t len);
-/* "#define u_name V\n" for every P_SPECIALIZE entry (the shader variant
- * key); returns bytes written or -1 if buf is too small. */
+/* The shader variant key: "#define u_name V\n" for every P_SPECIALIZE entry
+ * and "#define TERM_<NAME> 0|1\n" (value != 0) for every P_TERM entry;
+ * returns bytes written or -1 if buf is too small. */
 int params_glsl_specialization(const struct params *p, char *buf, size_t len);
 /* True when two parameter sets give the same terrain (all P_SHADER equal). */
 bool params_same_terrain(const struct params *a, const struct params *b);

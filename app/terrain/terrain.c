@@ -1,10 +1,12 @@
 /* isoterra — the terrain field provider: binds the noise (textures
  * TEX_NOISE0..2, uniform block UBIND_NOISE) and the edits (curve SSBOs,
- * heightmap texture) for shaders/density.comp and sets their uniforms. */
+ * heightmap texture) for shaders/density.comp and sets their uniforms;
+ * specializes the program on what the edit state holds (HAS_CURVES). */
 #include "terrain.h"
 #include "noise.h"
 
 #include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 struct terrain {
@@ -39,6 +41,21 @@ static int terrain_bind(void *ctx, GLuint prog, const struct params *p, char *er
 	return edits_gl_bind(t->ed, prog, p, err, errlen);
 }
 
+/* The edit state's switches: HAS_CURVES 0 compiles the carve out
+ * (shaders/carve.glsl).  The state is brought in line with p first (the
+ * curves file loaded or dropped), so the program chosen matches what bind
+ * uploads.  The heightmap needs no switch: its code is compiled only for
+ * field=heightmap (a specialized enum), which requires a map. */
+static int terrain_defines(void *ctx, const struct params *p, char *buf, size_t len, char *err, size_t errlen)
+{
+	struct terrain *t = ctx;
+	if (edits_load(t->ed, p, err, errlen) < 0)
+		return -1;
+	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
+	int n = snprintf(buf, len, "#define HAS_CURVES %d\n", curves);
+	return n < 0 || (size_t)n >= len ? -1 : n;
+}
+
 struct terrain *terrain_create(struct edits *ed)
 {
 	if (!ed)
@@ -49,6 +66,7 @@ struct terrain *terrain_create(struct edits *ed)
 	t->ed = ed;
 	t->field.program = "density.comp";
 	t->field.bind = terrain_bind;
+	t->field.defines = terrain_defines;
 	t->field.ctx = t;
 	return t;
 }

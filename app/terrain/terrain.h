@@ -4,7 +4,8 @@
  * parameter selects; the heightmap and the curves' cut and fill).  It owns
  * the noise's GL objects (made on the first bind, again when the seed
  * changes) and borrows the edit state (curves, heightmap), whose files each
- * bind reloads when they changed.
+ * bind reloads when they changed; its program is specialized on that state
+ * too (HAS_CURVES: no curves, no carve code; docs/PIPELINE.md).
  *
  *   struct edits *ed = edits_create();
  *   struct terrain *t = terrain_create(ed);
