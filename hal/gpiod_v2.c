@@ -109,7 +109,7 @@ struct hal_gpiod_line *hal_gpiod_line_request(struct hal_gpiod_chip *c, unsigned
 		     (l->req = gpiod_chip_request_lines(c->chip, rc, lc));
 	}
 	int e = errno;
-	if (rc) /* libgpiod 2.0 before its release took no NULL here */
+	if (rc)
 		gpiod_request_config_free(rc);
 	if (lc)
 		gpiod_line_config_free(lc);
