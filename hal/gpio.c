@@ -1,4 +1,5 @@
-/* isoterra — GPIO knobs and buttons through libgpiod 1.6 (line API).
+/* isoterra — GPIO knobs and buttons through libgpiod: 1.6 or 2.x, whichever
+ * the build found (hal/meson.build), behind gpiod_backend.h.
  *
  * Every configured line is requested for both-edge events; each frame the
  * event fds are polled with a zero timeout and the events (with their
@@ -17,14 +18,14 @@
 #include <time.h>
 
 #ifdef HAVE_LIBGPIOD
-#include <gpiod.h>
+#include "gpiod_backend.h"
+
+#include <dirent.h>
 #endif
 
 #define NLINES (3 * HAL_ENCODERS + HAL_BUTTONS) /* encoders: A, B, switch; buttons */
-#define EVENTS_PER_READ 16 /* per line and poll: the kernel queues 16 (v1 uAPI) */
 
 enum role { R_ENC_A, R_ENC_B, R_ENC_SW, R_BUTTON };
-static const char *const role_name[] = { "A", "B", "switch", "" };
 
 struct gline {
 	int chip;         /* index into chips */
@@ -34,7 +35,7 @@ struct gline {
 	bool active_low;
 	enum hal_bias bias;
 #ifdef HAVE_LIBGPIOD
-	struct gpiod_line *line;
+	struct hal_gpiod_line *line;
 #endif
 	int fd;
 	int level;
@@ -43,7 +44,7 @@ struct gline {
 struct gchip {
 	char name[HAL_NAME_MAX];
 #ifdef HAVE_LIBGPIOD
-	struct gpiod_chip *chip;
+	struct hal_gpiod_chip *chip;
 #endif
 	bool up, reported;
 	uint64_t next_try;
@@ -108,23 +109,71 @@ static void chip_down(struct hal_gpio *g, int c)
 		struct gline *l = &g->lines[i];
 		if (l->chip != c || !l->line)
 			continue;
-		gpiod_line_release(l->line);
+		hal_gpiod_line_release(l->line);
 		l->line = NULL;
 		l->fd = -1;
 	}
-	if (ch->chip)
-		gpiod_chip_close(ch->chip);
+	hal_gpiod_chip_close(ch->chip);
 	ch->chip = NULL;
 	ch->up = false;
 }
 
 static const char *line_desc(const struct gline *l, char *buf, size_t len)
 {
+	static const char *const role_name[] = { "A", "B", "switch", "" };
 	if (l->role == R_BUTTON)
 		snprintf(buf, len, "button%d", l->ctl + 1);
 	else
 		snprintf(buf, len, "enc%d %s", l->ctl + 1, role_name[l->role]);
 	return buf;
+}
+
+static int is_chip_entry(const struct dirent *d)
+{
+	return !strncmp(d->d_name, "gpiochip", 8);
+}
+
+/* The chip whose label is label, or NULL (errno ENOENT when none has it). */
+static struct hal_gpiod_chip *chip_by_label(const char *label)
+{
+	struct dirent **names;
+	int n = scandir("/dev", &names, is_chip_entry, alphasort);
+	if (n < 0)
+		return NULL;
+	struct hal_gpiod_chip *found = NULL;
+	for (int i = 0; i < n; i++) {
+		char path[300];
+		snprintf(path, sizeof(path), "/dev/%s", names[i]->d_name);
+		struct hal_gpiod_chip *c = found ? NULL : hal_gpiod_chip_open(path);
+		if (c && !strcmp(hal_gpiod_chip_label(c), label))
+			found = c;
+		else
+			hal_gpiod_chip_close(c);
+		free(names[i]);
+	}
+	free(names);
+	if (!found)
+		errno = ENOENT;
+	return found;
+}
+
+/* The chip named descr, looked up as libgpiod 1.6's gpiod_chip_open_lookup
+ * does, on either API: a number N is /dev/gpiochipN; anything else is first
+ * a label (which stays when a chip comes back as another gpiochipN), then a
+ * path (with a slash) or a name in /dev.  NULL with errno from the last
+ * attempt. */
+static struct hal_gpiod_chip *chip_lookup(const char *descr)
+{
+	char path[HAL_NAME_MAX + 16];
+	if (descr[strspn(descr, "0123456789")] == 0) {
+		snprintf(path, sizeof(path), "/dev/gpiochip%s", descr);
+		return hal_gpiod_chip_open(path);
+	}
+	struct hal_gpiod_chip *c = chip_by_label(descr);
+	if (c)
+		return c;
+	snprintf(path, sizeof(path), "%s%s", strchr(descr, '/') ? "" : "/dev/", descr);
+	return hal_gpiod_chip_open(path);
 }
 
 /* Opens chip c and requests its lines; false (with a one-time report) when
@@ -133,7 +182,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 {
 	struct gchip *ch = &g->chips[c];
 	ch->next_try = now + g->retry_ns;
-	ch->chip = gpiod_chip_open_lookup(ch->name);
+	ch->chip = chip_lookup(ch->name);
 	if (!ch->chip) {
 		if (!ch->reported)
 			hal_logf(&g->log, HAL_WARN, "gpio: cannot open gpiochip '%s': %s; controls on it are off, retrying every %g s", ch->name,
@@ -146,23 +195,17 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 		if (l->chip != c)
 			continue;
 		char d[32];
-		int flags = (l->active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0) |
-			    (l->bias == HAL_BIAS_DISABLE ? GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE : 0) |
-			    (l->bias == HAL_BIAS_PULL_UP ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP : 0) |
-			    (l->bias == HAL_BIAS_PULL_DOWN ? GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN : 0);
-		l->line = gpiod_chip_get_line(ch->chip, (unsigned)l->offset);
 		const char *fail = NULL;
-		if (!l->line)
+		if ((unsigned)l->offset >= hal_gpiod_chip_lines(ch->chip))
 			fail = "no such line";
-		else if (gpiod_line_request_both_edges_events_flags(l->line, "isoterra", flags) < 0) {
+		else if (!(l->line = hal_gpiod_line_request(ch->chip, (unsigned)l->offset, l->bias, l->active_low)))
 			fail = errno == EBUSY ? "busy (requested by another program)" : strerror(errno);
-			l->line = NULL;
-		} else if ((l->fd = gpiod_line_event_get_fd(l->line)) < 0 || (l->level = gpiod_line_get_value(l->line)) < 0)
+		else if ((l->fd = hal_gpiod_line_fd(l->line)) < 0 || (l->level = hal_gpiod_line_value(l->line)) < 0)
 			fail = strerror(errno);
 		if (fail) {
 			if (!ch->reported)
 				hal_logf(&g->log, HAL_WARN, "gpio: %s: line %d of '%s' (%s): %s; retrying every %g s", line_desc(l, d, sizeof(d)),
-					 l->offset, ch->name, gpiod_chip_label(ch->chip), fail, (double)g->retry_ns / 1e9);
+					 l->offset, ch->name, hal_gpiod_chip_label(ch->chip), fail, (double)g->retry_ns / 1e9);
 			ch->reported = true;
 			chip_down(g, c);
 			return false;
@@ -188,7 +231,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 			button_init(&g->btn[l->ctl], g->btn_debounce, l->level);
 		}
 	}
-	hal_logf(&g->log, HAL_INFO, "gpio: %s (%s) %s", gpiod_chip_name(ch->chip), gpiod_chip_label(ch->chip),
+	hal_logf(&g->log, HAL_INFO, "gpio: %s (%s) %s", hal_gpiod_chip_name(ch->chip), hal_gpiod_chip_label(ch->chip),
 		 ch->reported ? "is back" : "ready");
 	ch->up = true;
 	ch->reported = false;
@@ -225,9 +268,8 @@ static void sort_edges(struct edge *e, int n)
 
 /* Event clock -> CLOCK_MONOTONIC (kernels before 5.7 stamped v1 events with
  * CLOCK_REALTIME). */
-static uint64_t event_ns(const struct timespec *ts, uint64_t now)
+static uint64_t event_ns(uint64_t t, uint64_t now)
 {
-	uint64_t t = (uint64_t)ts->tv_sec * 1000000000ull + (uint64_t)ts->tv_nsec;
 	uint64_t d = t > now ? t - now : now - t;
 	if (d > 3600ull * 1000000000ull) {
 		struct timespec rt;
@@ -315,6 +357,7 @@ struct hal_gpio *hal_gpio_open(const struct hal_gpio_config *cfg, char *err, siz
 	}
 #ifdef HAVE_LIBGPIOD
 	uint64_t now = hal_now_ns();
+	hal_logf(&g->log, HAL_DEBUG, "gpio: libgpiod %s", hal_gpiod_version());
 	for (int c = 0; c < g->nchips; c++)
 		chip_up(g, c, now);
 	g->next_check = now + g->retry_ns;
@@ -351,7 +394,7 @@ static void check_chips(struct hal_gpio *g, uint64_t now)
 		else if (ch->up && check) {
 			for (int i = 0; i < g->nlines; i++)
 				if (g->lines[i].chip == c && g->lines[i].line) {
-					if (gpiod_line_update(g->lines[i].line) < 0)
+					if (hal_gpiod_chip_check(ch->chip, (unsigned)g->lines[i].offset) < 0)
 						chip_gone(g, c, strerror(errno), now);
 					break;
 				}
@@ -360,7 +403,7 @@ static void check_chips(struct hal_gpio *g, uint64_t now)
 }
 
 /* Reads every pending edge of every line into ev (at most
- * NLINES * EVENTS_PER_READ), sorted by kernel timestamp.
+ * NLINES * HAL_GPIOD_EVENTS), sorted by kernel timestamp.
  *
  * Each line has its own event fd, so the edges of an encoder's A and B
  * lines arrive in separate queues: when several accumulated since the last
@@ -392,16 +435,14 @@ static int read_edges(struct hal_gpio *g, uint64_t now, struct edge *ev_all)
 		}
 		if (!(pfd[k].revents & POLLIN))
 			continue;
-		struct gpiod_line_event ev[EVENTS_PER_READ];
-		int ne = gpiod_line_event_read_fd_multiple(l->fd, ev, EVENTS_PER_READ);
+		struct hal_gpiod_edge ev[HAL_GPIOD_EVENTS];
+		int ne = hal_gpiod_line_read(l->line, ev, HAL_GPIOD_EVENTS);
 		if (ne < 0) {
 			chip_gone(g, l->chip, strerror(errno), now);
 			continue;
 		}
 		for (int e = 0; e < ne; e++)
-			ev_all[nev++] = (struct edge){ .line = idx[k],
-						       .level = ev[e].event_type == GPIOD_LINE_EVENT_RISING_EDGE,
-						       .ts = event_ns(&ev[e].ts, now) };
+			ev_all[nev++] = (struct edge){ .line = idx[k], .level = ev[e].rising, .ts = event_ns(ev[e].ts_ns, now) };
 	}
 	sort_edges(ev_all, nev);
 	return nev;
@@ -431,7 +472,7 @@ void hal_gpio_poll(struct hal_gpio *g, uint64_t now, struct hal_input *in)
 		return;
 #ifdef HAVE_LIBGPIOD
 	check_chips(g, now);
-	struct edge ev[NLINES * EVENTS_PER_READ];
+	struct edge ev[NLINES * HAL_GPIOD_EVENTS];
 	decode_edges(g, ev, read_edges(g, now, ev));
 #endif
 	/* settle what has been stable long enough; collect */

@@ -1,6 +1,6 @@
 /* isoterra — the hardware layer's door: GPIO knobs and buttons (libgpiod
- * 1.6), development keys (terminal / evdev) and, in v4l2_out.h, V4L2 video
- * output of rendered frames.
+ * 1.6 or 2.x), development keys (terminal / evdev) and, in v4l2_out.h,
+ * V4L2 video output of rendered frames.
  *
  * hal is a lower layer: it includes nothing of the application.  It takes
  * its configuration as the plain structs below (the application fills them
@@ -74,8 +74,8 @@ struct hal_button_config {
 	enum hal_action action;
 };
 
-/* Chips are named as libgpiod looks them up: name, path, label or number.
- * Strings are copied by hal_gpio_open. */
+/* Chips are named as libgpiod 1.6 looks them up (gpio.c does it on either
+ * API): number, label, path or name.  Strings are copied by hal_gpio_open. */
 struct hal_gpio_config {
 	const char *chip;          /* the default chip of every control */
 	double retry_s;            /* a missing or vanished chip: retried this often */

@@ -12,6 +12,14 @@
 # hal_probe keys): --keyboard evdev drives the same actions, and the
 # keyboard going away is reported.
 # usage: gpio_knobs.sh ISOTERRA HAL_PROBE BUILD_DIR [sanitize]
+#
+# ISOTERRA_GUEST_ROOT=DIR runs ISOTERRA and HAL_PROBE, paths inside DIR, in
+# a chroot of DIR in the guest (DIR is a host folder: the guest sees the
+# host's / over 9p), e.g. the Debian 13 chroot's build with libgpiod 2
+# (tools/debian13.sh): the same kernel, gpio-sim and test, another libgpiod.
+# ISOTERRA_EXPECT_LIBGPIOD=libgpiod.so.N adds a check that the running app
+# has that library mapped.  Give such a run its own ISOTERRA_VM_CACHE (its
+# Mesa is another).  BUILD_DIR holds the caches and the results folder.
 BIN=$1
 PROBE=$2
 BUILD=$3
@@ -19,6 +27,13 @@ BUILD=$3
 HERE=$(cd "$(dirname "$0")" && pwd)
 HALVM_CACHE="$BUILD/hal-vm-cache"
 . "$HERE/hal_vm_lib.sh"
+ROOT=${ISOTERRA_GUEST_ROOT:-}
+if [ -n "$ROOT" ]; then
+	ROOT=$(cd "$ROOT" && pwd) || { echo "FAIL: guest root $ISOTERRA_GUEST_ROOT missing"; exit 1; }
+	for f in "$BIN" "$PROBE"; do
+		[ -x "$ROOT$f" ] || { echo "FAIL: $f is not an executable in $ROOT"; exit 1; }
+	done
+fi
 halvm_require
 halvm_gpio_sim || { echo "FAIL: building gpio-sim failed"; exit 1; }
 halvm_initramfs || { echo "FAIL: building the initramfs failed"; exit 1; }
@@ -29,18 +44,23 @@ cat >"$RES/env.sh" <<ENV
 BIN=$BIN
 PROBE=$PROBE
 GPIOSIM=$HALVM_GPIOSIM
+GUEST_ROOT=$ROOT
+EXPECT_LIBGPIOD=${ISOTERRA_EXPECT_LIBGPIOD:-}
 ENV
 halvm_env "$RES"
 t0=$(date +%s)
 halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" "${ISOTERRA_VM_TIMEOUT:-840}"
-echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none})"
+echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none}${ROOT:+, app in $ROOT})"
+pass=$(grep -c '^ok' "$RES/console.log")
+fail=$(grep -c '^FAIL' "$RES/console.log")
 if ! grep -q "HALVM-EXIT 0" "$RES/console.log"; then
 	echo "FAIL: the guest test failed; console:"
 	tail -60 "$RES/console.log"
 	[ -f "$RES/app.log" ] && { echo "--- app log:"; tail -30 "$RES/app.log"; }
-	halvm_cores "$RES" "$BIN"
+	halvm_cores "$RES" "$BIN" "$ROOT"
+	echo "gpio_knobs: $pass passed, $((fail > 0 ? fail : 1)) failed"
 	exit 1
 fi
 grep -E "^(ok|FAIL|guest)" "$RES/console.log" | tr -d '\r'
-echo "gpio_knobs: $(grep -c '^ok' "$RES/console.log") passed, $(grep -c '^FAIL' "$RES/console.log") failed"
+echo "gpio_knobs: $pass passed, $fail failed"
 exit 0

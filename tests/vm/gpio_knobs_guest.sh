@@ -1,6 +1,9 @@
 #!/bin/sh
 # isoterra — guest side of gpio_knobs.sh (runs in the VM, chrooted into the
-# host's file system; results in /run/res).
+# host's file system; results in /run/res).  With GUEST_ROOT (env.sh) the
+# app and hal_probe run in a chroot of that folder of the host (another
+# distribution's build: its libgpiod, its Mesa), with the guest's /proc,
+# /sys, /dev and /run; the gpio-sim side stays here.
 . /run/res/env.sh
 R=/run/res
 fails=0
@@ -8,6 +11,19 @@ up() { cut -d. -f1 /proc/uptime; } # guest seconds (loops of sleeps drift under 
 ok() { echo "ok [$(up) s] $*"; }
 bad() { echo "FAIL [$(up) s] $*"; fails=$((fails + 1)); }
 die() { echo "FAIL [$(up) s] $*"; exit 1; }
+
+if [ -n "$GUEST_ROOT" ]; then
+	for m in proc sys dev; do mount --bind /$m "$GUEST_ROOT/$m" || die "mount /$m in $GUEST_ROOT"; done
+	# /run: the results (/run/res), the shader cache, the keyboard's fifo
+	if ! mount --rbind /run "$GUEST_ROOT/run" || ! mount -t tmpfs tmp "$GUEST_ROOT/tmp"; then
+		die "mount /run, /tmp in $GUEST_ROOT"
+	fi
+	INROOT="chroot $GUEST_ROOT" # a command prefix, not a function: $! is the app's pid
+	# (a new line first: the console's start is not one)
+	printf '\nguest: app and probe run in %s (%s)\n' "$GUEST_ROOT" "$(. "$GUEST_ROOT/etc/os-release" && echo "$PRETTY_NAME")"
+else
+	INROOT=
+fi
 
 modprobe configfs || die "modprobe configfs"
 insmod "$GPIOSIM" || die "insmod gpio-sim"
@@ -83,7 +99,7 @@ CONF
 # a virtual keyboard (uinput -> evdev) for the same app: --keyboard evdev
 modprobe evdev; modprobe uinput || die "modprobe uinput"
 mkfifo /run/keys.fifo || die "mkfifo"
-"$PROBE" keys </run/keys.fifo >$R/keys.dev 2>$R/keys.log &
+$INROOT "$PROBE" keys </run/keys.fifo >$R/keys.dev 2>$R/keys.log &
 exec 3>/run/keys.fifo
 end=$(($(up) + 30))
 while [ ! -s $R/keys.dev ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
@@ -97,10 +113,16 @@ trap save_cache EXIT
 # isoterra itself, headless, tiny frames (software rendering under TCG), one
 # PNG per frame so the test sees it render; without the keyboard's fifo (fd
 # 3), which must close when the test closes it
-"$BIN" --platform surfaceless --size 64x48 --grid 8 --count 1000000 --cam-spin 0 --no-water \
+$INROOT "$BIN" --platform surfaceless --size 64x48 --grid 8 --count 1000000 --cam-spin 0 --no-water \
 	--config $R/knobs.conf --keyboard evdev --keyboard-evdev $KDEV --out "$R/f%d.png" >$R/app.out 2>$R/app.log 3>&- &
 APP=$!
 waitapp "gpio: $CHIP (knobs) ready" ${WAIT_FIRST:-600} && ok "app opened the chip" || die "app did not open $CHIP: $(cat $R/app.log)"
+# which libgpiod the app runs on (1.6: libgpiod.so.2, 2.x: libgpiod.so.3)
+lib=$(grep -o 'libgpiod\.so\.[0-9]*' /proc/$APP/maps | sort -u | tr '\n' ' ' | sed 's/ $//')
+echo "guest: the app maps ${lib:-no libgpiod}"
+if [ -n "$EXPECT_LIBGPIOD" ]; then
+	[ "$lib" = "$EXPECT_LIBGPIOD" ] && ok "app runs on $EXPECT_LIBGPIOD" || bad "app maps '$lib', not $EXPECT_LIBGPIOD"
+fi
 # the first frame compiles every shader (minutes under TCG without the cache)
 frames() { ls $R | grep -c '^f[0-9]*\.png$'; }
 waitframes() { # at least $1 frames, at most $2 s
@@ -164,7 +186,7 @@ nf=$(frames)
 waitframes $((nf + 2)) $WAIT && ok "frames rendered after the keyboard went away" || bad "no frames after the keyboard went away"
 # ... and comes back (a new uinput device takes the lowest free event node,
 # the same one): reopened, keys work again
-"$PROBE" keys </run/keys.fifo >$R/keys2.dev 2>>$R/keys.log &
+$INROOT "$PROBE" keys </run/keys.fifo >$R/keys2.dev 2>>$R/keys.log &
 exec 3>/run/keys.fifo
 end=$(($(up) + 30))
 while [ ! -s $R/keys2.dev ] && [ "$(up)" -lt $end ]; do sleep 0.25; done

@@ -118,15 +118,16 @@ halvm_boot() {
 	return $rc
 }
 
-# halvm_cores RESULTS_DIR BINARY: the backtrace of each core the guest left
-# (core_pattern /run/res/core.%e.%p); the guest runs the host's files, so
-# the host's gdb reads them with the same binary and libraries.
+# halvm_cores RESULTS_DIR BINARY [ROOT]: the backtrace of each core the
+# guest left (core_pattern /run/res/core.%e.%p); the guest runs the host's
+# files, so the host's gdb reads them with the same binary and libraries
+# (those under ROOT when the app ran in a chroot of ROOT).
 halvm_cores() {
 	for c in "$1"/core.*; do
 		[ -f "$c" ] || continue
 		echo "--- core dump $c:"
 		if command -v gdb >/dev/null; then
-			gdb -q -batch -ex "thread apply all bt 12" "$2" "$c" 2>&1 | tail -80
+			gdb -q -batch ${3:+-ex "set sysroot $3"} -ex "thread apply all bt 12" "${3:-}$2" "$c" 2>&1 | tail -80
 		else
 			echo "(no gdb here to read it)"
 		fi
