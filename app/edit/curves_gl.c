@@ -193,22 +193,6 @@ static int ensure(GLuint *b, GLsizeiptr *cap, GLsizeiptr size)
 	return 0;
 }
 
-static int read_back(GLuint b, GLsizeiptr size, void *out)
-{
-	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-	void *m = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, size, GL_MAP_READ_BIT);
-	if (!m) {
-		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-		gpu_check("map curve buffer");
-		return -1;
-	}
-	memcpy(out, m, (size_t)size);
-	GLboolean ok = glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	return ok ? 0 : -1;
-}
-
 /* The 8x8 tiles of the map that some quadratic can reach, as (tx | ty <<
  * 16): a tile inside a quadratic's padded box is taken when its centre is
  * within w/2 + λ + the tile's half diagonal + one texel (+ a rounding
@@ -393,7 +377,7 @@ int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts
 		snprintf(err, errlen, "the displacement-map bake failed (GL error)");
 		return -1;
 	}
-	if (out && read_back(G->b_bake, bytes, out) < 0) {
+	if (out && gpu_read_buffer(G->b_bake, 0, bytes, out) < 0) {
 		snprintf(err, errlen, "reading the displacement map back failed");
 		return -1;
 	}
@@ -436,7 +420,7 @@ int curves_gpu_test(struct edits *ed, const struct params *p, int mode, const fl
 	glUseProgram(G->p_test);
 	glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
 	glUseProgram(0);
-	if (gpu_check("curve test") < 0 || read_back(G->b_out, out_bytes, out) < 0) {
+	if (gpu_check("curve test") < 0 || gpu_read_buffer(G->b_out, 0, out_bytes, out) < 0) {
 		snprintf(err, errlen, "curve test dispatch failed");
 		return -1;
 	}

@@ -19,38 +19,20 @@ GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage)
 	return b;
 }
 
-int extract_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
-{
-	if (size <= 0)
-		return 0;
-	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
-	void *m = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, off, size, GL_MAP_READ_BIT);
-	if (!m) {
-		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-		gpu_check("glMapBufferRange");
-		return -1;
-	}
-	memcpy(out, m, (size_t)size);
-	GLboolean ok = glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	return ok ? 0 : -1;
-}
-
 int pipeline_read_density(struct pipeline *pl, float *out)
 {
-	return extract_read_buffer(pl->b_dens, 0, (GLsizeiptr)grid_dens_count(&pl->g) * 4, out);
+	return gpu_read_buffer(pl->b_dens, 0, (GLsizeiptr)grid_dens_count(&pl->g) * 4, out);
 }
 
 int pipeline_check_guards(struct pipeline *pl)
 {
 	uint32_t g[GUARD_BYTES / 4];
 	int bad = 0;
-	if (extract_read_buffer(pl->b_idx, (GLintptr)pl->tri_cap * 12, GUARD_BYTES, g) < 0)
+	if (gpu_read_buffer(pl->b_idx, (GLintptr)pl->tri_cap * 12, GUARD_BYTES, g) < 0)
 		return -1;
 	for (size_t i = 0; i < GUARD_BYTES / 4; i++)
 		bad += g[i] != GUARD_WORD;
-	if (extract_read_buffer(pl->b_verts, (GLintptr)(pl->verts_alloc * VERTEX_BYTES), GUARD_BYTES, g) < 0)
+	if (gpu_read_buffer(pl->b_verts, (GLintptr)(pl->verts_alloc * VERTEX_BYTES), GUARD_BYTES, g) < 0)
 		return -1;
 	for (size_t i = 0; i < GUARD_BYTES / 4; i++)
 		bad += g[i] != GUARD_WORD;
@@ -61,7 +43,7 @@ int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st)
 {
 	uint32_t s[ST_WORDS];
 	memset(st, 0, sizeof(*st));
-	if (extract_read_buffer(pl->b_status, 0, sizeof(s), s) < 0)
+	if (gpu_read_buffer(pl->b_status, 0, sizeof(s), s) < 0)
 		return -1;
 	st->triangles_needed = s[ST_TRIS_NEEDED];
 	st->vertices_needed = s[ST_VERTS_NEEDED];
@@ -89,9 +71,9 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 		mesh_free(m);
 		return -1;
 	}
-	int rc = extract_read_buffer(pl->b_verts, 0, (GLsizeiptr)nv * VERTEX_BYTES, vb);
+	int rc = gpu_read_buffer(pl->b_verts, 0, (GLsizeiptr)nv * VERTEX_BYTES, vb);
 	if (rc == 0 && indexed)
-		rc = extract_read_buffer(pl->b_idx, 0, (GLsizeiptr)nt * 12, m->idx);
+		rc = gpu_read_buffer(pl->b_idx, 0, (GLsizeiptr)nt * 12, m->idx);
 	else if (rc == 0)
 		for (uint32_t i = 0; i < 3 * nt; i++)
 			m->idx[i] = i;

@@ -87,6 +87,5 @@ GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage);
 /* ---- read-back (buffers.c) ------------------------------------------------- */
 
 /* size bytes of buf at off into out.  0 or -1. */
-int extract_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
 
 #endif

@@ -168,7 +168,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		glProgramUniform1i(t.prog, glGetUniformLocation(t.prog, "u_comp"), comp);
 		hp_test_pass(&t, 0, t.h.pad[1]); /* level 1 from the bytes */
 		hp_build(&t.h, t.reduce, t.down, t.b_hp, t.max_groups);
-		rc = extract_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);
+		rc = gpu_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);
 	}
 	if (rc == 0) {
 		total[0] = top[0];
@@ -180,7 +180,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	}
 	if (rc == 0) {
 		hp_test_pass(&t, 1, top[comp]); /* every output key -> (cell, rank) */
-		rc = extract_read_buffer(t.b_out, 0, (GLsizeiptr)top[comp] * 8, tmp);
+		rc = gpu_read_buffer(t.b_out, 0, (GLsizeiptr)top[comp] * 8, tmp);
 		for (uint32_t i = 0; rc == 0 && i < top[comp]; i++) {
 			key_cell[i] = tmp[2 * i];
 			key_rank[i] = tmp[2 * i + 1];
@@ -188,7 +188,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	}
 	if (rc == 0) {
 		hp_test_pass(&t, 2, n); /* every cell's prefix, both ways */
-		rc = extract_read_buffer(t.b_out, 0, (GLsizeiptr)n * 8, tmp);
+		rc = gpu_read_buffer(t.b_out, 0, (GLsizeiptr)n * 8, tmp);
 		for (uint32_t i = 0; rc == 0 && i < n; i++) {
 			prefix[i] = tmp[2 * i];
 			if (prefix_fast)

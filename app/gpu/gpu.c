@@ -97,3 +97,21 @@ int gpu_check(const char *what)
 		;
 	return -1;
 }
+
+int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
+{
+	if (size <= 0)
+		return 0;
+	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+	glBindBuffer(GL_COPY_READ_BUFFER, buf);
+	void *m = glMapBufferRange(GL_COPY_READ_BUFFER, off, size, GL_MAP_READ_BIT);
+	if (!m) {
+		glBindBuffer(GL_COPY_READ_BUFFER, 0);
+		gpu_check("glMapBufferRange (read-back)");
+		return -1;
+	}
+	memcpy(out, m, (size_t)size);
+	GLboolean ok = glUnmapBuffer(GL_COPY_READ_BUFFER);
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	return ok ? 0 : -1;
+}

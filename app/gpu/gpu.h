@@ -41,6 +41,10 @@ struct gpu_caps {
 };
 /* Checks GLES >= 3.1 with compute; fills caps.  0 or -1 with err. */
 int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen);
+/* Reads size bytes at off of a buffer object back into out (after the
+ * shader-storage and buffer-update barriers).  Tests, export and reports
+ * only: never in the frame loop.  0, or -1 (a GL error is logged). */
+int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
 /* glGetError() != GL_NO_ERROR -> logs "what: GL error 0x..." and returns -1. */
 int gpu_check(const char *what);
 

@@ -336,21 +336,6 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 /* ---- mesh export (--export-mesh) -------------------------------------------
  * Self-contained: reads the pool as world_draw sees it. */
 
-static int export_read(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
-{
-	if (size <= 0)
-		return 0;
-	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-	glBindBuffer(GL_COPY_READ_BUFFER, buf);
-	void *m = glMapBufferRange(GL_COPY_READ_BUFFER, off, size, GL_MAP_READ_BIT);
-	if (m) {
-		memcpy(out, m, (size_t)size);
-		glUnmapBuffer(GL_COPY_READ_BUFFER);
-	}
-	glBindBuffer(GL_COPY_READ_BUFFER, 0);
-	return m ? 0 : -1;
-}
-
 /* Blocks with a mesh in the pool: generated (ready, or still pending its
  * empty check) and holding a slot. */
 static bool export_block(const struct block *b)
@@ -362,7 +347,7 @@ static bool export_block(const struct block *b)
 static int export_counts(const struct world *w, const struct block *b, uint32_t *tris, uint32_t *verts)
 {
 	uint32_t v[2];
-	if (export_read(w->status, w->sstride * b->slot + ST_TRIS_WRITTEN * 4, sizeof(v), v) < 0)
+	if (gpu_read_buffer(w->status, w->sstride * b->slot + ST_TRIS_WRITTEN * 4, sizeof(v), v) < 0)
 		return -1;
 	_Static_assert(ST_VERTS_WRITTEN == ST_TRIS_WRITTEN + 1, "written counters are adjacent");
 	*tris = v[0] < w->tcap ? v[0] : w->tcap;
@@ -374,8 +359,8 @@ static int export_counts(const struct world *w, const struct block *b, uint32_t 
 static int export_append(const struct world *w, const struct block *b, struct mesh *m, uint32_t nv, uint32_t nt,
 			 uint32_t verts, uint32_t tris, float *vb)
 {
-	if (export_read(w->vbo, w->vstride * b->slot, (GLsizeiptr)verts * VERTEX_BYTES, vb) < 0 ||
-	    export_read(w->ibo, w->istride * b->slot, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0)
+	if (gpu_read_buffer(w->vbo, w->vstride * b->slot, (GLsizeiptr)verts * VERTEX_BYTES, vb) < 0 ||
+	    gpu_read_buffer(w->ibo, w->istride * b->slot, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0)
 		return -1;
 	for (uint32_t i = 0; i < verts; i++)
 		for (int a = 0; a < 3; a++) {
