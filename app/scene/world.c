@@ -321,15 +321,8 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 	block_grid(w, p, k, &g);
 	pipeline_set_grid(w->pl, &g, 0.0f);
 	pipeline_set_target(w->pl, NULL);
-	struct params q = *p;
-	q.closed = false;
-	q.compaction = COMPACTION_HP;
-	char err[512];
-	if (pipeline_run(w->pl, &q, err, sizeof(err)) < 0) {
-		if (err[0])
-			log_error("%s", err);
+	if (block_extract(w, p) < 0)
 		return -1;
-	}
 	return pipeline_read_mesh(w->pl, m);
 }
 

@@ -100,6 +100,20 @@ void block_grid(const struct world *w, const struct params *p, const int k[4], s
 		g->base[a] = k[a] * w->n;
 }
 
+int block_extract(struct world *w, const struct params *p)
+{
+	struct params q = *p;
+	q.closed = false;               /* blocks are open: neighbours continue them */
+	q.compaction = COMPACTION_HP;   /* indexed, shared vertices (as every slot) */
+	char err[512];
+	if (pipeline_run(w->pl, &q, err, sizeof(err)) < 0) {
+		if (err[0])
+			log_error("%s", err);
+		return -1;
+	}
+	return 0;
+}
+
 int generate_block(struct world *w, const struct params *p, int b, int slot, double now)
 {
 	struct block *blk = &w->blocks[b];
@@ -114,14 +128,8 @@ int generate_block(struct world *w, const struct params *p, int b, int slot, dou
 		.first_index = (uint32_t)(w->istride * slot / 4), .base_vertex = (uint32_t)(w->vstride * slot / VERTEX_BYTES),
 	};
 	pipeline_set_target(w->pl, &t);
-	struct params q = *p;
-	q.closed = false;
-	char err[512];
-	if (pipeline_run(w->pl, &q, err, sizeof(err)) < 0) {
-		if (err[0])
-			log_error("%s", err);
+	if (block_extract(w, p) < 0)
 		return -1;
-	}
 	bool in_place = blk->stale && blk->slot == slot;
 	blk->slot = slot;
 	w->slot_block[slot] = b;

@@ -89,6 +89,9 @@ int plan_blocks(struct world *w, const struct params *p, const struct camera *c)
 /* ---- world_gen.c ----------------------------------------------------------- */
 
 void block_grid(const struct world *w, const struct params *p, const int k[4], struct grid *g);
+/* Runs the pipeline on the grid and target set (an open block, indexed);
+ * 0, or -1 (logged). */
+int block_extract(struct world *w, const struct params *p);
 /* A slot for a block at distance d: a free one, or the farthest block's
  * that is not wanted this frame or is farther than d; -1 if none. */
 int take_slot(struct world *w, float d);
