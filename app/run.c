@@ -220,6 +220,7 @@ int run_program(const struct params *p_in)
 	}
 	log_set_level(rn.p.verbose ? LOG_DEBUG : LOG_INFO);
 	shader_set_dir(rn.p.shader_dir);
+	gpu_program_cache_config(rn.p.program_cache, NULL);
 	enum cli_out_kind kind;
 	if (cli_parse_out(rn.p.out, &kind, err, sizeof(err)) < 0) {
 		log_error("%s", err);

@@ -29,6 +29,16 @@ char *shader_read(const char *name, char *err, size_t errlen);
  * or NULL.  Returns 0 with a file:line message in err on failure. */
 GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen);
 GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen);
+/* The program binary cache (program_cache.c): on unless disabled; dir NULL
+ * or "" = $XDG_CACHE_HOME/isoterra (else ~/.cache/isoterra).  Call before
+ * the first program is made; it also resets the counters. */
+void gpu_program_cache_config(bool enabled, const char *dir);
+struct gpu_program_cache_stats {
+	unsigned hits, misses;  /* programs loaded from the cache / compiled */
+	unsigned rejected;      /* files ignored: foreign, truncated, corrupt or refused by the driver */
+	unsigned writes, write_errors;
+};
+struct gpu_program_cache_stats gpu_program_cache_stats(void);
 /* Sets every u_<name> uniform the program uses from the parameter table. */
 void gpu_set_param_uniforms(GLuint prog, const struct params *p);
 

@@ -1,9 +1,11 @@
 /* isoterra — shader loader: embedded or on-disk sources, host-side
  * #include expansion, file:line error reports. */
 #include "gpu.h"
+#include "gpu_int.h"
 #include "log.h"
 
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -234,21 +236,14 @@ static void format_log(const struct srcbuf *b, const char *log, const char *fall
 	}
 }
 
-static GLuint compile(GLenum type, const char *stage_define, const char *file, const char *defines, char *err,
-		      size_t errlen)
+static GLuint compile(GLenum type, const struct srcbuf *b, const char *file, char *err, size_t errlen)
 {
-	struct srcbuf b;
-	if (assemble(&b, stage_define, file, defines, err, errlen) < 0) {
-		free(b.s);
-		return 0;
-	}
 	GLuint sh = glCreateShader(type);
 	if (!sh) {
 		snprintf(err, errlen, "%s: glCreateShader failed (0x%x)", file, glGetError());
-		free(b.s);
 		return 0;
 	}
-	const char *src = b.s;
+	const char *src = b->s;
 	glShaderSource(sh, 1, &src, NULL);
 	glCompileShader(sh);
 	GLint ok = 0;
@@ -259,14 +254,13 @@ static GLuint compile(GLenum type, const char *stage_define, const char *file, c
 		char *log = calloc(1, (size_t)(len > 0 ? len : 1) + 1);
 		if (log)
 			glGetShaderInfoLog(sh, len, NULL, log);
-		format_log(&b, log ? log : "(no log)", file, err, errlen);
+		format_log(b, log ? log : "(no log)", file, err, errlen);
 		if (log && log_get_level() >= LOG_DEBUG)
 			log_debug("full compile log of %s:\n%s", file, log);
 		free(log);
 		glDeleteShader(sh);
 		sh = 0;
 	}
-	free(b.s);
 	return sh;
 }
 
@@ -275,10 +269,13 @@ static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t e
 	GLuint prog = glCreateProgram();
 	if (!prog) {
 		snprintf(err, errlen, "%s: glCreateProgram failed", what);
+		for (int i = 0; i < n; i++)
+			glDeleteShader(shaders[i]);
 		return 0;
 	}
 	for (int i = 0; i < n; i++)
 		glAttachShader(prog, shaders[i]);
+	glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
 	glLinkProgram(prog);
 	for (int i = 0; i < n; i++)
 		glDeleteShader(shaders[i]);
@@ -297,26 +294,55 @@ static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t e
 	return prog;
 }
 
+/* One program from n stages (file[i] compiled as type[i] with stage_define[i]):
+ * sources assembled first, then the binary cache, then the driver. */
+static GLuint make_program(int n, const GLenum *type, const char *const *stage_define, const char *const *file,
+			   const char *defines, char *err, size_t errlen)
+{
+	struct srcbuf b[2];
+	memset(b, 0, sizeof(b));
+	GLuint prog = 0;
+	int made = 0;
+	for (; made < n; made++)
+		if (assemble(&b[made], stage_define[made], file[made], defines, err, errlen) < 0)
+			goto out;
+	const char *src[2] = { b[0].s, n > 1 ? b[1].s : NULL };
+	uint64_t key[2] = { 0, 0 };
+	prog = program_cache_load(src, n, key);
+	if (prog)
+		goto out;
+	GLuint sh[2] = { 0, 0 };
+	for (int i = 0; i < n; i++) {
+		sh[i] = compile(type[i], &b[i], file[i], err, errlen);
+		if (!sh[i]) {
+			while (i-- > 0)
+				glDeleteShader(sh[i]);
+			goto out;
+		}
+	}
+	prog = link(sh, n, file[0], err, errlen);
+	if (prog)
+		program_cache_store(prog, key);
+out:
+	for (int i = 0; i < n && i <= made; i++)
+		free(b[i].s);
+	return prog;
+}
+
 GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen)
 {
-	GLuint sh = compile(GL_COMPUTE_SHADER, "#define STAGE_COMPUTE 1\n", file, defines, err, errlen);
-	if (!sh)
-		return 0;
-	return link(&sh, 1, file, err, errlen);
+	const GLenum type[1] = { GL_COMPUTE_SHADER };
+	const char *const stage[1] = { "#define STAGE_COMPUTE 1\n" };
+	const char *const files[1] = { file };
+	return make_program(1, type, stage, files, defines, err, errlen);
 }
 
 GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen)
 {
-	GLuint sh[2];
-	sh[0] = compile(GL_VERTEX_SHADER, "#define STAGE_VERTEX 1\n", vs_file, defines, err, errlen);
-	if (!sh[0])
-		return 0;
-	sh[1] = compile(GL_FRAGMENT_SHADER, "#define STAGE_FRAGMENT 1\n", fs_file, defines, err, errlen);
-	if (!sh[1]) {
-		glDeleteShader(sh[0]);
-		return 0;
-	}
-	return link(sh, 2, vs_file, err, errlen);
+	const GLenum type[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+	const char *const stage[2] = { "#define STAGE_VERTEX 1\n", "#define STAGE_FRAGMENT 1\n" };
+	const char *const files[2] = { vs_file, fs_file };
+	return make_program(2, type, stage, files, defines, err, errlen);
 }
 
 void gpu_set_param_uniforms(GLuint prog, const struct params *p)
