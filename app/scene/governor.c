@@ -1,0 +1,116 @@
+/* isoterra — the frame-time governor (governor.h). */
+#include "governor.h"
+
+#include <math.h>
+
+/* The ladder: each row one step down from the one before, in the order
+ * the user notices least: resolution first (upscaled with a filter that
+ * keeps edges), then how fast new blocks arrive, then the blocks' AO,
+ * then the far blocks' finest octaves, and only then how far one sees. */
+static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
+	{ 1.00f, 1.00f, 1.00f, 0, 1.00f, 0 },
+	{ 0.85f, 1.00f, 1.00f, 0, 1.00f, 1 },
+	{ 0.75f, 1.00f, 1.00f, 0, 1.00f, 2 },
+	{ 0.66f, 1.00f, 1.00f, 0, 1.00f, 3 },
+	{ 0.58f, 1.00f, 1.00f, 0, 1.00f, 4 },
+	{ 0.50f, 1.00f, 1.00f, 0, 1.00f, 5 },
+	{ 0.50f, 0.50f, 1.00f, 0, 1.00f, 6 },
+	{ 0.50f, 0.25f, 1.00f, 0, 1.00f, 7 },
+	{ 0.50f, 0.25f, 0.50f, 0, 1.00f, 8 },
+	{ 0.50f, 0.25f, 0.00f, 0, 1.00f, 9 },
+	{ 0.50f, 0.25f, 0.00f, 1, 1.00f, 10 },
+	{ 0.50f, 0.25f, 0.00f, 2, 1.00f, 11 },
+	{ 0.50f, 0.25f, 0.00f, 2, 0.75f, 12 },
+	{ 0.50f, 0.25f, 0.00f, 2, 0.55f, 13 },
+};
+
+#define OVER 1.05        /* step down above target * OVER ... */
+#define OVER_FOR_S 0.25  /* ... held this long */
+#define UNDER 0.75       /* step up below target * UNDER ... */
+#define UP_WAIT_MIN_S 2.0 /* ... held this long at first */
+#define UP_WAIT_MAX_S 32.0
+#define SETTLE_S 0.5     /* after a step: let the average follow */
+#define FAILED_UP_S 4.0  /* a step down this soon after a step up: that step up failed */
+#define SMOOTH 0.2       /* weight of the newest frame in the average */
+
+struct governor_quality governor_level(int level)
+{
+	if (level < 0)
+		level = 0;
+	if (level >= GOVERNOR_LEVELS)
+		level = GOVERNOR_LEVELS - 1;
+	return ladder[level];
+}
+
+void governor_init(struct governor *g, double target_ms)
+{
+	*g = (struct governor){ .target_ms = target_ms, .smooth_ms = -1, .over_since = -1, .under_since = -1,
+				.settle_until = -1e300, .up_wait_s = UP_WAIT_MIN_S, .last_up_s = -1 };
+}
+
+static void step(struct governor *g, int dir, double now_s)
+{
+	g->level += dir;
+	g->over_since = g->under_since = -1;
+	g->settle_until = now_s + SETTLE_S;
+	if (dir > 0) {
+		g->steps_down++;
+		/* the step up just before did not hold: wait twice as long next time */
+		if (g->last_up_s >= 0 && now_s - g->last_up_s < FAILED_UP_S)
+			g->up_wait_s = fmin(g->up_wait_s * 2, UP_WAIT_MAX_S);
+	} else {
+		g->steps_up++;
+		g->last_up_s = now_s;
+	}
+}
+
+static void decide(struct governor *g, double now_s)
+{
+	double over = g->target_ms * OVER, under = g->target_ms * UNDER;
+	if (g->smooth_ms > over) {
+		g->under_since = -1;
+		if (g->over_since < 0)
+			g->over_since = now_s;
+		if (now_s - g->over_since >= OVER_FOR_S && g->level < GOVERNOR_LEVELS - 1)
+			step(g, +1, now_s);
+	} else if (g->smooth_ms < under) {
+		g->over_since = -1;
+		if (g->under_since < 0)
+			g->under_since = now_s;
+		if (now_s - g->under_since >= g->up_wait_s && g->level > 0)
+			step(g, -1, now_s);
+	} else {
+		g->over_since = g->under_since = -1;
+		/* a long quiet spell at a level: trust steps up again */
+		if (g->last_up_s >= 0 && now_s - g->last_up_s > 4 * UP_WAIT_MAX_S)
+			g->up_wait_s = UP_WAIT_MIN_S;
+	}
+}
+
+struct governor_quality governor_update(struct governor *g, double frame_ms, double now_s)
+{
+	if (!(frame_ms >= 0) || !isfinite(frame_ms))
+		frame_ms = g->target_ms; /* a clock that jumped tells nothing */
+	/* a frame far over the line (a hitch) moves the average by at most 4 targets */
+	if (g->smooth_ms < 0)
+		g->smooth_ms = frame_ms;
+	else
+		g->smooth_ms += SMOOTH * (fmin(frame_ms, g->smooth_ms + 4 * g->target_ms) - g->smooth_ms);
+	if (now_s >= g->settle_until)
+		decide(g, now_s);
+	struct governor_quality q = ladder[g->level];
+	g->scale_sum += q.render_scale;
+	g->view_sum += q.view_distance;
+	g->frames++;
+	return q;
+}
+
+double governor_mean_scale(const struct governor *g)
+{
+	return g->frames ? g->scale_sum / g->frames : 1.0;
+}
+
+double governor_mean_view(const struct governor *g)
+{
+	return g->frames ? g->view_sum / g->frames : 1.0;
+}

@@ -1,0 +1,55 @@
+/* isoterra — the frame-time governor: holds a target frame time by trading
+ * quality, in a fixed order (render scale, then the block generation
+ * budget, AO rays, far-LOD octaves, view distance), and gives it back when
+ * there is headroom.  It only sees frame times and a clock, so a test
+ * drives it with a fake clock and a synthetic load.
+ *
+ * Hysteresis: it steps down when the smoothed frame time is over the
+ * target by 5 % for a short while, up only when it is under 75 % of the
+ * target for longer, waits after every step for the frame time to settle,
+ * and each step up that has to be taken back doubles the wait before the
+ * next try (so a load that sits between two steps does not make it
+ * oscillate). */
+#ifndef ISOTERRA_GOVERNOR_H
+#define ISOTERRA_GOVERNOR_H
+
+#include <stdbool.h>
+
+/* What it holds now: the world applies these each frame. */
+struct governor_quality {
+	float render_scale;   /* 0.5 .. 1: the 3D view is drawn this much smaller and upscaled */
+	float gen_budget;     /* 0.25 .. 1: times the configured block generation budget */
+	float ao_rays;        /* 0 .. 1: times the configured AO rays (new blocks) */
+	int far_octaves_drop; /* 0 .. 2: octaves left out of the coarsest level's blocks */
+	float view_distance;  /* 0.55 .. 1: times the configured view distance */
+	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
+};
+
+#define GOVERNOR_LEVELS 14
+
+struct governor {
+	double target_ms;
+	double smooth_ms;       /* exponential average of the frame times */
+	double over_since, under_since; /* clock when the current excursion began (< 0: none) */
+	double settle_until;    /* no decision before this */
+	double up_wait_s;       /* how long under the line before a step up */
+	double last_up_s;       /* when the last step up was taken (< 0: none) */
+	int level;
+	unsigned steps_down, steps_up;
+	double scale_sum;       /* for the mean render scale / view distance held */
+	double view_sum;
+	unsigned frames;
+};
+
+/* target_ms > 0: the frame time to hold (1000 / target fps). */
+void governor_init(struct governor *g, double target_ms);
+/* One finished frame that took frame_ms, at clock now_s (seconds, any
+ * origin, never decreasing); the quality for the next frame. */
+struct governor_quality governor_update(struct governor *g, double frame_ms, double now_s);
+/* The quality of a level (0 .. GOVERNOR_LEVELS - 1). */
+struct governor_quality governor_level(int level);
+/* Means over every update so far (1 before the first). */
+double governor_mean_scale(const struct governor *g);
+double governor_mean_view(const struct governor *g);
+
+#endif

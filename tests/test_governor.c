@@ -1,0 +1,156 @@
+/* isoterra — the frame-time governor (app/scene/governor.c) under a fake
+ * clock and a synthetic load whose cost follows the quality it is given:
+ * a light load keeps full quality; a heavy one is brought under the target
+ * within seconds, without oscillating; when it goes away full quality
+ * comes back; a load between two steps does not make it flip back and
+ * forth; hitches and broken clocks do not throw it. */
+#include <math.h>
+#include <stdlib.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "governor.h"
+#include "tcheck.h"
+
+struct load {
+	double fixed, pixels, gen, ao, far, view; /* ms at full quality */
+};
+
+static uint32_t rng = 12345;
+static double jitter(void) /* +-5 %, deterministic */
+{
+	rng = rng * 1664525u + 1013904223u;
+	return 0.95 + 0.1 * (double)(rng >> 8) / (double)(1u << 24);
+}
+
+static double cost(const struct load *l, struct governor_quality q)
+{
+	return (l->fixed + l->pixels * q.render_scale * q.render_scale + l->gen * q.gen_budget + l->ao * q.ao_rays +
+		l->far * (1.0 - 0.3 * q.far_octaves_drop) + l->view * q.view_distance * q.view_distance) *
+	       jitter();
+}
+
+struct run {
+	struct governor g;
+	struct governor_quality q;
+	double now;
+	unsigned changes; /* level changes in the current window */
+	double worst_ms, sum_ms;
+	unsigned frames;
+};
+
+/* Runs the load for secs of fake time; window statistics over the last `tail` seconds. */
+static void fly(struct run *r, const struct load *l, double secs, double tail)
+{
+	double end = r->now + secs;
+	r->changes = 0;
+	r->worst_ms = r->sum_ms = 0;
+	r->frames = 0;
+	while (r->now < end) {
+		double ms = cost(l, r->q);
+		r->now += ms / 1000.0;
+		int before = r->q.level;
+		r->q = governor_update(&r->g, ms, r->now);
+		if (r->now >= end - tail) {
+			r->changes += r->q.level != before;
+			r->worst_ms = fmax(r->worst_ms, ms);
+			r->sum_ms += ms;
+			r->frames++;
+		}
+	}
+}
+
+int main(void)
+{
+	const double target = 1000.0 / 30;
+	struct run r = { .now = 100.0 };
+	governor_init(&r.g, target);
+	r.q = governor_level(0);
+
+	const struct load light = { 4, 12, 3, 1, 0, 2 }; /* 22 ms at full quality */
+	fly(&r, &light, 20, 20);
+	CHECK(r.q.level == 0 && r.g.steps_down == 0, "light load: full quality held (level %d, %u steps down)", r.q.level,
+	      r.g.steps_down);
+
+	/* heavy: 87 ms at full quality; under the target from scale 0.5 and half the budget */
+	const struct load heavy = { 6, 60, 8, 6, 3, 4 };
+	fly(&r, &heavy, 10, 4);
+	double mean = r.sum_ms / r.frames;
+	printf("heavy: level %d, scale %.2f, mean %.1f ms, worst %.1f ms, %u changes in the last 4 s\n", r.q.level,
+	       r.q.render_scale, mean, r.worst_ms, r.changes);
+	CHECK(mean <= target * 1.05, "heavy load: mean frame %.1f ms over the target %.1f after 10 s", mean, target);
+	CHECK(r.q.level > 0 && r.q.render_scale < 1, "heavy load: quality lowered (level %d)", r.q.level);
+	CHECK(r.q.view_distance == 1.0f, "heavy load: the view distance is the last thing given up (%.2f)", r.q.view_distance);
+	int held = r.q.level;
+	fly(&r, &heavy, 60, 60);
+	printf("heavy, 60 s more: level %d, %u changes\n", r.q.level, r.changes);
+	CHECK(r.changes <= 4, "heavy load held for 60 s: %u level changes (no oscillation)", r.changes);
+	CHECK(abs(r.q.level - held) <= 1, "heavy load: level stays (%d then %d)", held, r.q.level);
+
+	/* the load goes away */
+	fly(&r, &light, 60, 60);
+	printf("light again: level %d after 60 s\n", r.q.level);
+	CHECK(r.q.level == 0, "load gone: full quality back within 60 s (level %d)", r.q.level);
+
+	/* a load between two steps: level k is at 85 % of the target, k-1 at 110 % */
+	struct run b = { .now = 0 };
+	governor_init(&b.g, target);
+	b.q = governor_level(0);
+	const struct load edge = { 6, 33.5, 0, 0, 0, 0 }; /* 39.5 ms full; scale 0.85: 30.2 ms (under 1.05, over 0.75) */
+	fly(&b, &edge, 180, 120);
+	printf("edge: level %d, %u steps up, %u down, %u changes in the last 120 s\n", b.q.level, b.g.steps_up,
+	       b.g.steps_down, b.changes);
+	CHECK(b.q.level == 1, "edge load: settles one step down (level %d)", b.q.level);
+	CHECK(b.changes == 0, "edge load: no flipping (%u changes in 120 s)", b.changes);
+
+	/* a load with no level inside the band: full budget 42 ms, half 22 ms
+	 * (under 75 %): it probes upward ever more rarely (2, 4, 8 ... 32 s) */
+	struct run o = { .now = 0 };
+	governor_init(&o.g, target);
+	o.q = governor_level(0);
+	const struct load probe = { 2, 0, 40, 0, 0, 0 };
+	fly(&o, &probe, 60, 60);
+	double over_s = 0;
+	unsigned frames = 0;
+	double end = o.now + 120;
+	o.changes = 0;
+	while (o.now < end) {
+		double ms = cost(&probe, o.q);
+		o.now += ms / 1000.0;
+		over_s += ms > target * 1.05 ? ms / 1000.0 : 0;
+		int before = o.q.level;
+		o.q = governor_update(&o.g, ms, o.now);
+		o.changes += o.q.level != before;
+		frames++;
+	}
+	printf("probe: level %d, %u changes and %.2f s over the target in 120 s (%u frames)\n", o.q.level, o.changes,
+	       over_s, frames);
+	CHECK(o.changes <= 8, "probe load: at most 8 changes in 120 s (%u)", o.changes);
+	CHECK(over_s <= 0.05 * 120, "probe load: over the target %.2f s of 120", over_s);
+
+	/* a hitch (one 2 s frame) and broken frame times do not drop quality to the floor */
+	struct run h = { .now = 0 };
+	governor_init(&h.g, target);
+	h.q = governor_level(0);
+	fly(&h, &light, 5, 5);
+	h.now += 2.0;
+	h.q = governor_update(&h.g, 2000.0, h.now);
+	h.q = governor_update(&h.g, NAN, h.now);
+	h.q = governor_update(&h.g, -5.0, h.now);
+	fly(&h, &light, 10, 10);
+	CHECK(h.q.level <= 1 && h.g.steps_down <= 1, "hitch: at most one step (level %d, %u down)", h.q.level,
+	      h.g.steps_down);
+	fly(&h, &light, 30, 30);
+	CHECK(h.q.level == 0, "hitch: full quality back (level %d)", h.q.level);
+
+	/* the ladder: monotone, in the documented order */
+	for (int i = 1; i < GOVERNOR_LEVELS; i++) {
+		struct governor_quality a = governor_level(i - 1), c = governor_level(i);
+		CHECK(c.render_scale <= a.render_scale && c.gen_budget <= a.gen_budget && c.ao_rays <= a.ao_rays &&
+			      c.far_octaves_drop >= a.far_octaves_drop && c.view_distance <= a.view_distance,
+		      "ladder step %d only lowers quality", i);
+		CHECK(c.view_distance == 1.0f || c.render_scale == 0.5f, "step %d: view distance only after scale", i);
+	}
+	CHECK(governor_level(GOVERNOR_LEVELS - 1).render_scale == 0.5f, "scale floor 0.5");
+	return tc_done("governor");
+}
