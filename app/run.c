@@ -28,12 +28,14 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		if (controls_poll(lp->ctl, p)) /* quit: this frame is the last */
 			p->count = f + 1;
 		struct scene_frame sf = { .index = f, .live = lp->live, .start_s = start, .ctl = lp->ctl,
-					  .r = lp->r, .w = lp->w, .h = lp->h };
+					  .r = lp->r, .w = lp->w, .h = lp->h, .refresh_hz = lp->refresh_hz };
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
 			return -1;
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .count = p->count,
 					 .last = p->count > 0 && f == p->count - 1 };
+		if (lp->scene->ops->status)
+			lp->scene->ops->status(lp->scene, fr.status, sizeof(fr.status));
 		int q = sinks_frame(lp->sinks, &fr, err, errlen);
 		lp->r = fr.r; /* a display's resize */
 		lp->w = fr.w;
@@ -175,7 +177,7 @@ static int run_frames(struct run *rn)
 			 p->keyboard == KEYBOARD_OFF ? "off!" : "terminal or evdev");
 	struct frame_loop lp = { .p = p, .scene = rn->scene, .ctl = rn->ctl, .sinks = &rn->sinks, .r = rn->r,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,
-				 .watch_signals = rn->plat->headless };
+				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz };
 	int rc = frame_loop_run(&lp, err, sizeof(err)) < 0 ? 1 : 0;
 	rn->r = lp.r;
 	rn->w = lp.w;

@@ -439,6 +439,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	log_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->kms.path, g->kms.conn_name,
 	          g->kms.mode.hdisplay, g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->kms.crtc_id,
 	          g->atomic ? "atomic" : "legacy");
+	p->refresh_hz = g->kms.mode.vrefresh;
 	return 0;
 fail:
 	gbm_close(p);

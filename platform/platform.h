@@ -54,6 +54,7 @@ struct platform {
 	                         when the EGL lacks EGL_KHR_surfaceless_context) */
 	bool headless;        /* true: render into an FBO, no window */
 	int width, height;    /* surface size when not headless (updated on resize) */
+	double refresh_hz;    /* the display's refresh rate when known (gbm), else 0 */
 	unsigned long presented;  /* frames handed to the display (present calls that succeeded) */
 	unsigned long shown;      /* frames the display confirmed: page-flip events (gbm),
 	                             frame callbacks (wayland); = presented on x11 */

@@ -25,6 +25,7 @@ struct display_sink {
 	 * the platform is closed */
 	unsigned long presented, shown;
 	const char *backend;
+	char status[96]; /* the scene's, from the last frame */
 };
 
 static double seconds(const struct timespec *a, const struct timespec *b)
@@ -37,9 +38,9 @@ static void report(struct display_sink *d, const struct timespec *now)
 	const struct platform *plat = d->plat;
 	double dt = seconds(&d->last, now);
 	unsigned long n = d->frames - d->frames_last;
-	fprintf(stderr, "isoterra: fps %.1f (%lu frames in %.2f s; %lu presented, %lu shown, %dx%d %s)\n",
+	fprintf(stderr, "isoterra: fps %.1f (%lu frames in %.2f s; %lu presented, %lu shown, %dx%d %s)%s%s\n",
 		dt > 0 ? (double)n / dt : 0.0, n, dt, plat->presented, plat->shown, plat->width, plat->height,
-		plat->backend->name);
+		plat->backend->name, d->status[0] ? "; " : "", d->status);
 	d->last = *now;
 	d->frames_last = d->frames;
 }
@@ -75,6 +76,7 @@ static int display_frame(struct sink *s, struct sink_frame *fr, char *err, size_
 		return -1;
 	}
 	d->frames++;
+	snprintf(d->status, sizeof(d->status), "%s", fr->status);
 	int rc = platform_dispatch(plat);
 	d->presented = plat->presented;
 	d->shown = plat->shown;

@@ -31,6 +31,7 @@ struct sink_frame {
 	int index;          /* 0, 1, ... */
 	int count;          /* frames the run renders, 0 = until stopped */
 	bool last;          /* the run's last frame */
+	char status[96];    /* the scene's state for the frame rate reports (or "") */
 };
 
 /* The end of the run. */

@@ -1,6 +1,7 @@
 /* isoterra — offscreen rendering: multisampled colour+depth FBO, lit draw of
  * the mesh with the pipeline's indirect command, resolve and read-back. */
 #include "render.h"
+#include "render_int.h"
 #include "gpu.h"
 #include "abi.h"
 #include "log.h"
@@ -17,6 +18,9 @@ struct renderer {
 	GLint l_viewproj, l_eye, l_fog, l_fade;
 	float clear[3];
 	GLuint surface;
+	float scale;  /* the governor's render scale: the frame is drawn at */
+	int sw, sh;   /* sw x sh in the lower-left corner, then upscaled */
+	struct upscale up;
 };
 
 static const char *fbo_status(GLenum s)
@@ -38,8 +42,9 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	r->w = width;
-	r->h = height;
+	r->w = r->sw = width;
+	r->h = r->sh = height;
+	r->scale = 1.0f;
 	r->clear[0] = 0.62f;
 	r->clear[1] = 0.74f;
 	r->clear[2] = 0.88f;
@@ -119,6 +124,7 @@ void renderer_destroy(struct renderer *r)
 		glDeleteVertexArrays(1, &r->vao);
 	if (r->surface)
 		glDeleteTextures(1, &r->surface);
+	upscale_free(&r->up);
 	GLuint fb[2] = { r->fbo, r->fbo_ms };
 	glDeleteFramebuffers(2, fb);
 	GLuint rb[3] = { r->rb_color, r->rb_color_ms, r->rb_depth };
@@ -129,7 +135,7 @@ void renderer_destroy(struct renderer *r)
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p)
 {
 	glBindFramebuffer(GL_FRAMEBUFFER, r->samples ? r->fbo_ms : r->fbo);
-	glViewport(0, 0, r->w, r->h);
+	glViewport(0, 0, r->sw, r->sh);
 	/* sky colour (linear -> the shader's fog colour matches it) */
 	glClearColor(r->clear[0], r->clear[1], r->clear[2], 1.0f);
 	glClearDepthf(1.0f);
@@ -213,11 +219,30 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 
 int renderer_end(struct renderer *r)
 {
-	(void)r;
 	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+	int rc = gpu_check("draw");
+	if (rc == 0 && (r->sw != r->w || r->sh != r->h)) {
+		rc = upscale_run(&r->up, r->samples ? r->fbo_ms : r->fbo, r->sw, r->sh);
+		glViewport(0, 0, r->w, r->h);
+	}
 	glBindVertexArray(0);
 	glUseProgram(0);
-	return gpu_check("draw");
+	return rc;
+}
+
+int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen)
+{
+	scale = scale < 0.5f ? 0.5f : scale > 1.0f ? 1.0f : scale;
+	if (scale < 1.0f && !r->up.prog && upscale_init(&r->up, r->w, r->h, err, errlen) < 0)
+		return -1;
+	r->scale = scale;
+	r->sw = (int)(r->w * scale + 0.5f);
+	r->sh = (int)(r->h * scale + 0.5f);
+	if (r->sw < 1)
+		r->sw = 1;
+	if (r->sh < 1)
+		r->sh = 1;
+	return 0;
 }
 
 void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h)

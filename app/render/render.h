@@ -36,6 +36,11 @@ void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indir
 int renderer_end(struct renderer *r);
 /* Water plane over the world rectangle x0,z0 - x1,z1 (after the terrain). */
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);
+/* The governor's render scale (0.5 .. 1): later frames are drawn at that
+ * fraction of the size and upscaled (Catmull-Rom, edges kept) at
+ * renderer_end, so overlays and sinks still see the full size.  0, or -1
+ * with err (the upscale pass could not be made). */
+int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen);
 /* Background colour (tests paint it a colour the terrain never has). */
 void renderer_set_clear(struct renderer *r, float red, float green, float blue);
 /* Draws the pipeline's mesh with its indirect command.  0 or -1. */

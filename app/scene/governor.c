@@ -105,6 +105,14 @@ struct governor_quality governor_update(struct governor *g, double frame_ms, dou
 	return q;
 }
 
+void governor_apply(const struct governor_quality *q, const struct params *p, struct params *eff)
+{
+	*eff = *p;
+	eff->gen_budget_ms = p->gen_budget_ms * q->gen_budget;
+	eff->ao_rays = (int)lroundf((float)p->ao_rays * q->ao_rays);
+	eff->view_distance = p->view_distance * q->view_distance;
+}
+
 double governor_mean_scale(const struct governor *g)
 {
 	return g->frames ? g->scale_sum / g->frames : 1.0;

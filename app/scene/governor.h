@@ -15,6 +15,8 @@
 
 #include <stdbool.h>
 
+#include "params.h"
+
 /* What it holds now: the world applies these each frame. */
 struct governor_quality {
 	float render_scale;   /* 0.5 .. 1: the 3D view is drawn this much smaller and upscaled */
@@ -48,6 +50,9 @@ void governor_init(struct governor *g, double target_ms);
 struct governor_quality governor_update(struct governor *g, double frame_ms, double now_s);
 /* The quality of a level (0 .. GOVERNOR_LEVELS - 1). */
 struct governor_quality governor_level(int level);
+/* The parameters a frame runs with under quality q (the render scale is
+ * the renderer's, the far octaves the world's: not parameters). */
+void governor_apply(const struct governor_quality *q, const struct params *p, struct params *eff);
 /* Means over every update so far (1 before the first). */
 double governor_mean_scale(const struct governor *g);
 double governor_mean_view(const struct governor *g);

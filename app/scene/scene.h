@@ -23,6 +23,7 @@ struct scene_frame {
 	struct controls *ctl;    /* pause clock, flight keys; may be NULL */
 	struct renderer *r;      /* draw into it */
 	int w, h;
+	double refresh_hz;       /* the display's refresh rate when known, else 0 */
 };
 
 struct scene;
@@ -37,6 +38,9 @@ struct scene_ops {
 	int (*report)(struct scene *s, const struct params *p, char *line, size_t len, char *warn, size_t wlen);
 	/* The mesh the scene shows now, in world space (--export-mesh).  0/-1. */
 	int (*read_mesh)(struct scene *s, struct mesh *m);
+	/* Optional: what the scene holds now, one short line for the frame
+	 * rate reports ("" = nothing to say). */
+	void (*status)(struct scene *s, char *line, size_t len);
 	void (*destroy)(struct scene *s);
 };
 

@@ -6,6 +6,8 @@
 #include "render.h"
 #include "world.h"
 #include "edits.h"
+#include "governor.h"
+#include "gpu.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,7 +20,45 @@ struct world_scene {
 	bool ap_ready;
 	float t0;  /* p->time: the world does not scroll, the camera moves */
 	float far; /* the camera's far plane */
+	bool governed;             /* the frame-time governor runs (live frames) */
+	struct governor gov;
+	struct governor_quality q; /* what it holds for the next frame */
+	double last_work_ms;
 };
+
+/* Live frames under the governor: the frame's parameters and render scale
+ * from what it holds.  0, or -1 with err. */
+static int governed_params(struct world_scene *ws, const struct params *p, const struct scene_frame *fr,
+			   struct params *eff, char *err, size_t errlen)
+{
+	*eff = *p;
+	if (!fr->live || p->governor == GOVERNOR_OFF) {
+		ws->governed = false;
+		return 0;
+	}
+	if (!ws->governed) {
+		double fps = p->target_fps > 0 ? p->target_fps : fr->refresh_hz > 0 ? fr->refresh_hz : 30.0;
+		governor_init(&ws->gov, 1000.0 / fps);
+		ws->q = governor_level(0);
+		ws->governed = true;
+	}
+	governor_apply(&ws->q, p, eff);
+	world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
+	return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
+}
+
+static void world_status(struct scene *s, char *line, size_t len)
+{
+	struct world_scene *ws = (struct world_scene *)s;
+	if (!ws->governed) {
+		line[0] = 0;
+		return;
+	}
+	struct governor_quality q = ws->q;
+	snprintf(line, len, "governor %.1f ms of %.1f: scale %.2f, budget x%.2f, AO x%.2f, far -%d oct, view x%.2f",
+		 ws->last_work_ms, ws->gov.target_ms, q.render_scale, q.gen_budget, q.ao_rays, q.far_octaves_drop,
+		 q.view_distance);
+}
 
 static int world_frame(struct scene *s, struct params *p, const struct scene_frame *fr, char *err, size_t errlen)
 {
@@ -27,7 +67,8 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	 * reproducible: time is frame / fps and each frame waits for its
 	 * blocks.  On a display the world runs live: wall-clock time, and
 	 * blocks stream in under the generation budget. */
-	double t = fr->live ? clock_ms() / 1e3 - fr->start_s : (double)fr->index / p->fps;
+	double t0 = clock_ms();
+	double t = fr->live ? t0 / 1e3 - fr->start_s : (double)fr->index / p->fps;
 	t -= (double)((float)t - controls_time(fr->ctl, (float)t)); /* paused time */
 	p->time = ws->t0;
 	if (p->camera == CAMERA_MANUAL) { /* manual: the keys steer, rock still stops */
@@ -39,9 +80,20 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	autopilot_advance(&ws->ap, t);
 	autopilot_camera(&ws->ap, &cam, p->fov, (float)fr->w / (float)fr->h, ws->far);
 	err[0] = 0;
-	int urc = fr->index == 0 ? world_fill(ws->w, p, &cam, t) : world_update(ws->w, p, &cam, t, !fr->live);
-	if (urc < 0 || world_draw(ws->w, fr->r, &cam, p, t) < 0)
+	struct params eff;
+	if (governed_params(ws, p, fr, &eff, err, errlen) < 0)
 		return -1;
+	int urc = fr->index == 0 ? world_fill(ws->w, &eff, &cam, t) : world_update(ws->w, &eff, &cam, t, !fr->live);
+	if (urc < 0 || world_draw(ws->w, fr->r, &cam, &eff, t) < 0)
+		return -1;
+	if (ws->governed && fr->index > 0) { /* the first frame fills the view: not a frame time */
+		/* the frame's work, not the display's wait: a frame that holds
+		 * the refresh rate with room to spare reads as short */
+		glFinish();
+		double now = clock_ms();
+		ws->last_work_ms = now - t0;
+		ws->q = governor_update(&ws->gov, ws->last_work_ms, now / 1e3);
+	}
 	return 0;
 }
 
@@ -53,9 +105,14 @@ static int world_report(struct scene *s, const struct params *p, char *line, siz
 	(void)wlen;
 	world_get_stats(ws->w, &st);
 	warn[0] = 0; /* nothing to warn about first: an overflow is part of the line */
-	snprintf(line, len, "world: %llu blocks generated (%llu empty, never regenerated), %d drawn, %llu evicted%s",
+	char gov[96] = "";
+	if (ws->governed)
+		snprintf(gov, sizeof(gov), "; governor held render scale %.2f, view distance x%.2f on average",
+			 governor_mean_scale(&ws->gov), governor_mean_view(&ws->gov));
+	snprintf(line, len, "world: %llu blocks generated (%llu empty, never regenerated), %d drawn, %llu evicted%s%s",
 		 (unsigned long long)st.generated, (unsigned long long)st.empty_found, st.drawn,
-		 (unsigned long long)st.evicted, st.overflowed ? ", some blocks over capacity (raise --block-tris)" : "");
+		 (unsigned long long)st.evicted, st.overflowed ? ", some blocks over capacity (raise --block-tris)" : "",
+		 gov);
 	return 0;
 }
 
@@ -78,6 +135,7 @@ static const struct scene_ops world_ops = {
 	.frame = world_frame,
 	.report = world_report,
 	.read_mesh = world_scene_mesh,
+	.status = world_status,
 	.destroy = world_scene_destroy,
 };
 

@@ -300,6 +300,11 @@ int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 	return marked;
 }
 
+void world_set_far_octaves_drop(struct world *w, int drop)
+{
+	w->far_drop = drop > 0 ? drop : 0;
+}
+
 void world_get_stats(const struct world *w, struct world_stats *st)
 {
 	*st = w->st;
@@ -321,6 +326,7 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 	block_grid(w, p, k, &g);
 	pipeline_set_grid(w->pl, &g, 0.0f);
 	pipeline_set_target(w->pl, NULL);
+	w->cur_lod = lod;
 	if (block_extract(w, p) < 0)
 		return -1;
 	return pipeline_read_mesh(w->pl, m);

@@ -38,6 +38,10 @@ int world_fill(struct world *w, const struct params *p, const struct camera *c, 
 /* Draws the visible blocks front to back with the renderer's program. */
 int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now);
 void world_get_stats(const struct world *w, struct world_stats *st);
+/* The frame-time governor's far-LOD trick: the coarsest level's blocks made
+ * from now on leave out their `drop` finest octaves (at least one stays);
+ * the finer levels lie over them, so no seam shows. */
+void world_set_far_octaves_drop(struct world *w, int drop);
 
 /* Terrain edits (curves, heightmap; app/edit/edits.h): marks every known block
  * whose density samples (the block, its sample margin and the reach of its

@@ -103,6 +103,8 @@ void block_grid(const struct world *w, const struct params *p, const int k[4], s
 int block_extract(struct world *w, const struct params *p)
 {
 	struct params q = *p;
+	if (w->far_drop > 0 && w->cur_lod == p->lod_levels - 1 && p->lod_levels > 1)
+		q.octaves = p->octaves - w->far_drop > 1 ? p->octaves - w->far_drop : 1;
 	q.closed = false;               /* blocks are open: neighbours continue them */
 	q.compaction = COMPACTION_HP;   /* indexed, shared vertices (as every slot) */
 	char err[512];
@@ -128,6 +130,7 @@ int generate_block(struct world *w, const struct params *p, int b, int slot, dou
 		.first_index = (uint32_t)(w->istride * slot / 4), .base_vertex = (uint32_t)(w->vstride * slot / VERTEX_BYTES),
 	};
 	pipeline_set_target(w->pl, &t);
+	w->cur_lod = blk->key[3];
 	if (block_extract(w, p) < 0)
 		return -1;
 	bool in_place = blk->stale && blk->slot == slot;

@@ -56,6 +56,8 @@ struct world {
 	struct edits *ed;          /* borrowed: the terrain edits */
 	struct terrain *terrain;   /* the field the blocks are extracted from */
 	struct pipeline *pl;
+	int far_drop;        /* octaves left out of the coarsest level's new blocks (the governor) */
+	int cur_lod;         /* the level of the block being extracted */
 	int n;               /* cells per block edge */
 	GLuint vbo, ibo, status;
 	GLintptr vstride, istride, sstride;

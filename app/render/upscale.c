@@ -1,0 +1,74 @@
+/* isoterra — the upscale pass (render_int.h): a frame drawn into the
+ * lower-left part of the render target is resolved into a texture and
+ * drawn back over the whole target with shaders/upscale.frag (Catmull-Rom,
+ * clamped to the nearest texels: edges stay crisp).  The overlays and the
+ * sinks that come after see a full-size frame. */
+#include "render_int.h"
+#include "gpu.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int upscale_init(struct upscale *u, int w, int h, char *err, size_t errlen)
+{
+	memset(u, 0, sizeof(*u));
+	u->prog = gpu_graphics_program("upscale.vert", "upscale.frag", NULL, err, errlen);
+	if (!u->prog)
+		return -1;
+	u->w = w;
+	u->h = h;
+	u->l_src_px = glGetUniformLocation(u->prog, "u_src_px");
+	u->l_tex_px = glGetUniformLocation(u->prog, "u_tex_px");
+	glUseProgram(u->prog);
+	glUniform1i(glGetUniformLocation(u->prog, "u_src"), TEX_FRAME);
+	glUseProgram(0);
+	glGenTextures(1, &u->tex);
+	glBindTexture(GL_TEXTURE_2D, u->tex);
+	glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	glBindTexture(GL_TEXTURE_2D, 0);
+	glGenFramebuffers(1, &u->fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, u->fbo);
+	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, u->tex, 0);
+	GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	if (st != GL_FRAMEBUFFER_COMPLETE || gpu_check("upscale target") < 0) {
+		snprintf(err, errlen, "cannot create the %dx%d upscale texture (framebuffer status 0x%x)", w, h, st);
+		upscale_free(u);
+		return -1;
+	}
+	return 0;
+}
+
+int upscale_run(struct upscale *u, GLuint target, int sw, int sh)
+{
+	glBindFramebuffer(GL_READ_FRAMEBUFFER, target);
+	glBindFramebuffer(GL_DRAW_FRAMEBUFFER, u->fbo);
+	glBlitFramebuffer(0, 0, sw, sh, 0, 0, sw, sh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+	glBindFramebuffer(GL_FRAMEBUFFER, target);
+	glViewport(0, 0, u->w, u->h);
+	glDisable(GL_DEPTH_TEST);
+	glDisable(GL_BLEND);
+	glUseProgram(u->prog);
+	glUniform2f(u->l_src_px, (float)sw, (float)sh);
+	glUniform2f(u->l_tex_px, (float)u->w, (float)u->h);
+	glActiveTexture(GL_TEXTURE0 + TEX_FRAME);
+	glBindTexture(GL_TEXTURE_2D, u->tex);
+	glDrawArrays(GL_TRIANGLES, 0, 3);
+	glBindTexture(GL_TEXTURE_2D, 0);
+	return gpu_check("upscale");
+}
+
+void upscale_free(struct upscale *u)
+{
+	if (u->prog)
+		glDeleteProgram(u->prog);
+	if (u->tex)
+		glDeleteTextures(1, &u->tex);
+	if (u->fbo)
+		glDeleteFramebuffers(1, &u->fbo);
+	memset(u, 0, sizeof(*u));
+}

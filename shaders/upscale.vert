@@ -1,0 +1,9 @@
+// isoterra — the governor's upscale: one full-screen triangle.
+out vec2 v_uv; // 0 .. 1 over the target
+
+void main()
+{
+	vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+	v_uv = p;
+	gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
