@@ -11,6 +11,7 @@
 #include "bench.h"
 #include "world.h"
 #include "terrain.h"
+#include "governor.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,7 +65,8 @@ static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
 	return done / (t / 1e3);
 }
 
-static void flythrough(const struct params *p_in, int w, int h, int frames)
+/* p50 of one fly-through (ms), -1 if it could not run */
+static double flythrough(const struct params *p_in, int w, int h, int frames, bool governed)
 {
 	char err[512];
 	struct params p = *p_in;
@@ -78,8 +80,12 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 		renderer_destroy(r);
 		world_destroy(wd);
 		edits_destroy(ed);
-		return;
+		return -1;
 	}
+	struct governor gov;
+	struct governor_quality q = governor_level(0);
+	governor_init(&gov, 1000.0 / (p.target_fps > 0 ? p.target_fps : 30.0));
+	struct params eff = p;
 	struct camera c;
 	autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
@@ -91,15 +97,22 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 		double t = (t0 - start) / 1e3;
 		autopilot_advance(&ap, t);
 		autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
-		world_update(wd, &p, &c, t, false);
+		if (governed) { /* as the world scene does on a display */
+			governor_apply(&q, &p, &eff);
+			world_set_far_octaves_drop(wd, q.far_octaves_drop);
+			renderer_set_scale(r, q.render_scale, err, sizeof(err));
+		}
+		world_update(wd, &eff, &c, t, false);
 		double tu = 0;
 		if (trace) { /* the split costs a sync: only when tracing */
 			glFinish();
 			tu = clock_ms() - t0;
 		}
-		world_draw(wd, r, &c, &p, t);
+		world_draw(wd, r, &c, &eff, t);
 		glFinish();
 		ft[f] = clock_ms() - t0;
+		if (governed)
+			q = governor_update(&gov, ft[f], clock_ms() / 1e3);
 		if (trace) { /* per-frame trace: time, blocks drawn, generated so far */
 			struct world_stats s2;
 			world_get_stats(wd, &s2);
@@ -110,14 +123,21 @@ static void flythrough(const struct params *p_in, int w, int h, int frames)
 	qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
 	struct world_stats st;
 	world_get_stats(wd, &st);
-	printf("  %4dx%-4d  %4d frames  p50 %7.1f ms (%5.1f fps)  p99 %7.1f ms  blocks drawn %d, generated %llu\n", w,
-	       h, frames, ft[frames / 2], 1e3 / ft[frames / 2], ft[frames * 99 / 100], st.drawn,
-	       (unsigned long long)st.generated);
+	printf("  %-10s %4dx%-4d %4d frames  p50 %7.1f ms (%5.1f fps)  p95 %7.1f  p99 %7.1f  max %7.1f ms  drawn %d, "
+	       "generated %llu",
+	       governed ? "governed" : "full", w, h, frames, ft[frames / 2], 1e3 / ft[frames / 2], ft[frames * 95 / 100],
+	       ft[frames * 99 / 100], ft[frames - 1], st.drawn, (unsigned long long)st.generated);
+	if (governed)
+		printf("  (held: render scale %.2f, view x%.2f on average; level %d at the end)", governor_mean_scale(&gov),
+		       governor_mean_view(&gov), q.level);
+	printf("\n");
+	double p50 = ft[frames / 2];
 	free(ft);
 	autopilot_free(&ap);
 	world_destroy(wd);
 	edits_destroy(ed);
 	renderer_destroy(r);
+	return p50;
 }
 
 int main(int argc, char **argv)
@@ -152,9 +172,17 @@ int main(int argc, char **argv)
 	printf("  with AO     %7.1f blocks/s  ratio %.3f  (%d rays x (%d + %d) steps; GeForce 8800 in the chapter: 260)\n",
 	       ao, ao / base, p.ao_rays, p.ao_short_steps, p.ao_long_steps);
 
-	printf("\nautopilot fly-through, live streaming (budget %.0f ms/frame):\n", p.gen_budget_ms);
-	flythrough(&p, 640, 480, quick ? 40 : 150);
-	flythrough(&p, 1280, 720, quick ? 40 : 150);
+	printf("\nautopilot fly-through, live streaming (budget %.0f ms/frame), full quality and under the frame-time\n"
+	       "governor (target %.0f fps), frame times in ms:\n",
+	       p.gen_budget_ms, p.target_fps > 0 ? p.target_fps : 30.0);
+	int sizes[2][2] = { { 640, 480 }, { 1280, 720 } };
+	for (int i = 0; i < 2; i++) {
+		int fr = quick ? 40 : 150;
+		double full = flythrough(&p, sizes[i][0], sizes[i][1], fr, false);
+		double gov = flythrough(&p, sizes[i][0], sizes[i][1], fr, true);
+		if (full > 0 && gov > 0)
+			printf("  %dx%d: p50 governed / full = %.3f\n", sizes[i][0], sizes[i][1], gov / full);
+	}
 
 	struct rusage ru;
 	getrusage(RUSAGE_SELF, &ru);
