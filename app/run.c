@@ -27,13 +27,16 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			break;
 		if (controls_poll(lp->ctl, p)) /* quit: this frame is the last */
 			p->count = f + 1;
+		struct scene_timing tm = { 0, 0 };
 		struct scene_frame sf = { .index = f, .live = lp->live, .start_s = start, .ctl = lp->ctl,
-					  .r = lp->r, .w = lp->w, .h = lp->h, .refresh_hz = lp->refresh_hz };
+					  .r = lp->r, .w = lp->w, .h = lp->h, .refresh_hz = lp->refresh_hz,
+					  .timing = lp->timing ? &tm : NULL };
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
 			return -1;
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .count = p->count,
-					 .last = p->count > 0 && f == p->count - 1 };
+					 .last = p->count > 0 && f == p->count - 1, .update_ms = tm.update_ms,
+					 .draw_ms = tm.draw_ms };
 		if (lp->scene->ops->status)
 			lp->scene->ops->status(lp->scene, fr.status, sizeof(fr.status));
 		int q = sinks_frame(lp->sinks, &fr, err, errlen);
@@ -145,6 +148,16 @@ static int open_run(struct run *rn, bool signals_ok, char *err, size_t errlen)
 	rc = sinks_open(&rn->sinks, &rn->p, rn->w, rn->h, err, errlen);
 	if (rc)
 		return rc;
+	if (rn->p.results[0] || (rn->plat->headless && rn->p.fps_report > 0)) {
+		struct sink *rs = sink_results_open(&rn->p, rn->plat->headless, err, errlen);
+		if (!rs)
+			return 2;
+		if (sinks_add(&rn->sinks, rs) < 0) {
+			rs->ops->destroy(rs);
+			snprintf(err, errlen, "too many outputs");
+			return 2;
+		}
+	}
 	if (rn->display) {
 		sinks_add(&rn->sinks, rn->display); /* last: a resize re-creates the renderer */
 		rn->display = NULL;
@@ -177,7 +190,8 @@ static int run_frames(struct run *rn)
 			 p->keyboard == KEYBOARD_OFF ? "off!" : "terminal or evdev");
 	struct frame_loop lp = { .p = p, .scene = rn->scene, .ctl = rn->ctl, .sinks = &rn->sinks, .r = rn->r,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,
-				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz };
+				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz,
+				 .timing = p->results[0] != 0 };
 	int rc = frame_loop_run(&lp, err, sizeof(err)) < 0 ? 1 : 0;
 	rn->r = lp.r;
 	rn->w = lp.w;

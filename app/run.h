@@ -26,6 +26,7 @@ struct frame_loop {
 	bool live;               /* a display: wall-clock time, and its sink sees SIGINT/SIGTERM */
 	bool watch_signals;      /* headless: SIGINT/SIGTERM end the loop (signals.h) */
 	double refresh_hz;       /* the display's, when known (else 0) */
+	bool timing;             /* the scene waits for the GPU and times update and draw (results) */
 	int frames;              /* out: frames finished */
 };
 /* Frames until p->count (0: until a sink stops), a quit from the controls

@@ -32,6 +32,7 @@ struct sink_frame {
 	int count;          /* frames the run renders, 0 = until stopped */
 	bool last;          /* the run's last frame */
 	char status[96];    /* the scene's state for the frame rate reports (or "") */
+	double update_ms, draw_ms; /* the scene's split, when the loop times it (results) */
 };
 
 /* The end of the run. */
@@ -79,6 +80,11 @@ struct sink *sink_mesh_open(const char *path, char *err, size_t errlen);
  * platform (display.c). */
 struct sink *sink_display_open(struct platform *plat, const struct params *p, char *err, size_t errlen);
 
+/* The run's results as JSON to p->results ("-": stdout; "": none) at the
+ * end of a run that went well, and, headless, the frame rate every
+ * p->fps_report seconds.  NULL with err. */
+struct sink *sink_results_open(const struct params *p, bool headless, char *err, size_t errlen);
+
 /* ---- every sink a run asks for ------------------------------------------------ */
 #define SINK_MAX 8
 struct sink_set {
@@ -94,8 +100,9 @@ int sinks_open(struct sink_set *set, const struct params *p, int w, int h, char 
 int sinks_add(struct sink_set *set, struct sink *s);
 /* One frame to every sink: 0 go on, 1 stop, -1 error with err. */
 int sinks_frame(struct sink_set *set, struct sink_frame *fr, char *err, size_t errlen);
-/* Finishes every sink (all of them, even after an error): 0, or -1 with
- * the first error in err. */
+/* Finishes every sink (all of them, even after an error; the ones after a
+ * sink that failed see ok = false and write nothing): 0, or -1 with the
+ * first error in err. */
 int sinks_finish(struct sink_set *set, const struct sink_end *end, char *err, size_t errlen);
 /* The destination the summary names: the first sink's that has one. */
 const char *sinks_dest(const struct sink_set *set);

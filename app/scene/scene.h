@@ -24,6 +24,19 @@ struct scene_frame {
 	struct renderer *r;      /* draw into it */
 	int w, h;
 	double refresh_hz;       /* the display's refresh rate when known, else 0 */
+	struct scene_timing *timing; /* NULL, or the scene waits for the GPU after
+	                              * its update and after its draw and says how
+	                              * long each took (--results) */
+};
+struct scene_timing {
+	double update_ms, draw_ms;
+};
+/* What a scene counts, for the results file. */
+struct scene_counts {
+	unsigned long long triangles;        /* the volume's mesh (0 for the world) */
+	unsigned long long blocks_generated; /* the world's (0 for the volume) */
+	unsigned long long blocks_evicted;
+	int blocks_drawn;
 };
 
 struct scene;
@@ -41,6 +54,8 @@ struct scene_ops {
 	/* Optional: what the scene holds now, one short line for the frame
 	 * rate reports ("" = nothing to say). */
 	void (*status)(struct scene *s, char *line, size_t len);
+	/* What it counts now (every scene).  0/-1. */
+	int (*counts)(struct scene *s, struct scene_counts *c);
 	void (*destroy)(struct scene *s);
 };
 

@@ -6,6 +6,7 @@
 #include "render.h"
 #include "edits.h"
 #include "terrain.h"
+#include "clock.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,13 +26,34 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 	float t = controls_time(fr->ctl, (float)fr->index / p->fps);
 	p->time = vs->t0 + t;
 	err[0] = 0;
+	double t0 = clock_ms();
 	if (pipeline_run(vs->pl, p, err, errlen) < 0)
 		return -1;
+	if (fr->timing) {
+		glFinish();
+		fr->timing->update_ms = clock_ms() - t0;
+		t0 = clock_ms();
+	}
 	struct pipeline_draw d;
 	struct camera cam;
 	pipeline_draw_info(vs->pl, &d);
 	camera_orbit(&cam, p, &vs->g, t, (float)fr->w / (float)fr->h);
-	return renderer_draw(fr->r, &d, &cam, p) < 0 ? -1 : 0;
+	if (renderer_draw(fr->r, &d, &cam, p) < 0)
+		return -1;
+	if (fr->timing) {
+		glFinish();
+		fr->timing->draw_ms = clock_ms() - t0;
+	}
+	return 0;
+}
+
+static int volume_counts(struct scene *s, struct scene_counts *c)
+{
+	struct extract_stats st;
+	if (pipeline_read_stats(((struct volume_scene *)s)->pl, &st) < 0)
+		return -1;
+	*c = (struct scene_counts){ .triangles = st.triangles };
+	return 0;
 }
 
 static int volume_report(struct scene *s, const struct params *p, char *line, size_t len, char *warn, size_t wlen)
@@ -69,6 +91,7 @@ static const struct scene_ops volume_ops = {
 	.frame = volume_frame,
 	.report = volume_report,
 	.read_mesh = volume_read_mesh,
+	.counts = volume_counts,
 	.destroy = volume_destroy,
 };
 

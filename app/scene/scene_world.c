@@ -84,8 +84,20 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	if (governed_params(ws, p, fr, &eff, err, errlen) < 0)
 		return -1;
 	int urc = fr->index == 0 ? world_fill(ws->w, &eff, &cam, t) : world_update(ws->w, &eff, &cam, t, !fr->live);
-	if (urc < 0 || world_draw(ws->w, fr->r, &cam, &eff, t) < 0)
+	if (urc < 0)
 		return -1;
+	double td = clock_ms();
+	if (fr->timing) {
+		glFinish();
+		td = clock_ms();
+		fr->timing->update_ms = td - t0;
+	}
+	if (world_draw(ws->w, fr->r, &cam, &eff, t) < 0)
+		return -1;
+	if (fr->timing) {
+		glFinish();
+		fr->timing->draw_ms = clock_ms() - td;
+	}
 	if (ws->governed && fr->index > 0) { /* the first frame fills the view: not a frame time */
 		/* the frame's work, not the display's wait: a frame that holds
 		 * the refresh rate with room to spare reads as short */
@@ -116,6 +128,15 @@ static int world_report(struct scene *s, const struct params *p, char *line, siz
 	return 0;
 }
 
+static int world_counts(struct scene *s, struct scene_counts *c)
+{
+	struct world_stats st;
+	world_get_stats(((struct world_scene *)s)->w, &st);
+	*c = (struct scene_counts){ .blocks_generated = st.generated, .blocks_evicted = st.evicted,
+				    .blocks_drawn = st.drawn };
+	return 0;
+}
+
 static int world_scene_mesh(struct scene *s, struct mesh *m)
 {
 	return world_read_mesh(((struct world_scene *)s)->w, m);
@@ -136,6 +157,7 @@ static const struct scene_ops world_ops = {
 	.report = world_report,
 	.read_mesh = world_scene_mesh,
 	.status = world_status,
+	.counts = world_counts,
 	.destroy = world_scene_destroy,
 };
 

@@ -1,0 +1,64 @@
+#!/bin/sh
+# isoterra — the results file (--results, app/output/sink_results.c) read
+# back by Python's json module: the fields a dashboard reads, frame counts
+# equal to --count, ordered percentiles, the renderer the run logs, the
+# world's block counts; a run that fails leaves an earlier results file as
+# it was; --results - with --out - is refused; --fps-report works headless.
+BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+. "$(dirname "$0")/cli_lib.sh"
+cd "$T" || exit 1
+
+check_json() { # file count scene
+	python3 - "$1" "$2" "$3" <<'PY'
+import json, sys
+path, count, scene = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+r = json.load(open(path))
+bad = []
+def need(cond, what):
+    if not cond:
+        bad.append(what)
+need(r["run"]["frames"] == count, "frames %s != %d" % (r["run"]["frames"], count))
+need(r["run"]["scene"] == scene, "scene %s" % r["run"]["scene"])
+for k in ("frame_ms", "update_ms", "draw_ms"):
+    d = r[k]
+    need(0 <= d["p50"] <= d["p95"] <= d["p99"] <= d["max"], "%s percentiles out of order: %s" % (k, d))
+need(r["frame_ms"]["mean"] >= r["update_ms"]["mean"] + r["draw_ms"]["mean"] - 1e-3,
+     "a frame is shorter than its update and draw: %s" % r)
+need(r["run"]["fps"] > 0 and abs(r["run"]["fps"] - 1000.0 / r["frame_ms"]["mean"]) < 0.01 * r["run"]["fps"] + 1e-3,
+     "fps %s does not match the mean frame time %s" % (r["run"]["fps"], r["frame_ms"]["mean"]))
+need(r["gl"]["renderer"] and r["gl"]["version"].startswith("OpenGL ES"), "gl %s" % r["gl"])
+need(r["machine"]["cores"] >= 1 and len(r["machine"]["load_average"]) == 3, "machine %s" % r["machine"])
+if scene == "world":
+    need(r["blocks_generated"] > 0 and r["blocks_drawn"] > 0, "world blocks %s" % r)
+else:
+    need(r["triangles"] > 0, "volume triangles %s" % r["triangles"])
+print("\n".join(bad) if bad else "ok")
+sys.exit(1 if bad else 0)
+PY
+}
+
+if "$BIN" --grid 24 --size 96x64 --count 4 --out v.png --results v.json --verbose 2>log; then
+	if msg=$(check_json v.json 4 volume); then ok; else bad "volume results: $msg"; fi
+	ren=$(python3 -c 'import json; print(json.load(open("v.json"))["gl"]["renderer"])')
+	if grep -qF "$ren" log; then ok; else bad "the results name renderer '$ren', the log does not"; fi
+else
+	bad "volume run with --results failed: $(cat log)"
+fi
+if "$BIN" --scene world --size 96x64 --count 3 --out w.png --results - >w.json 2>log; then
+	if msg=$(check_json w.json 3 world); then ok; else bad "world results to stdout: $msg"; fi
+else
+	bad "world run with --results - failed: $(cat log)"
+fi
+# a run that fails (its mesh cannot be written) leaves the earlier file
+cp v.json keep.json
+"$BIN" --grid 24 --size 96x64 --count 2 --out v2.png --results v.json --export-mesh /nonexistent/m.ply 2>/dev/null
+if cmp -s v.json keep.json; then ok; else bad "a failed run changed the results file"; fi
+expect_fail "standard output" --grid 8 --size 64x48 --out - --results -
+# headless frame rate reports
+"$BIN" --grid 24 --size 96x64 --count 6 --out f.png --fps-report 0.001 2>log >/dev/null
+n=$(grep -c "fps .*headless" log)
+if [ "$n" -ge 3 ]; then ok; else bad "--fps-report headless printed $n reports: $(cat log)"; fi
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
