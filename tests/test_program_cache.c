@@ -107,7 +107,7 @@ static int damage(char names[][64], int n)
 
 int main(void)
 {
-	fixture_open();
+	struct platform *plat = fixture_open();
 	snprintf(dir, sizeof(dir), "/tmp/isoterra-progcache-%d", (int)getpid());
 	struct mesh ref, m;
 
@@ -174,5 +174,6 @@ int main(void)
 	}
 	rmdir(dir);
 	mesh_free(&ref);
+	platform_close(plat);
 	return tc_done("program_cache");
 }

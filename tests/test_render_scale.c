@@ -41,7 +41,7 @@ static int frame(struct renderer *r, const struct pipeline_draw *d, const struct
 
 int main(void)
 {
-	fixture_open();
+	struct platform *plat = fixture_open();
 	struct params p;
 	params_defaults(&p);
 	p.grid = 48;
@@ -91,5 +91,6 @@ int main(void)
 	pipeline_destroy(pl);
 	terrain_destroy(tr);
 	edits_destroy(ed);
+	platform_close(plat);
 	return tc_done("render_scale");
 }

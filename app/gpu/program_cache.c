@@ -212,16 +212,16 @@ static void trim(void)
 		count++;
 		char path[640];
 		struct stat sb;
-		snprintf(path, sizeof(path), "%s/%s", C.dir, e->d_name);
+		snprintf(path, sizeof(path), "%.511s/%.63s", C.dir, e->d_name);
 		if (stat(path, &sb) == 0 && (!oldest[0] || sb.st_mtime < oldest_t)) {
 			oldest_t = sb.st_mtime;
-			snprintf(oldest, sizeof(oldest), "%s", e->d_name);
+			snprintf(oldest, sizeof(oldest), "%.63s", e->d_name);
 		}
 	}
 	closedir(d);
 	if (count > MAX_FILES && oldest[0]) {
 		char path[640];
-		snprintf(path, sizeof(path), "%s/%s", C.dir, oldest);
+		snprintf(path, sizeof(path), "%.511s/%.63s", C.dir, oldest);
 		if (unlink(path) < 0)
 			log_debug("program cache: cannot remove '%s': %s", path, strerror(errno));
 	}
