@@ -50,6 +50,9 @@ int sinks_finish(struct sink_set *set, const struct sink_end *end, char *err, si
 			rc = -1;
 		}
 	}
+	for (int i = 0; rc == 0 && end->ok && i < set->n; i++)
+		if (set->s[i]->ops->commit && set->s[i]->ops->commit(set->s[i], err, errlen) < 0)
+			rc = -1;
 	return rc;
 }
 

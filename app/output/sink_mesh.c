@@ -1,6 +1,6 @@
 /* isoterra — the mesh export sink: the scene's mesh (the volume's last
  * extraction, or the world's blocks: world_read_mesh) as binary PLY at the
- * end of a run that went well. */
+ * end of a run that went well, staged until every output is ready. */
 #include "sink.h"
 #include "ply.h"
 #include "scene.h"
@@ -11,6 +11,7 @@
 struct mesh_sink {
 	struct sink base;
 	char path[PARAM_STR_MAX];
+	struct atomic_file af; /* the PLY, staged until commit */
 };
 
 static int mesh_frame(struct sink *s, struct sink_frame *fr, char *err, size_t errlen)
@@ -32,17 +33,26 @@ static int mesh_finish(struct sink *s, const struct sink_end *end, char *err, si
 		snprintf(err, errlen, "reading the mesh back failed");
 		return -1;
 	}
-	int rc = ply_write(&m, ms->path, err, errlen);
+	int rc = ply_write_staged(&m, ms->path, &ms->af, err, errlen);
 	mesh_free(&m);
 	return rc;
 }
 
+static int mesh_commit(struct sink *s, char *err, size_t errlen)
+{
+	struct mesh_sink *ms = (struct mesh_sink *)s;
+	return ms->af.tmp ? atomic_commit(&ms->af, ms->path, err, errlen) : 0;
+}
+
 static void mesh_destroy(struct sink *s)
 {
+	struct mesh_sink *ms = (struct mesh_sink *)s;
+	atomic_abort(&ms->af);
 	free(s);
 }
 
-static const struct sink_ops mesh_ops = { .frame = mesh_frame, .finish = mesh_finish, .destroy = mesh_destroy };
+static const struct sink_ops mesh_ops = { .frame = mesh_frame, .finish = mesh_finish, .commit = mesh_commit,
+					  .destroy = mesh_destroy };
 
 struct sink *sink_mesh_open(const char *path, char *err, size_t errlen)
 {
