@@ -169,6 +169,33 @@ static png_structp png_reader(struct png_ctx *ctx, png_infop *info)
 	return png;
 }
 
+int image_read_png_size(const char *path, int *w, int *h, char *err, size_t errlen)
+{
+	*w = *h = 0;
+	struct png_ctx ctx;
+	if (png_open(&ctx, path, err, errlen) < 0)
+		return -1;
+	png_infop info;
+	png_structp png = png_reader(&ctx, &info);
+	if (!png) {
+		snprintf(err, errlen, "out of memory reading '%s'", path);
+		fclose(ctx.f);
+		return -1;
+	}
+	if (setjmp(png_jmpbuf(png))) {
+		snprintf(err, errlen, "cannot read PNG '%s': %s", path, ctx.msg);
+		png_destroy_read_struct(&png, &info, NULL);
+		fclose(ctx.f);
+		return -1;
+	}
+	png_read_info(png, info); /* the chunks before the image data: no decoding */
+	*w = (int)png_get_image_width(png, info);
+	*h = (int)png_get_image_height(png, info);
+	png_destroy_read_struct(&png, &info, NULL);
+	fclose(ctx.f);
+	return 0;
+}
+
 int image_read_png(struct image *img, const char *path, char *err, size_t errlen)
 {
 	img->width = img->height = 0;

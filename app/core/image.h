@@ -22,6 +22,9 @@ int image_write_png_staged(const struct image *img, const char *path, struct ato
 /* Reads any PNG libpng understands into RGBA8 (palette, gray, 16-bit are
  * converted).  0 or -1 with a clear message in err. */
 int image_read_png(struct image *img, const char *path, char *err, size_t errlen);
+/* A PNG's width and height from its header, nothing decoded (to refuse a
+ * size before spending memory on it).  0 or -1 with err. */
+int image_read_png_size(const char *path, int *w, int *h, char *err, size_t errlen);
 /* Reads a PNG as 16-bit grayscale samples (for heightmaps): *out has w*h
  * values; 8-bit input is scaled to 16 bits.  0 or -1 with err. */
 int image_read_png_gray16(const char *path, uint16_t **out, int *w, int *h, char *err, size_t errlen);
