@@ -24,6 +24,17 @@ no_temps() { # no temp file left beside the targets
 	[ -z "$left" ] && ok || bad "temp files left ($1): $left"
 }
 
+# whole_y4m FILE FRAMES: the header and FRAMES frames of 64x48
+whole_y4m() { [ "$(wc -c <"$1")" -eq $(($(head -1 "$1" | wc -c) + $2 * (6 + 64 * 48 * 3 / 2))) ]; }
+# whole_png FILE: ends with the IEND chunk
+whole_png() { tail -c 8 "$1" | od -An -c | tr -d ' \n' | grep -q 'IEND'; }
+# whole_ply FILE: the header's vertices (24 bytes) and faces (13 bytes) all there
+whole_ply() {
+	hl=$(head -c 400 "$1" | grep -a -b -o 'end_header' | head -1 | cut -d: -f1)
+	nv=$(head -c 400 "$1" | grep -a 'element vertex' | cut -d' ' -f3)
+	nf=$(head -c 400 "$1" | grep -a 'element face' | cut -d' ' -f3)
+	[ -n "$hl" ] && [ "$(wc -c <"$1")" -eq $((hl + 11 + nv * 24 + nf * 13)) ]
+}
 # ---- checked before any work --------------------------------------------------
 prev o.png
 expect_fail "export_mesh: cannot write '/nonexistent/m.ply': directory '/nonexistent'" $S --out o.png --export-mesh /nonexistent/m.ply
@@ -74,6 +85,26 @@ rc=$(cat pipe.rc)
 rc=$?
 [ $rc -eq 1 ] && grep -q "No space left on device" full.txt && ok || bad "--out - >/dev/full: exit $rc, $(cat full.txt)"
 
+# ---- a mesh clamped at its vertex capacity: only whole triangles, said so ---------
+if "$BIN" --size 64x48 --grid 16 --max-vertices 300 --out c.png --export-mesh c.ply >clamp.txt 2>&1; then
+	grep -q "export_mesh: the mesh was clamped at its capacity: [0-9]* incomplete triangles left out of 'c.ply'" clamp.txt &&
+		ok || bad "clamped export not reported: $(cat clamp.txt)"
+	hl=$(head -c 400 c.ply | grep -a -b -o 'end_header' | head -1 | cut -d: -f1)
+	nv=$(head -c 400 c.ply | grep -a 'element vertex' | cut -d' ' -f3)
+	# every face: count 3, three distinct indices below the vertex count
+	bad_faces=$(tail -c +$((hl + 12 + nv * 24)) c.ply | od -An -v -tu1 | tr -s ' \n' '\n\n' | grep . |
+		awk -v nv="$nv" '{ b[n++] = $1 } END {
+			for (f = 0; f + 13 <= n; f += 13) {
+				if (b[f] != 3) { bad++; continue }
+				for (k = 0; k < 3; k++) i[k] = b[f+1+4*k] + 256 * (b[f+2+4*k] + 256 * (b[f+3+4*k] + 256 * b[f+4+4*k]))
+				if (i[0] == i[1] || i[1] == i[2] || i[0] == i[2] || i[0] >= nv || i[1] >= nv || i[2] >= nv) bad++
+			}
+			print bad + 0 }')
+	[ "$bad_faces" = 0 ] && whole_ply c.ply && ok || bad "clamped PLY: $bad_faces incomplete faces"
+else
+	bad "clamped export failed: $(cat clamp.txt)"
+fi
+
 # ---- the progress bar on a terminal: every frame, also for one PNG --------------
 if command -v script >/dev/null 2>&1; then
 	script -qec "'$BIN' $S --count 4 --out single.png" /dev/null >bar.txt 2>&1
@@ -103,17 +134,6 @@ for sig in INT:130 TERM:143; do
 done
 
 # ---- SIGKILL at random moments: every target previous or whole ------------------
-# whole_y4m FILE FRAMES: the header and FRAMES frames of 64x48
-whole_y4m() { [ "$(wc -c <"$1")" -eq $(($(head -1 "$1" | wc -c) + $2 * (6 + 64 * 48 * 3 / 2))) ]; }
-# whole_png FILE: ends with the IEND chunk
-whole_png() { tail -c 8 "$1" | od -An -c | tr -d ' \n' | grep -q 'IEND'; }
-# whole_ply FILE: the header's vertices (24 bytes) and faces (13 bytes) all there
-whole_ply() {
-	hl=$(head -c 400 "$1" | grep -a -b -o 'end_header' | head -1 | cut -d: -f1)
-	nv=$(head -c 400 "$1" | grep -a 'element vertex' | cut -d' ' -f3)
-	nf=$(head -c 400 "$1" | grep -a 'element face' | cut -d' ' -f3)
-	[ -n "$hl" ] && [ "$(wc -c <"$1")" -eq $((hl + 11 + nv * 24 + nf * 13)) ]
-}
 whole_y4m_30() { whole_y4m "$1" 30; }
 # target_ok FILE CHECK...: previous, or whole by CHECK
 target_ok() {
