@@ -11,6 +11,7 @@
 #include "util.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -325,9 +326,9 @@ struct controls {
 /* Screenshots: "name.png", at most one %d (or %0Nd) for a running number. */
 static int check_screenshot(const char *name, char *err, size_t errlen)
 {
-	char buf[PARAM_STR_MAX + 32];
+	char buf[PATH_MAX];
 	size_t sl = strlen(name);
-	if (cli_numbered_name(name, 0, buf, sizeof(buf)) < 0 || sl < 5 || strcmp(name + sl - 4, ".png")) {
+	if (cli_numbered_name(name, 0, buf, sizeof(buf)) == -1 || sl < 5 || strcmp(name + sl - 4, ".png")) {
 		snprintf(err, errlen, "screenshot: '%s' must end in .png with at most one %%d (or %%0Nd)", name);
 		return -1;
 	}
@@ -545,8 +546,11 @@ float controls_time(struct controls *c, float t)
 static int screenshot(struct controls *c, struct renderer *r, const struct params *p, char *err, size_t errlen)
 {
 	struct image img = { 0 };
-	char name[PARAM_STR_MAX + 32], e[512];
-	cli_numbered_name(p->screenshot, c->shot_n++, name, sizeof(name));
+	char name[PATH_MAX], e[512];
+	if (cli_numbered_name(p->screenshot, c->shot_n++, name, sizeof(name)) < 0) {
+		log_warn("screenshot: no room for number %d in '%s'", c->shot_n - 1, p->screenshot);
+		return 0;
+	}
 	if (renderer_read(r, &img) < 0) {
 		snprintf(err, errlen, "screenshot: reading the frame back failed");
 		return -1;

@@ -13,6 +13,8 @@
 #include "signals.h"
 #include "sink.h"
 
+#include <limits.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -180,7 +182,31 @@ static void summary(struct run *rn, int frames)
 	log_info("%d frame(s) %dx%d, %s -> %s", frames, rn->w, rn->h, line, dest);
 }
 
-/* The frames, the summary, the sinks finished.  The exit code. */
+/* Every file the run will write, checked before any work (names, their
+ * directories): 0, or the exit code with err.  Screenshots only where
+ * something can ask for one: keys or GPIO controls. */
+static int check_outputs(const struct params *p, char *err, size_t errlen)
+{
+	enum cli_out_kind kind;
+	if (cli_parse_out(p->out, &kind, err, errlen) < 0)
+		return 2;
+	int last = p->count > 0 ? p->count - 1 : INT_MAX;
+	if (strcmp(p->out, "-") && cli_check_dest("out", p->out, kind == CLI_OUT_PNG_SEQUENCE ? last : 0, err, errlen) < 0)
+		return 1;
+	if (p->export_mesh[0] && cli_check_dest("export_mesh", p->export_mesh, 0, err, errlen) < 0)
+		return 1;
+	if (p->results[0] && strcmp(p->results, "-") && cli_check_dest("results", p->results, 0, err, errlen) < 0)
+		return 1;
+	bool shots = p->keyboard != KEYBOARD_OFF || p->gpio_chip[0] || p->enc1_chip[0] || p->enc2_chip[0] ||
+		     p->button_chip[0];
+	if (shots && cli_check_dest("screenshot", p->screenshot, INT_MAX, err, errlen) < 0)
+		return 1;
+	return 0;
+}
+
+/* The frames, the summary, the sinks finished (their files committed only
+ * when every frame was done).  The exit code: 0, 1 an error, 128 + the
+ * signal that stopped a run before its last frame. */
 static int run_frames(struct run *rn)
 {
 	struct params *p = &rn->p;
@@ -198,14 +224,20 @@ static int run_frames(struct run *rn)
 	rn->h = lp.h;
 	if (rc && err[0])
 		log_error("%s", err);
+	int sig = signals_quit();
+	if (rc == 0 && sig && p->count > 0 && lp.frames < p->count) {
+		log_error("stopped by %s after %d of %d frames: no file written", sig == SIGINT ? "SIGINT" : "SIGTERM",
+			  lp.frames, p->count);
+		rc = 128 + sig;
+	}
 	if (rc == 0)
 		summary(rn, lp.frames);
 	struct sink_end end = { .ok = rc == 0, .frames = lp.frames, .scene = rn->scene, .r = rn->r };
-	if (sinks_finish(&rn->sinks, &end, err, sizeof(err)) < 0) {
+	if (sinks_finish(&rn->sinks, &end, err, sizeof(err)) < 0 && rc == 0) {
 		log_error("%s", err);
 		rc = 1;
 	}
-	if (signals_quit() && rc == 0 && rn->plat->headless)
+	if (sig && rc == 0 && rn->plat->headless)
 		log_info("stopped by signal");
 	return rc;
 }
@@ -237,13 +269,13 @@ int run_program(const struct params *p_in)
 	log_set_level(rn.p.verbose ? LOG_DEBUG : LOG_INFO);
 	shader_set_dir(rn.p.shader_dir);
 	gpu_program_cache_config(rn.p.program_cache, NULL);
-	enum cli_out_kind kind;
-	if (cli_parse_out(rn.p.out, &kind, err, sizeof(err)) < 0) {
+	int rc = check_outputs(&rn.p, err, sizeof(err));
+	if (rc) {
 		log_error("%s", err);
-		return 2;
+		return rc;
 	}
 	bool signals_ok = signals_install() == 0;
-	int rc = open_run(&rn, signals_ok, err, sizeof(err));
+	rc = open_run(&rn, signals_ok, err, sizeof(err));
 	if (rc) {
 		log_error("%s", err);
 		struct sink_end end = { .ok = false };

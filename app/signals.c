@@ -5,7 +5,7 @@
 #include <string.h>
 
 static volatile sig_atomic_t quit_signal, report_request;
-static struct sigaction old_int, old_term, old_usr1;
+static struct sigaction old_int, old_term, old_usr1, old_pipe;
 static bool installed, watching;
 
 static void on_quit(int sig)
@@ -31,6 +31,14 @@ int signals_install(void)
 	struct sigaction *keep_int = installed ? NULL : &old_int, *keep_term = installed ? NULL : &old_term;
 	if (sigaction(SIGINT, &sa, keep_int) != 0 || sigaction(SIGTERM, &sa, keep_term) != 0)
 		return -1;
+	/* a reader that goes away (--out - | head) is a write error (EPIPE)
+	 * reported like any other, not a silent death */
+	struct sigaction ign;
+	memset(&ign, 0, sizeof(ign));
+	sigemptyset(&ign.sa_mask);
+	ign.sa_handler = SIG_IGN;
+	if (sigaction(SIGPIPE, &ign, installed ? NULL : &old_pipe) != 0)
+		return -1;
 	installed = true;
 	return 0;
 }
@@ -53,6 +61,7 @@ void signals_restore(void)
 	if (installed) {
 		sigaction(SIGINT, &old_int, NULL);
 		sigaction(SIGTERM, &old_term, NULL);
+		sigaction(SIGPIPE, &old_pipe, NULL);
 	}
 	if (watching)
 		sigaction(SIGUSR1, &old_usr1, NULL);

@@ -2,7 +2,8 @@
  *
  * SIGINT and SIGTERM ask the frame loop to stop cleanly (files closed, the
  * display restored); a second one kills at once (SA_RESETHAND).  SIGUSR1
- * asks a display for a frame-rate report.  The handlers only set flags; the
+ * asks a display for a frame-rate report.  SIGPIPE is ignored while the
+ * handlers are installed: a closed pipe is a write error (EPIPE).  The handlers only set flags; the
  * frame loop and the display sink read them.  No SA_RESTART: a blocking
  * wait returns EINTR and its caller sees the flag. */
 #ifndef ISOTERRA_SIGNALS_H
@@ -10,7 +11,7 @@
 
 #include <stdbool.h>
 
-/* Installs the SIGINT/SIGTERM handlers (clears the flags).  -1 when they
+/* Installs the SIGINT/SIGTERM handlers (clears the flags), ignores SIGPIPE.  -1 when they
  * cannot be installed. */
 int signals_install(void);
 /* Installs the SIGUSR1 handler (frame rate on demand; without it SIGUSR1

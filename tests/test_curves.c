@@ -678,6 +678,59 @@ static void test_io(void)
 	CHECK(curves_load("roads.kml", &s, err, sizeof(err)) < 0 && strstr(err, "unknown format"), "kml: %s", err);
 }
 
+/* Work sized from the input and refused before it is done: a road a
+ * million units wide over a 1024^2 hash (each piece in every cell), files
+ * with more points than the tables hold; 200 000 paths read in linear time
+ * (a repeated id still found). */
+static void test_sizes(void)
+{
+	char err[512] = "";
+	float pts[200 * 3];
+	for (int i = 0; i < 200; i++) {
+		pts[3 * i] = 10.0f * (float)i;
+		pts[3 * i + 1] = 0.0f;
+		pts[3 * i + 2] = 3.0f * (float)(i % 7);
+	}
+	struct curve_path wp = make_path(200, pts, 1e6f, 2, 0, 0);
+	struct curve_set ws = { &wp, 1 };
+	struct curve_quads q;
+	struct curve_hash h;
+	CHECK(curves_build(&ws, &q, err, sizeof(err)) == 0, "wide road: %s", err);
+	CHECK(curve_hash_build(&q, 1024, &h, err, sizeof(err)) == -1 && strstr(err, "curve hash too large: 416"),
+	      "wide road over 1024^2 cells refused: '%s'", err);
+	curve_quads_free(&q);
+
+	long n = CURVE_MAX_POINTS + 1;
+	size_t cap = (size_t)n * 16 + 256, len = 0;
+	char *text = malloc(cap);
+	len += (size_t)snprintf(text, cap, "path,x,y,z\n");
+	for (long i = 0; i < n; i++)
+		len += (size_t)snprintf(text + len, cap - len, "%ld,0,0,%d\n", i / 2, (int)(i % 2));
+	struct curve_set s;
+	CHECK(curves_parse_csv(text, len, "big.csv", &s, err, sizeof(err)) == -1 && strstr(err, "big.csv: 2097152 points"),
+	      "CSV with too many points: '%s'", err);
+	len = (size_t)snprintf(text, cap, "{\"type\":\"LineString\",\"coordinates\":[");
+	for (long i = 0; i < n; i++)
+		len += (size_t)snprintf(text + len, cap - len, "%s[%d,0,0]", i ? "," : "", (int)(i % 2));
+	len += (size_t)snprintf(text + len, cap - len, "]}");
+	CHECK(curves_parse_geojson(text, len, "big.geojson", &s, err, sizeof(err)) == -1 &&
+		      strstr(err, "big.geojson: 2097152 positions"),
+	      "GeoJSON with too many positions: '%s'", err);
+
+	int np = 200000;
+	len = (size_t)snprintf(text, cap, "path,x,y,z\n");
+	for (int i = 0; i < np; i++)
+		len += (size_t)snprintf(text + len, cap - len, "p%d,%d,0,0\np%d,%d,0,1\n", i, i, i, i);
+	int rc = curves_parse_csv(text, len, "many.csv", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == np, "200 000 paths: %s", err);
+	if (rc == 0)
+		curve_set_free(&s);
+	len += (size_t)snprintf(text + len, cap - len, "p17,0,0,0\np17,1,0,0\n");
+	CHECK(curves_parse_csv(text, len, "many.csv", &s, err, sizeof(err)) == -1 && strstr(err, "rows of path 'p17'"),
+	      "a repeated id among 200 000: '%s'", err);
+	free(text);
+}
+
 /* ---- heightmap (CPU) --------------------------------------------------------------------- */
 
 static char tmpdir[] = "/tmp/isoterra-curves-XXXXXX";
@@ -1270,6 +1323,7 @@ int main(void)
 	test_hash_vs_brute_eval(ed);
 	test_affected(ed);
 	test_io();
+	test_sizes();
 	int ncases = 1200;
 	float *items = malloc(sizeof(float) * 16 * (size_t)ncases);
 	ncases = make_closest_cases(items, ncases);

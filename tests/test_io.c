@@ -11,11 +11,13 @@
 
 #include <png.h>
 
+#include "edits.h"
 #include "image.h"
 #include "log.h"
 #include "mesh.h"
 #include "ply.h"
 #include "tcheck.h"
+#include "y4m.h"
 
 static char dir[] = "/tmp/isoterra-test-io.XXXXXX";
 
@@ -425,6 +427,94 @@ static void test_compare(void)
 	image_free(&c);
 }
 
+/* Staged files: nothing at the target until commit; abort leaves nothing. */
+static void test_staged(void)
+{
+	char err[512];
+	struct image a = { 0 };
+	make_image(&a, 8, 4, true);
+	const char *t = tpath("staged.png");
+	FILE *f = fopen(t, "w");
+	fputs("previous", f);
+	fclose(f);
+	int before = count_entries(dir);
+	struct atomic_file af;
+	CHECK(image_write_png_staged(&a, t, &af, err, sizeof(err)) == 0, "staged: %s", err);
+	struct image b = { 0 };
+	CHECK(image_read_png(&b, t, err, sizeof(err)) == -1 && count_entries(dir) == before + 1,
+	      "the target is untouched while staged");
+	atomic_abort(&af);
+	CHECK(count_entries(dir) == before, "abort removes the temp");
+	CHECK(image_write_png_staged(&a, t, &af, err, sizeof(err)) == 0 && atomic_commit(&af, t, err, sizeof(err)) == 0 &&
+	      image_read_png(&b, t, err, sizeof(err)) == 0 && b.width == 8 && count_entries(dir) == before,
+	      "commit: %s", err);
+	image_free(&b);
+	image_free(&a);
+}
+
+/* Y4M headers carry the exact frame rate. */
+static void test_y4m_rate(void)
+{
+	static const struct { float fps; int num, den; } cases[] = {
+		{ 29.97f, 30000, 1001 }, { 23.976f, 24000, 1001 }, { 59.94f, 60000, 1001 }, { 0.2f, 1, 5 },
+		{ 25.0f, 25, 1 },	 { 12.5f, 25, 2 },	   { 1000.0f, 1000, 1 },    { 0.1f, 1, 10 },
+		{ 30.0f, 30, 1 },	 { 7.3f, 73, 10 },
+	};
+	for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		int num, den;
+		y4m_rate(cases[i].fps, &num, &den);
+		CHECK(num == cases[i].num && den == cases[i].den, "fps %g: %d:%d, want %d:%d", (double)cases[i].fps, num,
+		      den, cases[i].num, cases[i].den);
+	}
+}
+
+static void put_be32(unsigned char *p, uint32_t v)
+{
+	p[0] = (unsigned char)(v >> 24);
+	p[1] = (unsigned char)(v >> 16);
+	p[2] = (unsigned char)(v >> 8);
+	p[3] = (unsigned char)v;
+}
+
+static uint32_t crc32_of(const unsigned char *p, size_t n)
+{
+	uint32_t c = 0xffffffffu;
+	for (size_t i = 0; i < n; i++) {
+		c ^= p[i];
+		for (int k = 0; k < 8; k++)
+			c = c & 1 ? 0xedb88320u ^ (c >> 1) : c >> 1;
+	}
+	return c ^ 0xffffffffu;
+}
+
+/* A heightmap too large is refused from its header: the file holds no
+ * image data at all (an empty IDAT), so a reader that decodes first fails
+ * otherwise. */
+static void test_heightmap_header(void)
+{
+	unsigned char png[8 + 25 + 12 + 12] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
+	unsigned char *ihdr = png + 8;
+	put_be32(ihdr, 13);
+	memcpy(ihdr + 4, "IHDR", 4);
+	put_be32(ihdr + 8, 16385);
+	put_be32(ihdr + 12, 16385);
+	ihdr[16] = 8; /* 8-bit gray, deflate, adaptive filters, not interlaced */
+	put_be32(ihdr + 21, crc32_of(ihdr + 4, 17));
+	unsigned char *idat = ihdr + 25, *iend = idat + 12; /* an empty IDAT */
+	memcpy(idat + 4, "IDAT", 4);
+	put_be32(idat + 8, crc32_of(idat + 4, 4));
+	memcpy(iend + 4, "IEND", 4);
+	put_be32(iend + 8, crc32_of(iend + 4, 4));
+	const char *t = tpath("huge.png");
+	FILE *f = fopen(t, "wb");
+	CHECK(f && fwrite(png, 1, sizeof(png), f) == sizeof(png) && fclose(f) == 0, "write huge.png");
+	struct heightmap hm;
+	memset(&hm, 0, sizeof(hm));
+	char err[512], want[600];
+	snprintf(want, sizeof(want), "heightmap '%s' is 16385x16385; 2x2 to 16384x16384 samples are supported", t);
+	CHECK(heightmap_load(t, &hm, err, sizeof(err)) == -1 && !strcmp(err, want), "err '%s'", err);
+}
+
 int main(void)
 {
 	if (!mkdtemp(dir)) {
@@ -437,6 +527,9 @@ int main(void)
 	test_gray16();
 	test_ply();
 	test_compare();
+	test_staged();
+	test_y4m_rate();
+	test_heightmap_header();
 	char cmd[300];
 	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
 	if (system(cmd) != 0)

@@ -1,6 +1,7 @@
 /* isoterra — files written atomically: a temp file in the same directory,
  * fsync, then rename over the target; on any error the temp is removed and
- * the target is untouched. */
+ * the target is untouched.  A staged file (closed, not yet renamed) waits
+ * for the rest of the run's outputs. */
 #include "atomic_file.h"
 
 #include <errno.h>
@@ -56,8 +57,10 @@ void atomic_abort(struct atomic_file *af)
 	af->tmp = NULL;
 }
 
-int atomic_commit(struct atomic_file *af, const char *path, char *err, size_t errlen)
+int atomic_close(struct atomic_file *af, const char *path, char *err, size_t errlen)
 {
+	if (!af->f)
+		return 0;
 	int e = 0;
 	if (fflush(af->f) != 0 || ferror(af->f))
 		e = errno ? errno : EIO;
@@ -67,10 +70,20 @@ int atomic_commit(struct atomic_file *af, const char *path, char *err, size_t er
 	af->f = NULL;
 	if (!e && rc != 0)
 		e = errno;
-	if (!e && rename(af->tmp, path) < 0)
-		e = errno;
 	if (e) {
 		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(e));
+		atomic_abort(af);
+		return -1;
+	}
+	return 0;
+}
+
+int atomic_commit(struct atomic_file *af, const char *path, char *err, size_t errlen)
+{
+	if (atomic_close(af, path, err, errlen) < 0)
+		return -1;
+	if (rename(af->tmp, path) < 0) {
+		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
 		atomic_abort(af);
 		return -1;
 	}
@@ -78,4 +91,3 @@ int atomic_commit(struct atomic_file *af, const char *path, char *err, size_t er
 	af->tmp = NULL;
 	return 0;
 }
-

@@ -66,8 +66,11 @@ static void png_flush_fn(png_structp png)
 	(void)png;
 }
 
-int image_write_png(const struct image *img, const char *path, char *err, size_t errlen)
+int image_write_png_staged(const struct image *img, const char *path, struct atomic_file *af, char *err,
+			   size_t errlen)
 {
+	af->f = NULL;
+	af->tmp = NULL;
 	if (!img || !img->rgba || img->width <= 0 || img->height <= 0 ||
 	    img->width > IMAGE_MAX_DIM || img->height > IMAGE_MAX_DIM) {
 		snprintf(err, errlen, "cannot write '%s': invalid image %dx%d", path,
@@ -86,25 +89,24 @@ int image_write_png(const struct image *img, const char *path, char *err, size_t
 	for (size_t y = 0; y < h; y++)
 		rows[y] = img->rgba + y * w * 4;
 
-	struct atomic_file af;
-	if (atomic_open(&af, path, err, errlen) < 0) {
+	if (atomic_open(af, path, err, errlen) < 0) {
 		free(rows);
 		return -1;
 	}
-	struct png_ctx ctx = { .f = af.f };
+	struct png_ctx ctx = { .f = af->f };
 	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &ctx, png_err_fn, png_warn_fn);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
 	if (!info) {
 		snprintf(err, errlen, "out of memory writing '%s'", path);
 		png_destroy_write_struct(&png, NULL);
-		atomic_abort(&af);
+		atomic_abort(af);
 		free(rows);
 		return -1;
 	}
 	if (setjmp(png_jmpbuf(png))) {
 		snprintf(err, errlen, "cannot write '%s': %s", path, ctx.msg);
 		png_destroy_write_struct(&png, &info);
-		atomic_abort(&af);
+		atomic_abort(af);
 		free(rows);
 		return -1;
 	}
@@ -119,6 +121,14 @@ int image_write_png(const struct image *img, const char *path, char *err, size_t
 	png_write_end(png, NULL);
 	png_destroy_write_struct(&png, &info);
 	free(rows);
+	return atomic_close(af, path, err, errlen);
+}
+
+int image_write_png(const struct image *img, const char *path, char *err, size_t errlen)
+{
+	struct atomic_file af;
+	if (image_write_png_staged(img, path, &af, err, errlen) < 0)
+		return -1;
 	return atomic_commit(&af, path, err, errlen);
 }
 
@@ -157,6 +167,33 @@ static png_structp png_reader(struct png_ctx *ctx, png_infop *info)
 	png_set_sig_bytes(png, 8);
 	png_set_user_limits(png, IMAGE_MAX_DIM, IMAGE_MAX_DIM);
 	return png;
+}
+
+int image_read_png_size(const char *path, int *w, int *h, char *err, size_t errlen)
+{
+	*w = *h = 0;
+	struct png_ctx ctx;
+	if (png_open(&ctx, path, err, errlen) < 0)
+		return -1;
+	png_infop info;
+	png_structp png = png_reader(&ctx, &info);
+	if (!png) {
+		snprintf(err, errlen, "out of memory reading '%s'", path);
+		fclose(ctx.f);
+		return -1;
+	}
+	if (setjmp(png_jmpbuf(png))) {
+		snprintf(err, errlen, "cannot read PNG '%s': %s", path, ctx.msg);
+		png_destroy_read_struct(&png, &info, NULL);
+		fclose(ctx.f);
+		return -1;
+	}
+	png_read_info(png, info); /* the chunks before the image data: no decoding */
+	*w = (int)png_get_image_width(png, info);
+	*h = (int)png_get_image_height(png, info);
+	png_destroy_read_struct(&png, &info, NULL);
+	fclose(ctx.f);
+	return 0;
 }
 
 int image_read_png(struct image *img, const char *path, char *err, size_t errlen)

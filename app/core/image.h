@@ -4,6 +4,7 @@
 
 #include <stdint.h>
 #include <stddef.h>
+#include "atomic_file.h"
 
 struct image {
 	int width, height;
@@ -14,9 +15,16 @@ void image_free(struct image *img);
 /* Writes an 8-bit RGB(A) PNG atomically: a temp file in the same directory,
  * fsync, then rename; nothing half-written on error.  0 or -1 with err. */
 int image_write_png(const struct image *img, const char *path, char *err, size_t errlen);
+/* The same PNG into a staged temp file beside path (atomic_close'd): the
+ * caller commits it to path, or aborts it.  0 or -1 with err (no temp left). */
+int image_write_png_staged(const struct image *img, const char *path, struct atomic_file *af, char *err,
+			   size_t errlen);
 /* Reads any PNG libpng understands into RGBA8 (palette, gray, 16-bit are
  * converted).  0 or -1 with a clear message in err. */
 int image_read_png(struct image *img, const char *path, char *err, size_t errlen);
+/* A PNG's width and height from its header, nothing decoded (to refuse a
+ * size before spending memory on it).  0 or -1 with err. */
+int image_read_png_size(const char *path, int *w, int *h, char *err, size_t errlen);
 /* Reads a PNG as 16-bit grayscale samples (for heightmaps): *out has w*h
  * values; 8-bit input is scaled to 16 bits.  0 or -1 with err. */
 int image_read_png_gray16(const char *path, uint16_t **out, int *w, int *h, char *err, size_t errlen);

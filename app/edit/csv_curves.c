@@ -36,6 +36,8 @@ struct csv {
 	bool set_prop[CURVE_NPARAMS]; /* parameters given on one of its rows */
 	char (*ids)[MAX_ID];       /* every path id so far */
 	int nids, ids_cap;
+	int *slot;                 /* open-addressing table over ids: index + 1, 0 empty */
+	size_t nslot;              /* a power of two, at least twice nids */
 };
 
 static int cfail(struct csv *c, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -120,12 +122,42 @@ static int csv_end_path(struct csv *c)
 	return 0;
 }
 
+static size_t id_hash(const char *id)
+{
+	size_t h = 2166136261u; /* FNV-1a */
+	for (; *id; id++)
+		h = (h ^ (unsigned char)*id) * 16777619u;
+	return h;
+}
+
+/* The table twice as large, every id placed again. */
+static int grow_slots(struct csv *c)
+{
+	size_t n = c->nslot ? 2 * c->nslot : 64;
+	int *ns = calloc(n, sizeof(*ns));
+	if (!ns)
+		return -1;
+	for (int i = 0; i < c->nids; i++) {
+		size_t k = id_hash(c->ids[i]) & (n - 1);
+		while (ns[k])
+			k = (k + 1) & (n - 1);
+		ns[k] = i + 1;
+	}
+	free(c->slot);
+	c->slot = ns;
+	c->nslot = n;
+	return 0;
+}
+
 /* Remembers a new path id: one seen before means the path's rows are not
- * consecutive. */
+ * consecutive (a hash table: linear in the number of paths). */
 static int csv_new_id(struct csv *c, const char *id)
 {
-	for (int i = 0; i < c->nids; i++)
-		if (!strcmp(c->ids[i], id))
+	if ((size_t)(c->nids + 1) * 2 > c->nslot && grow_slots(c) < 0)
+		return cfail(c, c->lineno, "out of memory");
+	size_t k = id_hash(id) & (c->nslot - 1);
+	for (; c->slot[k]; k = (k + 1) & (c->nslot - 1))
+		if (!strcmp(c->ids[c->slot[k] - 1], id))
 			return cfail(c, c->lineno,
 				     "rows of path '%s' continue after another path (a path's rows must be consecutive)", id);
 	if (c->nids + 1 > c->ids_cap) {
@@ -135,7 +167,8 @@ static int csv_new_id(struct csv *c, const char *id)
 			return cfail(c, c->lineno, "out of memory");
 		c->ids = ni;
 	}
-	snprintf(c->ids[c->nids++], sizeof(c->ids[0]), "%s", id);
+	snprintf(c->ids[c->nids], sizeof(c->ids[0]), "%s", id);
+	c->slot[k] = ++c->nids;
 	return 0;
 }
 
@@ -236,9 +269,31 @@ static int csv_line(struct csv *c, char *line, size_t n)
 	return csv_point(c, f);
 }
 
+/* Rows that are neither blank nor comments (the header and one a point),
+ * counted in one pass before anything is parsed. */
+static long count_rows(const char *text, size_t len)
+{
+	long n = 0;
+	for (const char *p = text, *end = text + len; p < end;) {
+		while (p < end && (*p == ' ' || *p == '\t' || *p == '\r'))
+			p++;
+		if (p < end && *p != '\n' && *p != '#')
+			n++;
+		const char *nl = memchr(p, '\n', (size_t)(end - p));
+		p = nl ? nl + 1 : end;
+	}
+	return n;
+}
+
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen)
 {
 	memset(s, 0, sizeof(*s));
+	long rows = count_rows(text, len);
+	if (rows - 1 > CURVE_MAX_POINTS) {
+		snprintf(err, errlen, "%s: %ld points, more than the %ld the curve tables may hold", fname, rows - 1,
+			 (long)CURVE_MAX_POINTS);
+		return -1;
+	}
 	struct csv c;
 	memset(&c, 0, sizeof(c));
 	c.fname = fname;
@@ -271,6 +326,7 @@ int curves_parse_csv(const char *text, size_t len, const char *fname, struct cur
 	if (rc == 0 && s->npaths == 0)
 		rc = cfail(&c, c.lineno, "no points after the header");
 	free(c.ids);
+	free(c.slot);
 	free(line);
 	free(c.cur.pts);
 	if (rc < 0)

@@ -64,6 +64,30 @@ static void hash_grid(const struct curve_quads *q, struct curve_hash *h)
 	}
 }
 
+/* Cells x0..x1, z0..z1 of quadratic k's padded box. */
+static void quad_cells(const struct curve_quads *q, const struct curve_hash *h, int k, int c[4])
+{
+	float b[4];
+	curve_hash_padded_box(q, k, b);
+	c[0] = cell_coord(b[0], h->origin[0], h->cell[0], h->dim);
+	c[1] = cell_coord(b[2], h->origin[0], h->cell[0], h->dim);
+	c[2] = cell_coord(b[1], h->origin[1], h->cell[1], h->dim);
+	c[3] = cell_coord(b[3], h->origin[1], h->cell[1], h->dim);
+}
+
+/* The entries the cells will hold, from the boxes alone (one pass over the
+ * quadratics, not over their cells). */
+static long long hash_entries(const struct curve_quads *q, const struct curve_hash *h)
+{
+	long long total = 0;
+	for (int k = 0; k < q->nquads; k++) {
+		int c[4];
+		quad_cells(q, h, k, c);
+		total += (long long)(c[1] - c[0] + 1) * (c[3] - c[2] + 1);
+	}
+	return total;
+}
+
 /* Every quadratic into every cell its padded box overlaps: counts the
  * entries of each cell in pivot[2 c + 1] and, with fill, writes them to
  * index[] from each cell's start pivot[2 c]. */
@@ -72,14 +96,10 @@ static void hash_insert(const struct curve_quads *q, struct curve_hash *h, bool 
 	int32_t *count = h->pivot; /* (start, count) pairs */
 	int dim = h->dim;
 	for (int k = 0; k < q->nquads; k++) {
-		float b[4];
-		curve_hash_padded_box(q, k, b);
-		int x0 = cell_coord(b[0], h->origin[0], h->cell[0], dim);
-		int x1 = cell_coord(b[2], h->origin[0], h->cell[0], dim);
-		int z0 = cell_coord(b[1], h->origin[1], h->cell[1], dim);
-		int z1 = cell_coord(b[3], h->origin[1], h->cell[1], dim);
-		for (int cz = z0; cz <= z1; cz++)
-			for (int cx = x0; cx <= x1; cx++) {
+		int b[4];
+		quad_cells(q, h, k, b);
+		for (int cz = b[2]; cz <= b[3]; cz++)
+			for (int cx = b[0]; cx <= b[1]; cx++) {
 				size_t c = (size_t)cx + (size_t)cz * (size_t)dim;
 				if (fill)
 					h->index[count[2 * c] + count[2 * c + 1]] = q->first[k];
@@ -121,14 +141,19 @@ int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h,
 		return 0;
 	}
 	hash_grid(q, h);
-	/* two passes: count, then fill */
-	hash_insert(q, h, false);
-	long total = hash_starts(h, ncell);
-	if (total > 0x3fffffffL) {
-		snprintf(err, errlen, "curve hash too large (%ld entries); lower curve_hash_dim", total);
+	/* sized before anything is filled: the index holds every cell's entries
+	 * and the list of all quadratics */
+	long long want = hash_entries(q, h);
+	if ((want + q->nquads) * 4 > CURVE_TABLE_MAX_BYTES) {
+		snprintf(err, errlen, "curve hash too large: %lld entries for %d curve pieces over %dx%d cells (at most "
+			 "%ld: %ld MB); lower curve_hash_dim or narrow the curves", want, q->nquads, dim, dim,
+			 CURVE_TABLE_MAX_BYTES / 4 - q->nquads, CURVE_TABLE_MAX_BYTES >> 20);
 		curve_hash_free(h);
 		return -1;
 	}
+	/* two passes: count, then fill */
+	hash_insert(q, h, false);
+	long total = hash_starts(h, ncell);
 	h->index = malloc(sizeof(int32_t) * (size_t)(total + q->nquads));
 	if (!h->index)
 		goto oom;

@@ -391,7 +391,7 @@ static void path_inclination(struct curve_quads *q, const struct curve_path *p, 
 /* Cubics of the whole set (one per segment), or -1 with err. */
 static int count_cubics(const struct curve_set *s, char *err, size_t errlen)
 {
-	int total_cubics = 0;
+	long total_cubics = 0;
 	for (int i = 0; i < s->npaths; i++) {
 		if (s->paths[i].npts < 2) {
 			snprintf(err, errlen, "%s: a path needs at least two distinct points", s->paths[i].label);
@@ -399,11 +399,14 @@ static int count_cubics(const struct curve_set *s, char *err, size_t errlen)
 		}
 		total_cubics += s->paths[i].npts - 1;
 	}
-	if (total_cubics > (1 << 24)) {
-		snprintf(err, errlen, "too many curve segments (%d, at most %d)", total_cubics, 1 << 24);
+	/* the control point table: 4 per segment + 1 per path, 16 bytes each */
+	long max_cubics = (CURVE_TABLE_MAX_BYTES / 16 - s->npaths - 1) / 4;
+	if (total_cubics > max_cubics) {
+		snprintf(err, errlen, "too many curve segments (%ld in %d paths, at most %ld: the curve tables are limited "
+			 "to %ld MB)", total_cubics, s->npaths, max_cubics > 0 ? max_cubics : 0, CURVE_TABLE_MAX_BYTES >> 20);
 		return -1;
 	}
-	return total_cubics;
+	return (int)total_cubics;
 }
 
 int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, size_t errlen)

@@ -93,8 +93,17 @@ struct curve_quads {
 	float (*box)[4]; /* per quadratic: exact XZ bounds (xmin, zmin, xmax, zmax), unpadded */
 	int nquads;
 };
-/* Runs the whole curve pipeline.  0, or -1 with err (out of memory, or a
- * path with fewer than two distinct points). */
+/* The most bytes one curve table (control points, hash index) may take:
+ * the shader storage block size every GL ES 3.1 driver allows.  Tables are
+ * sized from the input and refused before they are built. */
+#define CURVE_TABLE_MAX_BYTES (1L << 27)
+/* The most points a curve file may hold: their control points (4 per
+ * segment, 16 bytes each) fit that table.  The readers count them before
+ * building anything. */
+#define CURVE_MAX_POINTS ((CURVE_TABLE_MAX_BYTES / 16 - 1) / 4)
+/* Runs the whole curve pipeline.  0, or -1 with err (out of memory, a path
+ * with fewer than two distinct points, or more segments than the tables
+ * may hold: checked before anything is built). */
 int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, size_t errlen);
 void curve_quads_free(struct curve_quads *q);
 /* Quadratic k's control points (x, y, z, I). */
@@ -123,6 +132,9 @@ struct curve_hash {
 	int nall;          /* == number of quadratics */
 	int max_per_cell;
 };
+/* 0, or -1 with err: out of memory, or an index larger than
+ * CURVE_TABLE_MAX_BYTES (its size is counted from the boxes first, before
+ * any cell is filled). */
 int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen);
 void curve_hash_free(struct curve_hash *h);
 /* Cell of (x, z), or -1 outside the grid (same arithmetic as the shader). */

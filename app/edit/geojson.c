@@ -157,10 +157,52 @@ static int geo_feature(struct gctx *g, const struct json_value *f, int idx)
 	return geo_geometry(g, json_get(f, "geometry"), json_get(f, "properties"), what);
 }
 
+/* Positions (innermost arrays) in the values of "coordinates" keys, counted
+ * on the raw text in one pass: the size of the curves is known before the
+ * document is parsed into a tree. */
+static long count_positions(const char *text, size_t len)
+{
+	long n = 0;
+	int depth = 0, coords_depth = -1; /* the depth inside a "coordinates" value, -1 outside */
+	bool leaf = false, after_key = false;
+	for (size_t i = 0; i < len; i++) {
+		char c = text[i];
+		if (c == '"') {
+			size_t j = i + 1;
+			while (j < len && text[j] != '"')
+				j += text[j] == '\\' ? 2 : 1;
+			after_key = j - i - 1 == 11 && !memcmp(text + i + 1, "coordinates", 11);
+			i = j;
+		} else if (c == '[' || c == '{') {
+			if (after_key && c == '[' && coords_depth < 0)
+				coords_depth = depth;
+			after_key = false;
+			depth++;
+			leaf = c == '[';
+		} else if (c == ']' || c == '}') {
+			depth--;
+			if (leaf && coords_depth >= 0)
+				n++;
+			leaf = false;
+			if (depth == coords_depth)
+				coords_depth = -1;
+		} else if (c != ':' && c != ' ' && c != '\t' && c != '\n' && c != '\r') {
+			after_key = false;
+		}
+	}
+	return n;
+}
+
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
 			 size_t errlen)
 {
 	memset(s, 0, sizeof(*s));
+	long npos = count_positions(text, len);
+	if (npos > CURVE_MAX_POINTS) {
+		snprintf(err, errlen, "%s: %ld positions in \"coordinates\", more than the %ld the curve tables may hold",
+			 fname, npos, (long)CURVE_MAX_POINTS);
+		return -1;
+	}
 	struct json_value root;
 	if (json_parse(text, len, fname, &root, err, errlen) < 0)
 		return -1;

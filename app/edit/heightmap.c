@@ -114,11 +114,18 @@ int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t err
 	}
 	uint16_t *s = NULL;
 	int w = 0, h = 0;
-	if (image_read_png_gray16(path, &s, &w, &h, err, errlen) < 0)
+	/* the size from the header, refused before anything is decoded */
+	if (image_read_png_size(path, &w, &h, err, errlen) < 0)
 		return -1;
 	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) {
 		snprintf(err, errlen, "heightmap '%s' is %dx%d; 2x2 to %dx%d samples are supported", path, w, h,
 			 HEIGHTMAP_MAX_SIDE, HEIGHTMAP_MAX_SIDE);
+		return -1;
+	}
+	if (image_read_png_gray16(path, &s, &w, &h, err, errlen) < 0)
+		return -1;
+	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) { /* the file changed meanwhile */
+		snprintf(err, errlen, "heightmap '%s' changed while it was read", path);
 		free(s);
 		return -1;
 	}

@@ -53,8 +53,10 @@ static float get_f32(const uint8_t *b)
 
 /* ---- write --------------------------------------------------------------- */
 
-int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen)
+int ply_write_staged(const struct mesh *m, const char *path, struct atomic_file *af, char *err, size_t errlen)
 {
+	af->f = NULL;
+	af->tmp = NULL;
 	if ((m->nverts && (!m->pos || !m->nrm)) || (m->ntris && !m->idx)) {
 		snprintf(err, errlen, "cannot write '%s': mesh has no data", path);
 		return -1;
@@ -67,10 +69,9 @@ int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen)
 				return -1;
 			}
 
-	struct atomic_file af;
-	if (atomic_open(&af, path, err, errlen) < 0)
+	if (atomic_open(af, path, err, errlen) < 0)
 		return -1;
-	bool ok = fprintf(af.f,
+	bool ok = fprintf(af->f,
 	                  "ply\n"
 	                  "format binary_little_endian 1.0\n"
 	                  "comment isoterra\n"
@@ -95,7 +96,7 @@ int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen)
 		}
 		used += PLY_VERTEX_BYTES;
 		if (used + PLY_VERTEX_BYTES > sizeof(buf)) {
-			ok = fwrite(buf, 1, used, af.f) == used;
+			ok = fwrite(buf, 1, used, af->f) == used;
 			used = 0;
 		}
 	}
@@ -105,17 +106,25 @@ int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen)
 			put_u32(buf + used + 1 + 4 * k, m->idx[3 * (size_t)t + k]);
 		used += FACE_BYTES;
 		if (used + FACE_BYTES > sizeof(buf)) {
-			ok = fwrite(buf, 1, used, af.f) == used;
+			ok = fwrite(buf, 1, used, af->f) == used;
 			used = 0;
 		}
 	}
 	if (ok && used)
-		ok = fwrite(buf, 1, used, af.f) == used;
+		ok = fwrite(buf, 1, used, af->f) == used;
 	if (!ok) {
 		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno ? errno : EIO));
-		atomic_abort(&af);
+		atomic_abort(af);
 		return -1;
 	}
+	return atomic_close(af, path, err, errlen);
+}
+
+int ply_write(const struct mesh *m, const char *path, char *err, size_t errlen)
+{
+	struct atomic_file af;
+	if (ply_write_staged(m, path, &af, err, errlen) < 0)
+		return -1;
 	return atomic_commit(&af, path, err, errlen);
 }
 

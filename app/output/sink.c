@@ -43,15 +43,16 @@ int sinks_frame(struct sink_set *set, struct sink_frame *fr, char *err, size_t e
 int sinks_finish(struct sink_set *set, const struct sink_end *end, char *err, size_t errlen)
 {
 	int rc = 0;
-	struct sink_end e_end = *end;
 	for (int i = 0; i < set->n; i++) {
 		char e[512] = "";
-		e_end.ok = end->ok && rc == 0; /* after a failure the later sinks only close */
-		if (set->s[i]->ops->finish(set->s[i], &e_end, e, sizeof(e)) < 0 && rc == 0) {
+		if (set->s[i]->ops->finish(set->s[i], end, e, sizeof(e)) < 0 && rc == 0) {
 			snprintf(err, errlen, "%s", e);
 			rc = -1;
 		}
 	}
+	for (int i = 0; rc == 0 && end->ok && i < set->n; i++)
+		if (set->s[i]->ops->commit && set->s[i]->ops->commit(set->s[i], err, errlen) < 0)
+			rc = -1;
 	return rc;
 }
 

@@ -3,6 +3,10 @@
  *   PNG            one file, written for the run's last frame   (sink_file.c)
  *   PNG sequence   one file per frame: %d / %0Nd in the name    (sink_file.c)
  *   Y4M            a YUV4MPEG2 stream to a file or stdout       (sink_file.c)
+ *
+ * Files are written to temp files beside their targets and renamed onto
+ * them only at the end of a run that went well, all together (stdout stays
+ * a stream).
  *   memory         the last frame into an image (render_to_image)  (sink_file.c)
  *   V4L2           hal's video output (hal/v4l2_out.h)          (sink_v4l2.c)
  *   display        blit, present, window events, fps reports    (display.c)
@@ -49,9 +53,14 @@ struct sink_ops {
 	 * with err ("" when already reported). */
 	int (*frame)(struct sink *s, struct sink_frame *fr, char *err, size_t errlen);
 	/* After the last frame (or an error), the GL context still current:
-	 * close files, drain read-backs, export.  0, or -1 with err. */
+	 * close files, drain read-backs, export.  Files are left staged (temp
+	 * files beside their targets).  0, or -1 with err. */
 	int (*finish)(struct sink *s, const struct sink_end *end, char *err, size_t errlen);
-	/* After the platform is closed: final reports, free. */
+	/* Once every sink finished well: the staged files renamed onto their
+	 * targets (NULL: nothing staged).  0, or -1 with err. */
+	int (*commit)(struct sink *s, char *err, size_t errlen);
+	/* After the platform is closed: final reports, free; staged files not
+	 * committed are removed. */
 	void (*destroy)(struct sink *s);
 };
 
@@ -100,9 +109,10 @@ int sinks_open(struct sink_set *set, const struct params *p, int w, int h, char 
 int sinks_add(struct sink_set *set, struct sink *s);
 /* One frame to every sink: 0 go on, 1 stop, -1 error with err. */
 int sinks_frame(struct sink_set *set, struct sink_frame *fr, char *err, size_t errlen);
-/* Finishes every sink (all of them, even after an error; the ones after a
- * sink that failed see ok = false and write nothing): 0, or -1 with the
- * first error in err. */
+/* Finishes every sink (all of them, even after an error), then, when the
+ * run went well (end->ok) and every sink finished well, commits them all:
+ * a run that fails or stops early leaves every target as it was.  0, or -1
+ * with the first error in err. */
 int sinks_finish(struct sink_set *set, const struct sink_end *end, char *err, size_t errlen);
 /* The destination the summary names: the first sink's that has one. */
 const char *sinks_dest(const struct sink_set *set);

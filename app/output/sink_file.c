@@ -6,11 +6,18 @@
 #include "render.h"
 #include "y4m.h"
 
-#include <math.h>
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+/* A frame written to a temp file beside its target, renamed at commit. */
+struct staged {
+	struct atomic_file af;
+	char *path;
+};
 
 struct file_sink {
 	struct sink base;
@@ -18,9 +25,11 @@ struct file_sink {
 	char name[PARAM_STR_MAX]; /* --out: a name, a pattern, or - */
 	struct y4m y;
 	bool y4m_open, progress;
+	struct staged *st;        /* PNG: the last frame; sequence: every frame */
+	int nst, cap;
 };
 
-/* [#####     ] 3/10 on stderr for each frame written. */
+/* [#####     ] 3/10 on stderr for each frame done. */
 static void progress(int f, int count)
 {
 	int width = 40, done = (f + 1) * width / count;
@@ -28,6 +37,49 @@ static void progress(int f, int count)
 		count);
 	if (f + 1 == count)
 		fputc('\n', stderr);
+}
+
+static void unstage_all(struct file_sink *fs)
+{
+	for (int i = 0; i < fs->nst; i++) {
+		atomic_abort(&fs->st[i].af);
+		free(fs->st[i].path);
+	}
+	fs->nst = 0;
+}
+
+/* The frame as a PNG into a temp file beside its name (the sequence's
+ * number in it); a single PNG replaces the frame staged before. */
+static int stage_png(struct file_sink *fs, const struct image *img, int f, char *err, size_t errlen)
+{
+	char name[PATH_MAX];
+	if (cli_numbered_name(fs->name, f, name, sizeof(name)) < 0) {
+		snprintf(err, errlen, "--out '%s': no room for frame %d's name", fs->name, f);
+		return -1;
+	}
+	if (fs->kind == CLI_OUT_PNG)
+		unstage_all(fs);
+	if (fs->nst == fs->cap) {
+		int cap = fs->cap ? 2 * fs->cap : 16;
+		struct staged *ns = realloc(fs->st, sizeof(*ns) * (size_t)cap);
+		if (!ns) {
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		fs->st = ns;
+		fs->cap = cap;
+	}
+	struct staged *st = &fs->st[fs->nst];
+	if (!(st->path = strdup(name))) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	if (image_write_png_staged(img, name, &st->af, err, errlen) < 0) {
+		free(st->path);
+		return -1;
+	}
+	fs->nst++;
+	return 0;
 }
 
 static int write_frame(struct file_sink *fs, struct renderer *r, int f, char *err, size_t errlen)
@@ -41,11 +93,11 @@ static int write_frame(struct file_sink *fs, struct renderer *r, int f, char *er
 	if (fs->kind == CLI_OUT_Y4M) {
 		rc = y4m_write(&fs->y, &img);
 		if (rc < 0)
-			snprintf(err, errlen, "writing frame %d to '%s' failed", f, fs->name);
+			snprintf(err, errlen, "writing frame %d to %s%s%s failed: %s", f, strcmp(fs->name, "-") ? "'" : "",
+				 strcmp(fs->name, "-") ? fs->name : "stdout", strcmp(fs->name, "-") ? "'" : "",
+				 strerror(errno));
 	} else {
-		char name[PARAM_STR_MAX + 32];
-		cli_numbered_name(fs->name, f, name, sizeof(name));
-		rc = image_write_png(&img, name, err, errlen);
+		rc = stage_png(fs, &img, f, err, errlen);
 		if (rc == 0 && fs->kind == CLI_OUT_PNG)
 			fs->base.dest = fs->name; /* the last frame is in the file */
 	}
@@ -56,12 +108,16 @@ static int write_frame(struct file_sink *fs, struct renderer *r, int f, char *er
 static int file_frame(struct sink *s, struct sink_frame *fr, char *err, size_t errlen)
 {
 	struct file_sink *fs = (struct file_sink *)s;
-	if (fs->kind == CLI_OUT_PNG && !fr->last)
-		return 0; /* one PNG: the last frame */
-	int rc = write_frame(fs, fr->r, fr->index, err, errlen);
+	if (fs->kind != CLI_OUT_PNG || fr->last) {
+		if (write_frame(fs, fr->r, fr->index, err, errlen) < 0) {
+			if (fs->progress && fr->index > 0)
+				fputc('\n', stderr); /* the error on a line of its own */
+			return -1;
+		}
+	}
 	if (fs->progress && fr->count > 0)
 		progress(fr->index, fr->count);
-	return rc;
+	return 0;
 }
 
 static int file_finish(struct sink *s, const struct sink_end *end, char *err, size_t errlen)
@@ -70,11 +126,17 @@ static int file_finish(struct sink *s, const struct sink_end *end, char *err, si
 	(void)end;
 	if (!fs->y4m_open)
 		return 0;
-	fs->y4m_open = false;
-	if (y4m_close(&fs->y) < 0) {
-		snprintf(err, errlen, "closing '%s' failed", fs->name);
-		return -1;
-	}
+	return y4m_finish(&fs->y, fs->name, err, errlen);
+}
+
+static int file_commit(struct sink *s, char *err, size_t errlen)
+{
+	struct file_sink *fs = (struct file_sink *)s;
+	if (fs->y4m_open)
+		return y4m_commit(&fs->y, fs->name, err, errlen);
+	for (int i = 0; i < fs->nst; i++)
+		if (atomic_commit(&fs->st[i].af, fs->st[i].path, err, errlen) < 0)
+			return -1;
 	return 0;
 }
 
@@ -82,11 +144,14 @@ static void file_destroy(struct sink *s)
 {
 	struct file_sink *fs = (struct file_sink *)s;
 	if (fs->y4m_open)
-		y4m_close(&fs->y);
+		y4m_free(&fs->y);
+	unstage_all(fs);
+	free(fs->st);
 	free(fs);
 }
 
-static const struct sink_ops file_ops = { .frame = file_frame, .finish = file_finish, .destroy = file_destroy };
+static const struct sink_ops file_ops = { .frame = file_frame, .finish = file_finish, .commit = file_commit,
+					  .destroy = file_destroy };
 
 struct sink *sink_file_open(const struct params *p, int w, int h, char *err, size_t errlen)
 {
@@ -105,7 +170,7 @@ struct sink *sink_file_open(const struct params *p, int w, int h, char *err, siz
 	if (fs->kind != CLI_OUT_PNG)
 		fs->base.dest = fs->name; /* a stream or a sequence: named whatever it holds */
 	if (fs->kind == CLI_OUT_Y4M) {
-		if (y4m_open(&fs->y, p->out, w, h, (int)lroundf(p->fps), err, errlen) < 0) {
+		if (y4m_open(&fs->y, p->out, w, h, p->fps, err, errlen) < 0) {
 			free(fs);
 			return NULL;
 		}

@@ -34,6 +34,8 @@ struct results_sink {
 	char status[96];
 	char scene[16], size[PARAM_STR_MAX];
 	int grid;
+	struct atomic_file af; /* the staged file, renamed at commit */
+	bool staged;
 };
 
 static int cmp_double(const void *a, const void *b)
@@ -193,6 +195,7 @@ static int results_finish(struct sink *s, const struct sink_end *end, char *err,
 	struct results_sink *rs = (struct results_sink *)s;
 	if (!rs->path[0] || !end->ok || rs->n == 0)
 		return 0; /* a failed run leaves no results (and a previous file as it was) */
+	/* stdout is a stream: written here, after the run went well */
 	if (!strcmp(rs->path, "-")) {
 		write_json(rs, stdout, end);
 		if (fflush(stdout) != 0 || ferror(stdout)) {
@@ -201,16 +204,28 @@ static int results_finish(struct sink *s, const struct sink_end *end, char *err,
 		}
 		return 0;
 	}
-	struct atomic_file af;
-	if (atomic_open(&af, rs->path, err, errlen) < 0)
+	if (atomic_open(&rs->af, rs->path, err, errlen) < 0)
 		return -1;
-	write_json(rs, af.f, end);
-	return atomic_commit(&af, rs->path, err, errlen);
+	write_json(rs, rs->af.f, end);
+	if (atomic_close(&rs->af, rs->path, err, errlen) < 0)
+		return -1;
+	rs->staged = true;
+	return 0;
+}
+
+static int results_commit(struct sink *s, char *err, size_t errlen)
+{
+	struct results_sink *rs = (struct results_sink *)s;
+	if (!rs->staged)
+		return 0;
+	rs->staged = false;
+	return atomic_commit(&rs->af, rs->path, err, errlen);
 }
 
 static void results_destroy(struct sink *s)
 {
 	struct results_sink *rs = (struct results_sink *)s;
+	atomic_abort(&rs->af); /* a staged file never committed */
 	free(rs->ft);
 	free(rs->up);
 	free(rs->dr);
@@ -218,7 +233,7 @@ static void results_destroy(struct sink *s)
 }
 
 static const struct sink_ops results_ops = {
-	.frame = results_frame, .finish = results_finish, .destroy = results_destroy
+	.frame = results_frame, .finish = results_finish, .commit = results_commit, .destroy = results_destroy
 };
 
 struct sink *sink_results_open(const struct params *p, bool headless, char *err, size_t errlen)

@@ -1,6 +1,7 @@
 /* isoterra — command line over the parameter table. */
 #include "cli.h"
 #include "util.h"
+#include "atomic_file.h"
 #include "platform.h"
 
 #include <stdbool.h>
@@ -8,6 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <errno.h>
+#include <limits.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #ifndef ISOTERRA_VERSION
 #define ISOTERRA_VERSION "0.1.0"
@@ -183,18 +188,80 @@ int cli_numbered_name(const char *pattern, int n, char *buf, size_t len)
 {
 	const char *pc = strchr(pattern, '%');
 	if (!pc) {
-		snprintf(buf, len, "%s", pattern);
+		if (strlen(pattern) >= len)
+			return -2;
+		memcpy(buf, pattern, strlen(pattern) + 1);
 		return 0;
 	}
-	const char *q = pc + 1; /* %d, %Nd, %0Nd: printf's flag and width */
-	while (*q >= '0' && *q <= '9')
+	/* %d, %Nd, %0Nd: printf's zero flag (any number of them) and width */
+	const char *q = pc + 1;
+	bool zero = false;
+	while (*q == '0') {
+		zero = true;
 		q++;
-	if (*q != 'd' || strchr(q + 1, '%'))
+	}
+	int width = 0;
+	for (; *q >= '0' && *q <= '9'; q++) {
+		width = width * 10 + (*q - '0');
+		if (width > CLI_NAME_WIDTH_MAX)
+			return -1;
+	}
+	if (*q != 'd' || strchr(q + 1, '%') || n < 0)
 		return -1;
-	char fmt[32];
-	snprintf(fmt, sizeof(fmt), "%%.%ds%%%.*s%%s", (int)(pc - pattern), (int)(q - pc), pc + 1);
-	snprintf(buf, len, fmt, pattern, n, q + 1);
+	char num[16];
+	int nd = snprintf(num, sizeof(num), "%d", n);
+	size_t pre = (size_t)(pc - pattern), pad = width > nd ? (size_t)(width - nd) : 0, post = strlen(q + 1);
+	if (pre + pad + (size_t)nd + post >= len)
+		return -2;
+	memcpy(buf, pattern, pre);
+	memset(buf + pre, zero ? '0' : ' ', pad);
+	memcpy(buf + pre + pad, num, (size_t)nd);
+	memcpy(buf + pre + pad + (size_t)nd, q + 1, post + 1);
 	return 1;
+}
+
+int cli_check_dest(const char *what, const char *pattern, int last, char *err, size_t errlen)
+{
+	char name[PATH_MAX];
+	int numbered = cli_numbered_name(pattern, last, name, sizeof(name));
+	if (numbered == -1) {
+		snprintf(err, errlen, "%s: '%s': at most one %%d (or %%0Nd, N up to %d) in the name", what, pattern,
+			 CLI_NAME_WIDTH_MAX);
+		return -1;
+	}
+	const char *slash = strrchr(pattern, '/');
+	size_t dlen = slash ? (size_t)(slash - pattern) : 0;
+	char dir[PATH_MAX];
+	snprintf(dir, sizeof(dir), "%.*s", (int)(slash ? (dlen ? dlen : 1) : 1), slash ? pattern : ".");
+	long name_max = pathconf(dir, _PC_NAME_MAX);
+	if (name_max <= 0)
+		name_max = NAME_MAX;
+	/* the temp file beside it is ATOMIC_TMP_EXTRA longer */
+	if (numbered == -2 || strlen(name) + ATOMIC_TMP_EXTRA >= PATH_MAX ||
+	    (long)strlen(name + (slash ? dlen + 1 : 0)) + ATOMIC_TMP_EXTRA > name_max) {
+		snprintf(err, errlen, "%s: '%s' is too long a file name%s (at most %ld bytes in a name, %d in a path, "
+			 "with %d to spare for the temp file)", what, pattern, numbered ? " for the last frame's number" : "",
+			 name_max, PATH_MAX - 1, ATOMIC_TMP_EXTRA);
+		return -1;
+	}
+	struct stat st;
+	if (stat(dir, &st) < 0) {
+		snprintf(err, errlen, "%s: cannot write '%s': directory '%s': %s", what, pattern, dir, strerror(errno));
+		return -1;
+	}
+	if (!S_ISDIR(st.st_mode)) {
+		snprintf(err, errlen, "%s: cannot write '%s': '%s' is not a directory", what, pattern, dir);
+		return -1;
+	}
+	if (access(dir, W_OK | X_OK) < 0) {
+		snprintf(err, errlen, "%s: cannot write '%s': directory '%s': %s", what, pattern, dir, strerror(errno));
+		return -1;
+	}
+	if (!numbered && stat(pattern, &st) == 0 && S_ISDIR(st.st_mode)) {
+		snprintf(err, errlen, "%s: cannot write '%s': it is a directory", what, pattern);
+		return -1;
+	}
+	return 0;
 }
 
 int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t errlen)
@@ -204,10 +271,11 @@ int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t er
 		snprintf(err, errlen, "out: '%s' must end in .png or .y4m (or be - for a Y4M stream on stdout)", out);
 		return -1;
 	}
-	char name[PARAM_STR_MAX + 32];
+	char name[PATH_MAX];
 	int numbered = cli_numbered_name(out, 0, name, sizeof(name));
-	if (numbered < 0) {
-		snprintf(err, errlen, "--out '%s': only one %%d (or %%0Nd) is allowed in the file name", out);
+	if (numbered == -1) {
+		snprintf(err, errlen, "--out '%s': only one %%d (or %%0Nd, N up to %d) is allowed in the file name", out,
+			 CLI_NAME_WIDTH_MAX);
 		return -1;
 	}
 	*kind = y4m ? CLI_OUT_Y4M : numbered ? CLI_OUT_PNG_SEQUENCE : CLI_OUT_PNG;

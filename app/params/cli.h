@@ -22,11 +22,18 @@ int cli_parse_size(const char *s, int *w, int *h);
  * output name, used by cli_parse and by the sinks.  0, or -1 with err. */
 enum cli_out_kind { CLI_OUT_PNG, CLI_OUT_PNG_SEQUENCE, CLI_OUT_Y4M };
 int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t errlen);
-/* "frame%04d.png" style names (--out, screenshot): pattern with n in place
- * of its %d / %Nd / %0Nd (printf's meaning) into buf.  1 when the pattern
- * has one, 0 when it has none (buf = pattern), -1 when it is malformed (more
- * than one %, or another conversion). */
+/* "frame%04d.png" style names (--out, screenshot): pattern with n (>= 0) in
+ * place of its %d / %Nd / %0Nd (printf's meaning, N up to
+ * CLI_NAME_WIDTH_MAX) into buf.  1 when the pattern has one, 0 when it has
+ * none (buf = pattern), -1 when it is malformed (more than one %, another
+ * conversion, a wider N), -2 when the name does not fit len (never cut). */
+#define CLI_NAME_WIDTH_MAX 4096
 int cli_numbered_name(const char *pattern, int n, char *buf, size_t len);
+/* The one check of a file the run will write (what: "out", "export_mesh",
+ * ...), before any work: its name (pattern expanded for frame number last)
+ * and its temp file's fit the system's name and path limits, its directory
+ * exists and is writable, the name is not a directory.  0, or -1 with err. */
+int cli_check_dest(const char *what, const char *pattern, int last, char *err, size_t errlen);
 void cli_print_help(const char *argv0);
 
 #endif

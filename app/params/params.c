@@ -140,7 +140,8 @@ int params_set(struct params *p, const char *name, const char *value, char *err,
 	case PT_FLOAT: {
 		errno = 0;
 		double v = strtod(value, &end);
-		if (end == value || *end || errno || !isfinite(v)) {
+		/* strtod skips leading white space: refuse it like any other stray character */
+		if (end == value || *end || errno || !isfinite(v) || isspace((unsigned char)value[0])) {
 			snprintf(err, errlen, "%s: '%s' is not a number", pi->name, value);
 			return -1;
 		}
@@ -154,7 +155,7 @@ int params_set(struct params *p, const char *name, const char *value, char *err,
 	case PT_INT: {
 		errno = 0;
 		long v = strtol(value, &end, 10);
-		if (end == value || *end || errno) {
+		if (end == value || *end || errno || isspace((unsigned char)value[0])) {
 			snprintf(err, errlen, "%s: '%s' is not an integer", pi->name, value);
 			return -1;
 		}
@@ -401,6 +402,8 @@ int params_load_config_text(struct params *p, const char *text, const char *fnam
 {
 	int lineno = 0;
 	const char *line = text;
+	if (!strncmp(line, "\xEF\xBB\xBF", 3)) /* a UTF-8 byte order mark: not part of the first line */
+		line += 3;
 	while (line && *line) {
 		const char *nl = strchr(line, '\n');
 		size_t n = nl ? (size_t)(nl - line) : strlen(line);

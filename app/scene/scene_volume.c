@@ -20,6 +20,24 @@ struct volume_scene {
 	float t0; /* p->time at the start: time advances from there */
 };
 
+/* A grid of another size (a knob turned --grid or vol_height): the
+ * pipeline made again for it, its buffers sized for the new grid.  On
+ * failure the old one stays.  0 or -1 with err. */
+static int follow_grid(struct volume_scene *vs, const struct params *p, char *err, size_t errlen)
+{
+	struct grid g;
+	grid_from_params(&g, p);
+	if (g.nx == vs->g.nx && g.ny == vs->g.ny && g.nz == vs->g.nz)
+		return 0;
+	struct pipeline *pl = pipeline_create(&g, p, terrain_field(vs->tr), err, errlen);
+	if (!pl)
+		return -1;
+	pipeline_destroy(vs->pl);
+	vs->pl = pl;
+	vs->g = g;
+	return 0;
+}
+
 static int volume_frame(struct scene *s, struct params *p, const struct scene_frame *fr, char *err, size_t errlen)
 {
 	struct volume_scene *vs = (struct volume_scene *)s;
@@ -27,7 +45,7 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 	p->time = vs->t0 + t;
 	err[0] = 0;
 	double t0 = clock_ms();
-	if (pipeline_run(vs->pl, p, err, errlen) < 0)
+	if (follow_grid(vs, p, err, errlen) < 0 || pipeline_run(vs->pl, p, err, errlen) < 0)
 		return -1;
 	if (fr->timing) {
 		glFinish();
