@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -140,6 +141,77 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	return p50;
 }
 
+/* The program run as a user runs it: wall time to its exit (the PNG
+ * written) and its peak RSS; -1 when it failed.  cache: $XDG_CACHE_HOME
+ * for the run (Mesa's shader cache and isoterra's program cache). */
+static double program_run(char *const *args, const char *cache, double *rss_mb)
+{
+	double t0 = clock_ms();
+	pid_t pid = fork();
+	if (pid == 0) {
+		setenv("XDG_CACHE_HOME", cache, 1);
+		if (!freopen("/dev/null", "w", stderr))
+			_exit(127);
+		execv(ISOTERRA_PROGRAM, args);
+		_exit(127);
+	}
+	int status = 0;
+	struct rusage ru;
+	if (pid < 0 || wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+		return -1;
+	*rss_mb = ru.ru_maxrss / 1024.0;
+	return clock_ms() - t0;
+}
+
+/* Start to PNG written, no flags, caches warm and empty; peak RSS of the
+ * no-flag run and of a short world run (median of n runs, interleaved). */
+static void program_runs(int n)
+{
+	char dir[] = "/tmp/isoterra-bench-XXXXXX";
+	if (!mkdtemp(dir)) {
+		perror("bench: mkdtemp");
+		return;
+	}
+	char warm[64], cold[64], png[64], world_png[64];
+	snprintf(warm, sizeof(warm), "%s/warm", dir);
+	snprintf(png, sizeof(png), "%s/a.png", dir);
+	snprintf(world_png, sizeof(world_png), "%s/w.png", dir);
+	char *plain[] = { "isoterra", "--out", png, NULL };
+	char *world[] = { "isoterra", "--scene", "world", "--count", "30", "--size", "640x360", "--out", world_png, NULL };
+	double rss = 0, rss_w = 0;
+	program_run(plain, warm, &rss); /* fills the warm caches */
+	double tw[16], tc[16], rw[16], rp[16];
+	n = n > 16 ? 16 : n;
+	int ok = 0;
+	for (int i = 0; i < n; i++) {
+		snprintf(cold, sizeof(cold), "%s/cold%d", dir, i);
+		tw[ok] = program_run(plain, warm, &rp[ok]);
+		tc[ok] = program_run(plain, cold, &rss);
+		if (tw[ok] < 0 || tc[ok] < 0 || program_run(world, warm, &rw[ok]) < 0) {
+			fprintf(stderr, "bench: %s failed\n", ISOTERRA_PROGRAM);
+			break;
+		}
+		ok++;
+	}
+	if (ok) {
+		qsort(tw, (size_t)ok, sizeof(double), bench_cmp_double);
+		qsort(tc, (size_t)ok, sizeof(double), bench_cmp_double);
+		qsort(rw, (size_t)ok, sizeof(double), bench_cmp_double);
+		qsort(rp, (size_t)ok, sizeof(double), bench_cmp_double);
+		rss_w = rw[ok / 2];
+		printf("\nthe program, no flags (1280x720 PNG), %d interleaved runs, median [min-max]:\n", ok);
+		printf("  start to PNG written, caches warm   %7.0f ms [%.0f-%.0f]\n", tw[ok / 2], tw[0], tw[ok - 1]);
+		printf("  start to PNG written, caches empty  %7.0f ms [%.0f-%.0f]  ratio warm/empty %.3f\n", tc[ok / 2],
+		       tc[0], tc[ok - 1], tw[ok / 2] / tc[ok / 2]);
+		printf("  peak RSS, no flags                  %7.1f MB (goal <= 120 MB)\n", rp[ok / 2]);
+		printf("  peak RSS, --scene world --count 30 --size 640x360  %.1f MB (goal <= 150 MB)\n", rss_w);
+	}
+	char cmd[128];
+	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
+	if (system(cmd) != 0)
+		fprintf(stderr, "bench: cannot remove %s\n", dir);
+}
+
 int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
@@ -186,7 +258,8 @@ int main(int argc, char **argv)
 
 	struct rusage ru;
 	getrusage(RUSAGE_SELF, &ru);
-	printf("\npeak RSS: %.1f MB (goal <= 200 MB)\n", ru.ru_maxrss / 1024.0);
+	printf("\npeak RSS of this benchmark process: %.1f MB\n", ru.ru_maxrss / 1024.0);
 	platform_close(plat);
+	program_runs(quick ? 1 : 5);
 	return 0;
 }
