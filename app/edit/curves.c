@@ -41,10 +41,15 @@ void curve_set_free(struct curve_set *s)
 
 int curve_set_add(struct curve_set *s, const struct curve_path *p)
 {
-	struct curve_path *np = realloc(s->paths, sizeof(*np) * (size_t)(s->npaths + 1));
-	if (!np)
-		return -1;
-	s->paths = np;
+	/* room for 16 paths, then doubled whenever the count reaches a power
+	 * of two: linear in the number of paths */
+	int n = s->npaths;
+	if (n == 0 || (n >= 16 && (n & (n - 1)) == 0)) {
+		struct curve_path *np = realloc(s->paths, sizeof(*np) * (size_t)(n < 16 ? 16 : 2 * n));
+		if (!np)
+			return -1;
+		s->paths = np;
+	}
 	struct curve_path *d = &s->paths[s->npaths];
 	*d = *p;
 	d->pts = malloc(sizeof(float) * 3 * (size_t)(p->npts > 0 ? p->npts : 1));
