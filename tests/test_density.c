@@ -408,6 +408,39 @@ static void test_terrain(void)
 			CHECK(pos > 64 && neg > 64, "%s: the default volume holds a surface (%d rock, %d air)", kv, pos, neg);
 		}
 
+	/* the newer families against their definitions: hybrid and
+	 * slope_damped start from the plain basis (one octave = fbm's one
+	 * octave); slope_damped with mf_slope 0 keeps only octave 0 (a slope of
+	 * 0 damps every later octave); abs_multifractal's cascade is centred on
+	 * E|n| and reacts only to |n| */
+	{
+		params_defaults(&p);
+		set(&p, "fractal=fbm;octaves=1");
+		float one = density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f);
+		set(&p, "fractal=hybrid");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f), one, 1e-4, "hybrid, one octave = fbm");
+		set(&p, "fractal=slope_damped");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f), one, 1e-4, "slope_damped, one octave = fbm");
+		set(&p, "octaves=9;mf_slope=0");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f), one, 1e-4, "slope_damped, mf_slope 0 = octave 0");
+		set(&p, "mf_slope=3");
+		CHECK(fabsf(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f) - one) > 1e-3, "slope_damped adds octaves");
+		set(&p, "fractal=abs_multifractal;octaves=1;mf_offset=1;mf_contrast=2;hurst=1");
+		float nabs = fabsf(noise_perlin(&ns_a, 0.0f, 0.0f, 0.0f)); /* a lattice point: 0 */
+		CHECK(nabs == 0.0f, "lattice point");
+		/* one octave: h = (1 + 2|n|) - (1 + 2 E|n|) = 2 (|n| - E|n|) >= -2 E|n| */
+		int below = 0;
+		for (int i = 0; i < 200; i++) {
+			float x = -20.0f + 0.37f * (float)i, y = 0.0f, z = 3.0f;
+			float d = density_ref(&p, &ns_a, NULL, x, y, z) - (-y * p.ground_slope);
+			set(&p, "noise_amp=0");
+			d -= density_ref(&p, &ns_a, NULL, x, y, z) - (-y * p.ground_slope);
+			set(&p, "noise_amp=24");
+			below += d / 24.0f < -2.0f * 0.2205f - 1e-4f;
+		}
+		CHECK(below == 0, "abs_multifractal: %d values below its floor -2 E|n|", below);
+	}
+
 	/* hard floor alone: no ground, no noise */
 	params_defaults(&p);
 	set(&p, "shape=caves;cave_bias=-5;noise_amp=0;warp_amp=0");
