@@ -90,6 +90,21 @@ float shelf_term(float y)
 	return u_shelf_strength * (1.0 - dens_smooth(abs(dy) * (1.0 / w)));
 }
 
+// Marble (Perlin 1985; Clua 1999 §3.2): sine bands along y pushed by
+// turbulence, T = sum_k |n(p 2^k)| / 2^k over four octaves at half the
+// bands' frequency.
+float marble_term(vec3 ws)
+{
+	vec3 p = ws * (0.5 * u_marble_freq) + vec3(5.17, 31.3, 11.9);
+	float t = 0.0, a = 1.0;
+	for (int k = 0; k < 4; k++) {
+		t += abs(perlin(p)) * a;
+		p *= 2.0;
+		a *= 0.5;
+	}
+	return u_marble_amp * sin(2.0 * PI_F * u_marble_freq * (ws.y + u_marble_turb * t));
+}
+
 float density(vec3 ws)
 {
 #if TERM_SCROLL_SPEED
@@ -129,6 +144,11 @@ float density(vec3 ws)
 #if TERM_FLOOR_STRENGTH
 	// hard floor on the pre-warp height ("sediment")
 	d += dens_sat((u_floor_y - ws_orig.y) * u_floor_sharpness) * u_floor_strength;
+#endif
+
+#if TERM_MARBLE_AMP
+	if (u_marble_amp != 0.0)
+		d += marble_term(ws);
 #endif
 
 	if (u_terrace == TERRACE_PRE)

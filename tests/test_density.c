@@ -441,6 +441,20 @@ static void test_terrain(void)
 		CHECK(below == 0, "abs_multifractal: %d values below its floor -2 E|n|", below);
 	}
 
+	/* marble: without turbulence, plain sine bands along y */
+	params_defaults(&p);
+	set(&p, "warp_amp=0");
+	{
+		float base = density_ref(&p, &ns_a, NULL, 1.3f, 2.1f, -0.4f);
+		set(&p, "marble_amp=2.5;marble_freq=0.2;marble_turb=0");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1.3f, 2.1f, -0.4f) - base, 2.5 * sin(2.0 * M_PI * 0.2 * 2.1), 1e-4,
+			   "marble bands without turbulence");
+		set(&p, "marble_turb=4");
+		CHECK(fabsf(density_ref(&p, &ns_a, NULL, 1.3f, 2.1f, -0.4f) - base - 2.5f * sinf(2.0f * (float)M_PI * 0.2f * 2.1f)) >
+			      1e-3f,
+		      "marble turbulence moves the bands");
+	}
+
 	/* hard floor alone: no ground, no noise */
 	params_defaults(&p);
 	set(&p, "shape=caves;cave_bias=-5;noise_amp=0;warp_amp=0");
@@ -617,6 +631,8 @@ static void test_gpu(void)
 	gpu_compare("all terms (terrace, shelf, flat spot, scroll)", 33,
 		    "terrace=pre;shelf=post;flat_spot=true;flat_y=-2;time=1.5;scroll_speed=2", false);
 	gpu_compare("terrace=post shelf=pre", 17, "terrace=post;shelf=pre", false);
+	gpu_compare("marble_amp=3", 17, "marble_amp=3;marble_freq=0.2;marble_turb=5", false);
+	gpu_compare("marble_amp=3 noise=texture", 17, "marble_amp=3;noise=texture", true);
 	gpu_compare("shape=planet seed=3", 17, "shape=planet;planet_radius=12;seed=3", false);
 	gpu_compare("shape=caves seed=0", 17, "shape=caves;cave_bias=2;seed=0", false);
 	/* the terms a zero turns off (P_TERM: compiled out), off beside the

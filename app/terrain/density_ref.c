@@ -238,6 +238,21 @@ static void domain_warp(const struct params *p, const struct noise_set *ns, cons
 	w[2] = noise_perlin(ns, x + 37.1f, y + 63.7f, z + 13.9f);
 }
 
+static float marble_term(const struct params *p, const struct noise_set *ns, const float ws[3])
+{
+	float h = 0.5f * p->marble_freq;
+	float x = ws[0] * h + 5.17f, y = ws[1] * h + 31.3f, z = ws[2] * h + 11.9f;
+	float t = 0.0f, a = 1.0f;
+	for (int k = 0; k < 4; k++) {
+		t += fabsf(noise_perlin(ns, x, y, z)) * a;
+		x *= 2.0f;
+		y *= 2.0f;
+		z *= 2.0f;
+		a *= 0.5f;
+	}
+	return p->marble_amp * sinf(2.0f * PI_F * p->marble_freq * (ws[1] + p->marble_turb * t));
+}
+
 static float terrace_term(const struct params *p, float y)
 {
 	float u = y * (1.0f / p->terrace_step);
@@ -323,6 +338,9 @@ float density_ref(const struct params *p, const struct noise_set *ns, const stru
 	d += p->noise_amp * fractal_ref(p, ns, ws);
 
 	d += sat((p->floor_y - orig[1]) * p->floor_sharpness) * p->floor_strength;
+
+	if (p->marble_amp != 0.0f)
+		d += marble_term(p, ns, ws);
 
 	if (p->terrace == TERRACE_PRE)
 		d += terrace_term(p, orig[1]);
