@@ -878,7 +878,8 @@ static void test_eval_gpu(struct edits *ed, struct params *p)
 	printf("  curve evaluation through the GPU hash: %d points (%d influenced), worst |h|/Θ error %.3g\n", n,
 	       influenced, worst);
 	CHECK(bad == 0, "GPU curve_eval/carve vs CPU: %d of %d differ (worst %.3g)", bad, n, worst);
-	CHECK(influenced > 200, "points under the curves' influence: %d", influenced);
+	/* (path 3 is a tunnel: no surface, its tube checked by the carve above) */
+	CHECK(influenced > 150, "points under the surface curves' influence: %d", influenced);
 	/* displacement bake: GPU vs CPU, and the iterative baseline near it */
 	struct bake_opts o = { { 96, 80 }, { -120, -110 }, { 240, 220 }, false, false };
 	float *g = malloc(sizeof(float) * 96 * 80), *c = malloc(sizeof(float) * 96 * 80), *gi = malloc(sizeof(float) * 96 * 80);
@@ -1112,6 +1113,58 @@ static void test_road_centreline(struct edits *ed)
 	edits_clear(ed);
 }
 
+/* A tunnel carves a tube and leaves the rock above it; the same curve as a
+ * road removes everything above it.  Flat ground at y = 0 (no noise), the
+ * curve straight along x at height h, radius r = w/2 (axis at h + r/2). */
+static void test_tunnel_cpu(struct edits *ed)
+{
+	struct params p;
+	params_defaults(&p);
+	static struct noise_set ns;
+	noise_set_init(&ns, p.seed);
+	set(&p, "noise_amp=0;warp_amp=0;floor_strength=0");
+	const float h = -6.0f, r = 2.0f, lam = 1.5f;
+	float pts[3 * 3] = { -20, h, 0, 0, h, 0.01f, 20, h, 0 };
+	struct curve_path cp = make_path(3, pts, 2 * r, lam, 0, 0.5f);
+	cp.kind = CURVE_TUNNEL;
+	struct curve_set cs = { &cp, 1 };
+	char err[256];
+	CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "tunnel: %s", err);
+	CHECK(edits_has_tunnels(ed), "the edit state knows it holds a tunnel");
+	int bad_air = 0, bad_roof = 0, bad_floor = 0, bad_side = 0, n = 0;
+	for (float x = -12.0f; x <= 12.0f; x += 0.75f, n++) {
+		bad_air += !(density_ref(&p, &ns, ed, x, h + 0.5f * r, 0.0f) < 0.0f);
+		bad_air += !(density_ref(&p, &ns, ed, x, h + 0.2f, 0.0f) < 0.0f);
+		/* above the tube's top: rock, and the ground's surface untouched */
+		bad_roof += !(density_ref(&p, &ns, ed, x, h + 1.5f * r + 0.5f, 0.0f) > 0.0f);
+		bad_roof += density_ref(&p, &ns, ed, x, -0.3f, 0.0f) != density_ref(&p, &ns, NULL, x, -0.3f, 0.0f);
+		bad_floor += !(density_ref(&p, &ns, ed, x, h - 0.3f, 0.0f) > 0.0f);
+		bad_side += !(density_ref(&p, &ns, ed, x, h + 0.5f * r, r + 0.4f) > 0.0f);
+	}
+	CHECK(bad_air == 0, "tunnel: %d of %d points on the tube's axis and above its floor are not air", bad_air, 2 * n);
+	CHECK(bad_roof == 0, "tunnel: the rock above the tube changed at %d of %d points", bad_roof, 2 * n);
+	CHECK(bad_floor == 0, "tunnel: %d of %d points under the floor are not rock", bad_floor, n);
+	CHECK(bad_side == 0, "tunnel: %d of %d points beside the tube are not rock", bad_side, n);
+	/* the same curve as a road: a slot, everything above h removed */
+	cp.kind = CURVE_ROAD;
+	CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "road: %s", err);
+	CHECK(!edits_has_tunnels(ed), "a road is no tunnel");
+	CHECK(density_ref(&p, &ns, ed, 1.0f, h + 1.5f * r + 0.5f, 0.0f) < 0.0f, "a road removes the rock above it");
+	/* in the open (the curve above the ground): an embankment carries the
+	 * floor, the air above it stays air, nothing beyond the reach */
+	for (int i = 0; i < 3; i++)
+		pts[3 * i + 1] = 3.0f;
+	cp.kind = CURVE_TUNNEL;
+	CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "tunnel in the open: %s", err);
+	CHECK(density_ref(&p, &ns, ed, 2.0f, 2.5f, 0.0f) > 0.0f, "tunnel in the open: rock under the floor");
+	CHECK(density_ref(&p, &ns, ed, 2.0f, 3.0f - lam, r + 0.5f * lam) > 0.0f, "tunnel in the open: the embankment's slope");
+	CHECK(density_ref(&p, &ns, ed, 2.0f, 2.5f, r + 0.5f * lam) < 0.0f, "tunnel in the open: 45 degrees, no wider");
+	CHECK(density_ref(&p, &ns, ed, 2.0f, 4.0f, 0.0f) < 0.0f, "tunnel in the open: air above the floor");
+	CHECK(density_ref(&p, &ns, ed, 2.0f, 1.0f, r + lam + 1.0f) == density_ref(&p, &ns, NULL, 2.0f, 1.0f, r + lam + 1.0f),
+	      "tunnel in the open: nothing beyond the reach");
+	edits_clear(ed);
+}
+
 /* ---- edits re-generate only the affected world blocks ------------------------ */
 
 #define WB_LODS 2
@@ -1282,6 +1335,7 @@ int main(void)
 	params_defaults(&p);
 	noise_set_init(&ns, p.seed);
 	test_heightmap_cpu(ed, &p, &ns);
+	test_tunnel_cpu(ed);
 
 	struct platform *plat = fixture_open();
 	test_heightmap_gpu(ed, &p, &ns);
@@ -1306,6 +1360,21 @@ int main(void)
 		set(&p, "octaves=4;curve_incl_lo=0.2;curve_incl_hi=0.8");
 		check_density(ed, "terrain + 4 random curves", &p, 24);
 		curve_set_free(&s);
+		edits_clear(ed);
+		params_defaults(&p);
+	}
+	/* a tunnel through the terrain beside a road: the tube, its embankment,
+	 * the road's blend skipping the tunnel */
+	{
+		float tun[4 * 3] = { -14, -3, -6, -4, -2, -1, 5, -1, 2, 14, 0, 7 };
+		float road[3 * 3] = { -14, 1, 8, 0, 2, 4, 14, 2, -6 };
+		struct curve_path tp[2] = { make_path(4, tun, 5, 3, 0, 0.5f), make_path(3, road, 4, 3, 0, 0.5f) };
+		tp[0].kind = CURVE_TUNNEL;
+		struct curve_set ts = { tp, 2 };
+		char err[256];
+		CHECK(edits_set_curves(ed, &ts, 8, err, sizeof(err)) == 0, "tunnel and road: %s", err);
+		set(&p, "octaves=4");
+		check_density(ed, "terrain + tunnel + road", &p, 24);
 		edits_clear(ed);
 		params_defaults(&p);
 	}

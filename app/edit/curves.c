@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const curve_kind_names[CURVE_KIND_COUNT] = { "road", "river", "railway" };
+const char *const curve_kind_names[CURVE_KIND_COUNT] = { "road", "river", "railway", "tunnel" };
 
 #define MAX_INCLINATION 2.0f /* |tan α| cap (the thesis's MAX_INCLINATION) */
 
@@ -20,6 +20,7 @@ void curve_path_defaults(struct curve_path *p, int kind)
 		{ 8.0f, 8.0f, 0.0f, 0.5f },  /* road */
 		{ 10.0f, 12.0f, 0.0f, 0.5f }, /* river */
 		{ 5.0f, 6.0f, 0.0f, 0.5f },  /* railway */
+		{ 6.0f, 4.0f, 0.0f, 0.5f },  /* tunnel: w = the tube's diameter */
 	};
 	if (kind < 0 || kind >= CURVE_KIND_COUNT)
 		kind = CURVE_ROAD;

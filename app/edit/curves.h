@@ -16,8 +16,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
-enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_KIND_COUNT };
-extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway" */
+/* Road, river and railway are surfaces: the ground is pulled to the curve's
+ * height across its profile.  A tunnel is a tube through the rock with its
+ * floor on the curve (the rock above stays), on an embankment in the open. */
+enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_TUNNEL, CURVE_KIND_COUNT };
+/* shaders/curves.glsl compares the kind with CURVE_KIND_TUNNEL 3.0 */
+_Static_assert(CURVE_TUNNEL == 3, "CURVE_KIND_TUNNEL in shaders/curves.glsl");
+extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway", "tunnel" */
 
 /* One input polyline and its carving parameters. */
 struct curve_path {

@@ -203,3 +203,11 @@ void edits_clear(struct edits *ed)
 	memset(&ed->hm_file, 0, sizeof(ed->hm_file));
 	ed->changed = false;
 }
+
+bool edits_has_tunnels(const struct edits *ed)
+{
+	for (int k = 0; k < ed->quads.nquads; k++)
+		if (ed->quads.prm[ed->quads.first[k]][2] == (float)CURVE_TUNNEL)
+			return true;
+	return false;
+}

@@ -85,6 +85,8 @@ bool edits_take_changes(struct edits *ed, float aabb[4]);
 /* Drops the curves and the heightmap (the GL objects stay, re-uploaded on
  * the next bind). */
 void edits_clear(struct edits *ed);
+/* The edit state holds a curve of kind tunnel (the carve's 3D part). */
+bool edits_has_tunnels(const struct edits *ed);
 
 /* ---- GL (curves_gl.c) ------------------------------------------------------- */
 

@@ -42,7 +42,7 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 	const struct json_value *k = json_get(props, "kind");
 	if (k) {
 		if (k->type != JSON_STRING || curve_kind_parse(k->str) < 0)
-			return gfail(g, k->line, what, "\"kind\" must be \"road\", \"river\" or \"railway\"");
+			return gfail(g, k->line, what, "\"kind\" must be \"road\", \"river\", \"railway\" or \"tunnel\"");
 		curve_path_defaults(base, curve_kind_parse(k->str));
 	}
 	for (int i = 0; i < CURVE_NPARAMS; i++) {
