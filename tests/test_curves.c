@@ -644,8 +644,16 @@ static void test_io(void)
 	}
 	/* malformed: each names the line */
 	expect_parse_error(false, "{ \"type\": \"FeatureCollection\", \"features\": [\n  { \"type\": \"Feature\",\n", "t.geojson:3");
-	expect_parse_error(false, "{\n \"type\": \"Feature\", \"geometry\": { \"type\": \"LineString\",\n \"coordinates\": [[0,0],[1,1]] } }",
-			   "t.geojson:3: feature 1: position 1 has 2 coordinates");
+	expect_parse_error(false, "{\n \"type\": \"Feature\", \"geometry\": { \"type\": \"LineString\",\n \"coordinates\": [[0,0,0,0],[1,1,1,1]] } }",
+			   "t.geojson:3: feature 1: position 1 has 4 coordinates; GeoJSON positions are [x east, y north] "
+			   "(the curve follows the ground) or [x east, y north, z up] (z up, unlike the CSV's y up)");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,1,1]]}",
+			   "position 2 has 3 coordinates, position 1 has 2: a line string is all 2D [x east, y north] or all "
+			   "3D [x east, y north, z up]");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,\"n\"]]}",
+			   "position 2: y (north) is not a number");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"crs\":{\"type\":\"EPSG\"},\"coordinates\":[[0,0],[1,1]]}",
+			   "\"crs\" must be");
 	expect_parse_error(false, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}},\n"
 			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[]}}]}",
 			   "t.geojson:2: feature 2: geometry type \"Polygon\"");
@@ -678,9 +686,146 @@ static void test_io(void)
 	CHECK(curves_load("roads.kml", &s, err, sizeof(err)) < 0 && strstr(err, "unknown format"), "kml: %s", err);
 }
 
-/* ---- heightmap (CPU) --------------------------------------------------------------------- */
-
 static char tmpdir[] = "/tmp/isoterra-curves-XXXXXX";
+
+/* ---- geographic input ---------------------------------------------------------------------- */
+
+static int parse_geo(const char *text, struct curve_set *s)
+{
+	char err[512] = "";
+	int rc = curves_parse_geojson(text, strlen(text), "g.geojson", s, err, sizeof(err));
+	CHECK(rc == 0, "GeoJSON: %s", err);
+	return rc;
+}
+
+/* lon/lat or world units, per the rule */
+static bool geo_mode(const char *text, int mode, const char **why)
+{
+	struct curve_set s;
+	bool ll = false;
+	double c[2];
+	char err[256];
+	if (parse_geo(text, &s) == 0) {
+		CHECK(curves_geo_project(&s, mode, 1.0f, &ll, why, c, err, sizeof(err)) == 0, "project: %s", err);
+		curve_set_free(&s);
+	}
+	return ll;
+}
+
+static bool ramp_ground(void *ctx, float x, float z, float *y)
+{
+	(void)ctx;
+	*y = 0.5f * x - 0.25f * z + 3.0f;
+	return true;
+}
+
+static void test_geo(void)
+{
+	/* WGS84 (crs member): 0.01 degree of longitude and of latitude at 45 N.
+	 * Expected lengths from the WGS84 radii of curvature at 45 degrees:
+	 * N = 6388838.29 m, M = 6367381.82 m, so 0.01 degree east is
+	 * N cos 45 * 0.01 pi/180 = 788.468 m, 0.01 north 1111.330 m. */
+	const char *ll = "{\"type\":\"Feature\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
+			 "\"urn:ogc:def:crs:OGC:1.3:CRS84\"}},\"geometry\":{\"type\":\"LineString\","
+			 "\"coordinates\":[[7.00,44.995],[7.01,44.995],[7.01,45.005]]}}";
+	struct curve_set s;
+	char err[512];
+	if (parse_geo(ll, &s) == 0) {
+		bool lonlat;
+		const char *why;
+		double c[2];
+		CHECK(s.paths[0].follow_ground && s.paths[0].crs == CURVE_CRS_WGS84, "2D, WGS84 named");
+		CHECK(curves_geo_project(&s, CURVES_CRS_AUTO, 1.0f, &lonlat, &why, c, err, sizeof(err)) == 0, "%s", err);
+		const float *q = s.paths[0].pts;
+		CHECK(lonlat && strstr(why, "crs"), "lon/lat from the crs member (%s)", why);
+		CHECK_NEAR(c[0], (7.00 + 2 * 7.01) / 3, 1e-9, "centroid lon");
+		CHECK_NEAR(c[1], (44.995 * 2 + 45.005) / 3, 1e-9, "centroid lat");
+		CHECK_NEAR(q[3] - q[0], 788.468, 0.05, "0.01 degree east at 45 N in metres");
+		CHECK_NEAR(-(q[8] - q[5]), 1111.330, 0.05, "0.01 degree north at 45 N in metres (world z = -north)");
+		CHECK_NEAR((q[0] + q[3] + q[6]) / 3, 0.0, 1e-3, "x centred on the centroid");
+		CHECK_NEAR((q[2] + q[5] + q[8]) / 3, 0.0, 0.5, "z near the centroid (the projection is not linear in lat)");
+		curve_set_free(&s);
+	}
+	/* the auto rule */
+	const char *why = "";
+	const char *small = "{\"type\":\"LineString\",\"coordinates\":[[-3.70,40.41,650],[-3.69,40.42,655]]}";
+	const char *local = "{\"type\":\"LineString\",\"coordinates\":[[-14,-2,1],[4,9,2]]}";
+	const char *named = "{\"type\":\"LineString\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
+			    "\"EPSG:25830\"}},\"coordinates\":[[0.1,0.2,0],[0.3,0.4,0]]}";
+	CHECK(geo_mode(small, CURVES_CRS_AUTO, &why), "small lon/lat extent, no crs: lon/lat (%s)", why);
+	CHECK(!geo_mode(local, CURVES_CRS_AUTO, &why), "a span over a degree: world units (%s)", why);
+	CHECK(!geo_mode(named, CURVES_CRS_AUTO, &why), "another crs named: world units (%s)", why);
+	CHECK(geo_mode(local, CURVES_CRS_LONLAT, &why), "forced lon/lat");
+	CHECK(!geo_mode(small, CURVES_CRS_LOCAL, &why), "forced local");
+	/* 3D lon/lat: the altitude scaled with the rest */
+	if (parse_geo(small, &s) == 0) {
+		bool lonlat;
+		double c[2];
+		CHECK(curves_geo_project(&s, CURVES_CRS_AUTO, 0.01f, &lonlat, &why, c, err, sizeof(err)) == 0, "%s", err);
+		CHECK(!s.paths[0].follow_ground && fabsf(s.paths[0].pts[1] - 6.5f) < 1e-4f, "altitude 650 m at 0.01: y 6.5");
+		curve_set_free(&s);
+	}
+	/* 2D: points every step along the line, each on the ground */
+	const char *flat = "{\"type\":\"LineString\",\"coordinates\":[[-10,0],[10,0],[10,-5]]}";
+	if (parse_geo(flat, &s) == 0) {
+		CHECK(curves_follow_ground(&s, 2.0f, ramp_ground, NULL, err, sizeof(err)) == 0, "follow: %s", err);
+		const struct curve_path *p = &s.paths[0];
+		int bad = 0;
+		for (int k = 0; k < p->npts; k++)
+			bad += fabsf(p->pts[3 * k + 1] - (0.5f * p->pts[3 * k] - 0.25f * p->pts[3 * k + 2] + 3.0f)) > 1e-5f;
+		CHECK(p->npts == 1 + 10 + 3, "20 + 5 units at most 2 apart: 14 points, got %d", p->npts);
+		CHECK(bad == 0, "%d points off the ground", bad);
+		curve_set_free(&s);
+	}
+	if (parse_geo(flat, &s) == 0) {
+		CHECK(curves_follow_ground(&s, 2.0f, NULL, NULL, err, sizeof(err)) < 0 && strstr(err, "[x east, y north, z up]"),
+		      "no ground to follow: %s", err);
+		curve_set_free(&s);
+	}
+}
+
+/* A 2D GeoJSON file through the edit state and the terrain: every point on
+ * the field's surface (CPU density: air just above, rock just below). */
+static void test_geo_terrain(void)
+{
+	char path[200], err[512] = "";
+	snprintf(path, sizeof(path), "%.150s/flat.geojson", tmpdir);
+	FILE *f = fopen(path, "w");
+	CHECK(f != NULL, "write %s", path);
+	if (!f)
+		return;
+	fputs("{\"type\":\"Feature\",\"properties\":{\"kind\":\"road\",\"width\":3},\"geometry\":{\"type\":"
+	      "\"LineString\",\"coordinates\":[[-12,-9],[0,2],[13,6]]}}\n",
+	      f);
+	fclose(f);
+	struct params p;
+	params_defaults(&p);
+	set(&p, "octaves=5");
+	snprintf(p.curves, sizeof(p.curves), "%s", path);
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	CHECK(edits_load(ed, &p, err, sizeof(err)) == 0, "2D curves on the terrain: %s", err);
+	static struct noise_set ns;
+	noise_set_init(&ns, p.seed);
+	int bad = 0, n = 0;
+	if (ed->curves.npaths == 1) {
+		const struct curve_path *c = &ed->curves.paths[0];
+		for (int k = 0; k < c->npts; k++, n++) {
+			const float *q = c->pts + 3 * k;
+			bad += !(density_ref(&p, &ns, NULL, q[0], q[1] + 0.02f, q[2]) < p.iso &&
+				 density_ref(&p, &ns, NULL, q[0], q[1] - 0.02f, q[2]) >= p.iso);
+		}
+	}
+	CHECK(n > 10 && bad == 0, "2D curve on the surface: %d of %d points not", bad, n);
+	terrain_destroy(tr);
+	/* without a terrain there is no ground to follow: refused */
+	edits_clear(ed);
+	CHECK(edits_load(ed, &p, err, sizeof(err)) < 0 && strstr(err, "follow the terrain"), "no terrain: %s", err);
+	edits_destroy(ed);
+	unlink(path);
+}
+
+/* ---- heightmap (CPU) --------------------------------------------------------------------- */
 
 static void hm_path(char *buf, size_t len, const char *name)
 {
@@ -1336,6 +1481,8 @@ int main(void)
 	noise_set_init(&ns, p.seed);
 	test_heightmap_cpu(ed, &p, &ns);
 	test_tunnel_cpu(ed);
+	test_geo();
+	test_geo_terrain();
 
 	struct platform *plat = fixture_open();
 	test_heightmap_gpu(ed, &p, &ns);

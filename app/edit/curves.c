@@ -76,6 +76,7 @@ float curve_path_reach(const struct curve_path *p)
 bool curve_path_equal(const struct curve_path *a, const struct curve_path *b)
 {
 	return a->kind == b->kind && a->width == b->width && a->falloff == b->falloff &&
+	       a->follow_ground == b->follow_ground &&
 	       a->inclination == b->inclination && a->smoothing == b->smoothing && a->npts == b->npts &&
 	       (a->npts == 0 || memcmp(a->pts, b->pts, sizeof(float) * 3 * (size_t)a->npts) == 0);
 }

@@ -2,6 +2,7 @@
  * files the parameters name (reloaded when a file changes) or set through
  * the API, and the record of the region that changed. */
 #include "edits.h"
+#include "core.h"
 
 #include <float.h>
 #include <stdio.h>
@@ -113,6 +114,46 @@ int edits_set_curves(struct edits *ed, const struct curve_set *s, int dim, char 
 
 static const float whole_plane[4] = { -FLT_MAX, -FLT_MAX, FLT_MAX, FLT_MAX };
 
+void edits_set_ground(struct edits *ed, edits_ground_fn fn, void *ctx)
+{
+	ed->ground = fn;
+	ed->ground_ctx = ctx;
+}
+
+struct ground_call {
+	const struct edits *ed;
+	const struct params *p;
+};
+
+static bool ground_at(void *ctx, float x, float z, float *y)
+{
+	const struct ground_call *c = ctx;
+	return c->ed->ground(c->ed->ground_ctx, c->p, c->ed, x, z, y);
+}
+
+/* The file's curves in world units: lon/lat projected, 2D curves on the
+ * ground (curves_geo.c). */
+static int load_curves_file(struct edits *ed, const struct params *p, struct curve_set *s, char *err, size_t errlen)
+{
+	if (curves_load(p->curves, s, err, errlen) < 0)
+		return -1;
+	bool lonlat;
+	const char *why;
+	double c[2];
+	if (curves_geo_project(s, p->curves_crs, p->curves_geo_scale, &lonlat, &why, c, err, errlen) < 0)
+		goto fail;
+	if (lonlat)
+		log_info("%s: WGS84 lon/lat (%s), projected to the tangent plane at lon %.6f lat %.6f, %g world units "
+			 "per metre", p->curves, why, c[0], c[1], (double)p->curves_geo_scale);
+	struct ground_call gc = { ed, p };
+	if (curves_follow_ground(s, p->curves_follow_step, ed->ground ? ground_at : NULL, &gc, err, errlen) < 0)
+		goto fail;
+	return 0;
+fail:
+	curve_set_free(s);
+	return -1;
+}
+
 /* The curves file p->curves, (re)loaded when it changed. */
 static int load_curves(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
@@ -126,7 +167,7 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 		}
 		if (!same_key(&k, &ed->curves_file) || !ed->curves_from_file) {
 			struct curve_set s;
-			if (curves_load(p->curves, &s, err, errlen) < 0)
+			if (load_curves_file(ed, p, &s, err, errlen) < 0)
 				return -1;
 			if (install_curves(ed, &s, p->curve_hash_dim, true, err, errlen) < 0)
 				return -1;
@@ -181,7 +222,8 @@ static int load_heightmap(struct edits *ed, const struct params *p, char *err, s
 
 int edits_load(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
-	if (load_curves(ed, p, err, errlen) < 0 || load_heightmap(ed, p, err, errlen) < 0)
+	/* the heightmap first: 2D curves may follow it */
+	if (load_heightmap(ed, p, err, errlen) < 0 || load_curves(ed, p, err, errlen) < 0)
 		return -1;
 	if (p->field == FIELD_HEIGHTMAP && !ed->hm.w) {
 		snprintf(err, errlen, "field=heightmap needs a heightmap file (--heightmap FILE.png, 16-bit grayscale)");

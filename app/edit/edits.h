@@ -44,6 +44,12 @@ struct edits_file {
 };
 
 struct edits_gl; /* curves_gl.c */
+struct edits;
+
+/* The terrain's surface height under (x, z) for parameters p, before any
+ * edit (the field or the heightmap alone); false when there is none. */
+typedef bool (*edits_ground_fn)(void *ctx, const struct params *p, const struct edits *ed, float x, float z,
+				float *y);
 
 struct edits {
 	/* read freely; changed only through the functions below */
@@ -60,6 +66,8 @@ struct edits {
 	bool changed;
 	float changed_box[4];
 	struct edits_gl *gl;
+	edits_ground_fn ground; /* edits_set_ground: 2D curves follow it */
+	void *ground_ctx;
 };
 
 /* An empty edit state (no curves, no heightmap); NULL when out of memory. */
@@ -85,6 +93,9 @@ bool edits_take_changes(struct edits *ed, float aabb[4]);
 /* Drops the curves and the heightmap (the GL objects stay, re-uploaded on
  * the next bind). */
 void edits_clear(struct edits *ed);
+/* The ground that 2D curves follow (the terrain provider sets it; NULL
+ * drops it: 2D curves are then refused). */
+void edits_set_ground(struct edits *ed, edits_ground_fn fn, void *ctx);
 /* The edit state holds a curve of kind tunnel (the carve's 3D part). */
 bool edits_has_tunnels(const struct edits *ed);
 
