@@ -1,7 +1,9 @@
 /* isoterra — shader loader: embedded or on-disk sources, host-side
- * #include expansion, file:line error reports. */
+ * #include expansion, file:line error reports; every program it builds is
+ * noted with the live-editing watcher (shader_watch.c) when one is open. */
 #include "gpu.h"
 #include "log.h"
+#include "shader_int.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -234,14 +236,17 @@ static void format_log(const struct srcbuf *b, const char *log, const char *fall
 	}
 }
 
-static GLuint compile(GLenum type, const char *stage_define, const char *file, const char *defines, char *err,
-		      size_t errlen)
+/* deps (or NULL) gets the files the shader is made of. */
+static GLuint compile(GLenum type, const char *stage_define, const char *file, const char *defines,
+		      struct shader_deps *deps, char *err, size_t errlen)
 {
 	struct srcbuf b;
 	if (assemble(&b, stage_define, file, defines, err, errlen) < 0) {
 		free(b.s);
 		return 0;
 	}
+	for (int i = 1; deps && i < b.nfiles && deps->n < SHADER_MAX_DEPS; i++)
+		snprintf(deps->names[deps->n++], sizeof(deps->names[0]), "%s", b.names[i]);
 	GLuint sh = glCreateShader(type);
 	if (!sh) {
 		snprintf(err, errlen, "%s: glCreateShader failed (0x%x)", file, glGetError());
@@ -297,26 +302,50 @@ static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t e
 	return prog;
 }
 
-GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen)
+GLuint shader_build(const struct shader_desc *d, struct shader_deps *deps, char *err, size_t errlen)
 {
-	GLuint sh = compile(GL_COMPUTE_SHADER, "#define STAGE_COMPUTE 1\n", file, defines, err, errlen);
-	if (!sh)
-		return 0;
-	return link(&sh, 1, file, err, errlen);
-}
-
-GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen)
-{
+	if (deps)
+		deps->n = 0;
+	if (d->compute) {
+		GLuint sh = compile(GL_COMPUTE_SHADER, "#define STAGE_COMPUTE 1\n", d->file[0], d->defines, deps, err,
+				    errlen);
+		return sh ? link(&sh, 1, d->file[0], err, errlen) : 0;
+	}
 	GLuint sh[2];
-	sh[0] = compile(GL_VERTEX_SHADER, "#define STAGE_VERTEX 1\n", vs_file, defines, err, errlen);
+	sh[0] = compile(GL_VERTEX_SHADER, "#define STAGE_VERTEX 1\n", d->file[0], d->defines, deps, err, errlen);
 	if (!sh[0])
 		return 0;
-	sh[1] = compile(GL_FRAGMENT_SHADER, "#define STAGE_FRAGMENT 1\n", fs_file, defines, err, errlen);
+	sh[1] = compile(GL_FRAGMENT_SHADER, "#define STAGE_FRAGMENT 1\n", d->file[1], d->defines, deps, err, errlen);
 	if (!sh[1]) {
 		glDeleteShader(sh[0]);
 		return 0;
 	}
-	return link(sh, 2, vs_file, err, errlen);
+	return link(sh, 2, d->file[0], err, errlen);
+}
+
+/* Builds the program and notes it with the watcher (live editing). */
+static GLuint build_noted(const struct shader_desc *d, char *err, size_t errlen)
+{
+	struct shader_deps deps;
+	GLuint prog = shader_build(d, &deps, err, errlen);
+	if (prog)
+		shader_watch_note(prog, d, &deps);
+	return prog;
+}
+
+GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen)
+{
+	struct shader_desc d = { .compute = true, .defines = defines };
+	snprintf(d.file[0], sizeof(d.file[0]), "%s", file);
+	return build_noted(&d, err, errlen);
+}
+
+GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen)
+{
+	struct shader_desc d = { .compute = false, .defines = defines };
+	snprintf(d.file[0], sizeof(d.file[0]), "%s", vs_file);
+	snprintf(d.file[1], sizeof(d.file[1]), "%s", fs_file);
+	return build_noted(&d, err, errlen);
 }
 
 void gpu_set_param_uniforms(GLuint prog, const struct params *p)
