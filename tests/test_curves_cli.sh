@@ -43,6 +43,11 @@ expect_ok $SMALL --curves roads.csv --curve-hash-dim 4
 expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --heightmap-detail 1 --curves road.geojson
 printf 'field = heightmap\nheightmap = hm.png\ncurves = roads.csv\nheightmap_scale = 6\n' >edit.conf
 expect_ok $SMALL --config edit.conf
+# the control map: a grayscale PNG; a missing or broken one is one message
+expect_ok $SMALL --control-strength 0.8 --control-map hm.png
+expect_fail "cannot open control map file 'nothere.png'" $SMALL --control-strength 0.8 --control-map nothere.png
+echo 'not a png' >bad.png
+expect_fail "control map: 'bad.png' is not a PNG file" $SMALL --control-strength 0.8 --control-map bad.png
 # 2D positions follow the ground; WGS84 lon/lat (a small area) is projected
 cat >flat.geojson <<'J'
 { "type": "LineString", "coordinates": [[-14, 9], [0, -1], [14, -9]] }

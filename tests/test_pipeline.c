@@ -469,6 +469,7 @@ static void check_terms(void)
 		{ "", "fractal=geiss", "fractal=worley", "u_worley_c1", false },
 		{ "", "fractal=geiss", "fractal=slope_damped", "u_mf_slope", false },
 		{ "", "marble_amp=0", "marble_amp=2", "u_marble_turb", false },
+		{ "", "control_strength=0", "control_strength=0.6", "u_control_freq", false },
 		{ "", "closed=false", "closed=true", "u_iso", false },
 		{ "field=heightmap", "heightmap_detail=0", "heightmap_detail=2", "u_heightmap_octaves", false },
 		{ "field=heightmap;octaves=4", "heightmap_noise=0", "heightmap_noise=0.3", "u_heightmap_noise", false },

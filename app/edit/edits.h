@@ -58,10 +58,12 @@ struct edits {
 	struct curve_hash hash;    /* over quads */
 	bool curves_from_file;
 	struct heightmap hm;       /* w == 0: none */
+	struct heightmap control;  /* the control map, samples 0..65535; w == 0: none */
 	unsigned curves_gen, hm_gen; /* bumped on every change (GPU re-upload) */
+	unsigned control_gen;
 	/* private: the files loaded, the hash size, the region changed since
 	 * the last edits_take_changes(), the GL side (NULL until first bound) */
-	struct edits_file curves_file, hm_file;
+	struct edits_file curves_file, hm_file, control_file;
 	int hash_dim;
 	bool changed;
 	float changed_box[4];

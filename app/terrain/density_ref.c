@@ -238,6 +238,30 @@ static void domain_warp(const struct params *p, const struct noise_set *ns, cons
 	w[2] = noise_perlin(ns, x + 37.1f, y + 63.7f, z + 13.9f);
 }
 
+/* density.glsl control_value: the control map's c in [0, 1] at (x, z) */
+static float control_value(const struct params *p, const struct noise_set *ns, const struct edits *ed, float x,
+			   float z)
+{
+	const struct heightmap *m = &ed->control;
+	if (!m->w) {
+		float n = noise_perlin(ns, x * p->control_freq + 3.7f, 0.5f, z * p->control_freq + 9.1f);
+		return clampf(0.5f + 1.8f * n, 0.0f, 1.0f);
+	}
+	float gx = x / p->control_map_scale + 0.5f * (float)(m->w - 1);
+	float gz = z / p->control_map_scale + 0.5f * (float)(m->h - 1);
+	float x0 = floorf(gx), z0 = floorf(gz), fx = gx - x0, fz = gz - z0;
+	int ix = (int)x0, iz = (int)z0;
+	float t[4];
+	for (int k = 0; k < 4; k++) {
+		int cx = ix + (k & 1), cz = iz + (k >> 1);
+		cx = cx < 0 ? 0 : (cx > m->w - 1 ? m->w - 1 : cx);
+		cz = cz < 0 ? 0 : (cz > m->h - 1 ? m->h - 1 : cz);
+		t[k] = m->v[(size_t)cz * (size_t)m->w + (size_t)cx];
+	}
+	float top = t[0] + fx * (t[1] - t[0]), bot = t[2] + fx * (t[3] - t[2]);
+	return (top + fz * (bot - top)) * (1.0f / 65535.0f);
+}
+
 static float marble_term(const struct params *p, const struct noise_set *ns, const float ws[3])
 {
 	float h = 0.5f * p->marble_freq;
@@ -335,7 +359,10 @@ float density_ref(const struct params *p, const struct noise_set *ns, const stru
 		d = -ws[1] * p->ground_slope;
 	}
 
-	d += p->noise_amp * fractal_ref(p, ns, ws);
+	float amp = p->noise_amp;
+	if (p->control_strength != 0.0f)
+		amp *= 1.0f - p->control_strength * (1.0f - control_value(p, ns, ed, orig[0], orig[2]));
+	d += amp * fractal_ref(p, ns, ws);
 
 	d += sat((p->floor_y - orig[1]) * p->floor_sharpness) * p->floor_strength;
 

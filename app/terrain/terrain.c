@@ -87,7 +87,8 @@ static int terrain_bind(void *ctx, GLuint prog, const struct params *p, char *er
 }
 
 /* The edit state's switches: HAS_CURVES 0 compiles the carve out
- * (shaders/carve.glsl), HAS_TUNNELS 0 its tunnels' walk.  The state is brought in line with p first (the
+ * (shaders/carve.glsl), HAS_TUNNELS 0 its tunnels' walk, HAS_CONTROL_MAP
+ * 1 reads the control map file instead of painting it with noise.  The state is brought in line with p first (the
  * curves file loaded or dropped), so the program chosen matches what bind
  * uploads.  The heightmap needs no switch: its code is compiled only for
  * field=heightmap (a specialized enum), which requires a map. */
@@ -97,8 +98,8 @@ static int terrain_defines(void *ctx, const struct params *p, char *buf, size_t 
 	if (edits_load(t->ed, p, err, errlen) < 0)
 		return -1;
 	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
-	int n = snprintf(buf, len, "#define HAS_CURVES %d\n#define HAS_TUNNELS %d\n", curves,
-			 curves && edits_has_tunnels(t->ed));
+	int n = snprintf(buf, len, "#define HAS_CURVES %d\n#define HAS_TUNNELS %d\n#define HAS_CONTROL_MAP %d\n", curves,
+			 curves && edits_has_tunnels(t->ed), t->ed->control.w > 0);
 	return n < 0 || (size_t)n >= len ? -1 : n;
 }
 
