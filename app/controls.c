@@ -370,7 +370,7 @@ struct controls *controls_create(const struct params *p, char *err, size_t errle
 			goto fail;
 		}
 	}
-	if (p->osd && (c->gpio || c->keys)) {
+	if (p->osd && (c->gpio || c->keys || p->shader_dir[0])) { /* knobs; live shader errors */
 		c->osd = osd_create(err, errlen);
 		if (!c->osd)
 			goto fail;
@@ -416,6 +416,12 @@ static void show(struct controls *c, const struct params *p, const char *title, 
 	c->osd_bar = bar;
 	c->osd_until = hal_now_ns() + (uint64_t)(p->osd_seconds * 1e9);
 	c->osd_fade = (uint64_t)(fmin(0.5, p->osd_seconds / 2) * 1e9);
+}
+
+void controls_notice(struct controls *c, const struct params *p, const char *title, const char *text)
+{
+	if (c)
+		show(c, p, title, text, -1.0f);
 }
 
 static void show_param(struct controls *c, const struct params *p, const char *prefix)

@@ -71,6 +71,9 @@ int controls_poll(struct controls *c, struct params *p);
 void controls_flight(struct controls *c, float move[3], float turn[2]);
 /* The animation clock: t while running, frozen while paused. */
 float controls_time(struct controls *c, float t);
+/* A message on the OSD for osd_seconds (a broken shader edit).  NULL c or
+ * no OSD: nothing. */
+void controls_notice(struct controls *c, const struct params *p, const char *title, const char *text);
 /* After the frame is drawn into r's target: the OSD over it, a screenshot
  * when one was asked for (reported).  0, or -1 with err. */
 int controls_frame(struct controls *c, struct renderer *r, const struct params *p, char *err, size_t errlen);

@@ -31,6 +31,11 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		if (controls_poll(lp->ctl, p)) /* quit: this frame is the last */
 			p->count = f + 1;
 		struct scene_timing tm = { 0, 0 };
+		char msg[512]; /* a saved shader file rebuilt; a broken one reported, the last good kept */
+		if (shader_watch_poll(lp->shaders, msg, sizeof(msg)) < 0) {
+			log_error("%s", msg);
+			controls_notice(lp->ctl, p, "shader error", msg);
+		}
 		struct scene_frame sf = { .index = f, .live = lp->live, .start_s = start, .ctl = lp->ctl,
 					  .r = lp->r, .w = lp->w, .h = lp->h, .refresh_hz = lp->refresh_hz,
 					  .timing = lp->timing ? &tm : NULL };
@@ -105,6 +110,7 @@ struct run {
 	struct sink *display;  /* opened with the platform, then the last sink */
 	struct sink_set sinks;
 	struct scene *scene;
+	struct shader_watch *shaders;
 };
 
 /* Platform, GL and the renderer, at the window's / mode's size on a
@@ -220,6 +226,7 @@ static int run_frames(struct run *rn)
 		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s)",
 			 p->keyboard == KEYBOARD_OFF ? "off!" : "terminal or evdev");
 	struct frame_loop lp = { .p = p, .scene = rn->scene, .ctl = rn->ctl, .sinks = &rn->sinks, .r = rn->r,
+				 .shaders = rn->shaders,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,
 				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz,
 				 .timing = p->results[0] != 0 };
@@ -254,6 +261,7 @@ static void close_run(struct run *rn)
 	scene_destroy(rn->scene);
 	controls_destroy(rn->ctl);
 	renderer_destroy(rn->r);
+	shader_watch_close(rn->shaders);
 	platform_close(rn->plat);
 	sinks_destroy(&rn->sinks);
 	if (rn->display)
@@ -278,6 +286,10 @@ int run_program(const struct params *p_in)
 	if (rc) {
 		log_error("%s", err);
 		return rc;
+	}
+	if (rn.p.shader_dir[0] && !(rn.shaders = shader_watch_open(rn.p.shader_dir, err, sizeof(err)))) {
+		log_error("%s", err);
+		return 2;
 	}
 	bool signals_ok = signals_install() == 0;
 	rc = open_run(&rn, signals_ok, err, sizeof(err));

@@ -22,6 +22,7 @@ struct frame_loop {
 	struct controls *ctl;    /* NULL: none */
 	struct sink_set *sinks;
 	struct renderer *r;      /* the frame's target; a display's resize replaces it */
+	struct shader_watch *shaders; /* live shader editing; NULL: none */
 	int w, h;
 	bool live;               /* a display: wall-clock time, and its sink sees SIGINT/SIGTERM */
 	bool watch_signals;      /* headless: SIGINT/SIGTERM end the loop (signals.h) */

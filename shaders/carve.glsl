@@ -9,6 +9,10 @@
 // (rock above h removed) and crosses a valley on an embankment (rock below
 // h added); the falloff λ gives the side slopes; a river below the surface
 // carves a canyon.
+//
+// A tunnel curve is no surface: it carves a tube and leaves the rock above
+// (curves.glsl, tunnel_eval), and carries its floor on an embankment in the
+// open:  d' = min(max(d, fill), tube), blended by curve_strength.
 
 #include "curves.glsl"
 #include "heightmap.glsl"
@@ -20,6 +24,11 @@
 #ifndef HAS_CURVES
 #define HAS_CURVES 1
 #endif
+// HAS_TUNNELS 0: no tunnel curve, so the second walk over the curves (in
+// 3D) is not compiled.
+#ifndef HAS_TUNNELS
+#define HAS_TUNNELS 1
+#endif
 
 float carve_density(vec3 ws, float d)
 {
@@ -28,7 +37,12 @@ float carve_density(vec3 ws, float d)
 		return d;
 	vec4 e = curve_eval(ws.xz);
 	float k = e.y * u_curve_strength;
-	return d + k * ((e.x - ws.y) - d);
+	d += k * ((e.x - ws.y) - d);
+#if HAS_TUNNELS
+	vec2 tn = tunnel_eval(ws);
+	d += u_curve_strength * (min(max(d, tn.x), tn.y) - d);
+#endif
+	return d;
 #else
 	return d;
 #endif

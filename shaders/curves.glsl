@@ -12,6 +12,8 @@
 //   BIND_CURVE_PRM    CurvePrm:   curve_prm[f] = (w/2, λ, kind, path)
 //
 //   vec4 curve_eval(vec2 xz);   // (height, Θ of the closest curve, |d| closest, Σ Θ)
+//                               // of the surface curves (every kind but tunnel)
+//   vec2 tunnel_eval(vec3 ws);  // (fill, tube) of the tunnel curves
 
 layout(std430, binding = BIND_CURVE_PIVOT) restrict readonly buffer CurvePivot { ivec2 curve_pivot[]; };
 layout(std430, binding = BIND_CURVE_INDEX) restrict readonly buffer CurveIndex { int curve_index[]; };
@@ -24,6 +26,9 @@ uniform ivec2 u_curve_hash_dim;   // cells in x, z
 uniform vec2 u_curve_hash_origin; // x, z of the grid's corner
 uniform vec2 u_curve_hash_size;   // extent in x, z
 uniform vec2 u_curve_hash_cell;   // cell size in x, z
+
+// curve_kind in app/edit/curves.h: CURVE_TUNNEL (a _Static_assert there)
+#define CURVE_KIND_TUNNEL 3.0
 
 #ifndef CURVE_SEGMENTS
 #define CURVE_SEGMENTS 32
@@ -218,6 +223,8 @@ vec4 curve_accumulate(vec2 pos, int start, int count)
 		int f = curve_index[i];
 		i++;
 		vec4 prm = curve_prm[f];
+		if (prm.z == CURVE_KIND_TUNNEL) // not a surface: tunnel_eval
+			continue;
 		vec4 cl = CURVE_CLOSEST(f, pos);
 		float ad = abs(cl.x);
 		float th = curve_theta(ad, prm.x, prm.y);
@@ -255,5 +262,45 @@ vec4 curve_eval(vec2 pos)
 	if (piv.y == 0)
 		return none;
 	return curve_accumulate(pos, piv.x, piv.y);
+#endif
+}
+
+// Tunnels: a tube of radius r = w/2 whose flat floor lies on the curve
+// (height h), its axis r/2 above the floor, carved through the rock while
+// the rock above stays; where the curve runs above the ground an
+// embankment carries the floor (rock under it widening at 45 degrees for
+// λ, then straight down).  Over the tunnel curves in reach of ws:
+//   tube = min over curves of max(|(lateral, y - h - r/2)| - r, h - y)  (< 0: the tube's air)
+//   fill = max over curves of min(h - y, r + min(h - y, λ) - lateral)   (> 0: the embankment)
+vec2 tunnel_accumulate(vec3 ws, int start, int count)
+{
+	vec2 r = vec2(-1e30, 1e30);
+	for (int i = start; i < start + count; i++) {
+		int f = curve_index[i];
+		vec4 prm = curve_prm[f];
+		if (prm.z != CURVE_KIND_TUNNEL || !curve_near(f, ws.xz))
+			continue;
+		vec4 cl = CURVE_CLOSEST(f, ws.xz);
+		float ad = abs(cl.x), below = cl.z - ws.y, dy = ws.y - (cl.z + 0.5 * prm.x);
+		r.x = max(r.x, min(below, prm.x + min(below, prm.y) - ad));
+		r.y = min(r.y, max(sqrt(ad * ad + dy * dy) - prm.x, below));
+	}
+	return r;
+}
+
+vec2 tunnel_eval(vec3 ws)
+{
+	vec2 none = vec2(-1e30, 1e30);
+	if (u_curve_count == 0)
+		return none;
+#ifdef CURVE_ITERATIVE
+	return tunnel_accumulate(ws, u_curve_all_offset, u_curve_count);
+#else
+	vec2 l = ws.xz - u_curve_hash_origin;
+	if (!(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
+		return none;
+	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
+	ivec2 piv = curve_pivot[c.x + c.y * u_curve_hash_dim.x];
+	return tunnel_accumulate(ws, piv.x, piv.y);
 #endif
 }

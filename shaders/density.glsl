@@ -90,6 +90,60 @@ float shelf_term(float y)
 	return u_shelf_strength * (1.0 - dens_smooth(abs(dy) * (1.0 / w)));
 }
 
+// The 2D control map (GPU Gems 3 ch.1): a low-frequency value c in [0, 1]
+// over x, z that sets the terrain's character -- the noise term's amplitude
+// is scaled by 1 - control_strength (1 - c): plains where c = 0, mountains
+// where c = 1.  From the control map file (R32F samples 0..65535, centred
+// on x = z = 0, control_map_scale world units apart, bilinear, clamped at
+// the edges; HAS_CONTROL_MAP, from the terrain provider) or, without one,
+// 2D Perlin noise at control_freq.
+#ifndef HAS_CONTROL_MAP
+#define HAS_CONTROL_MAP 0
+#endif
+#if TERM_CONTROL_STRENGTH
+#if HAS_CONTROL_MAP
+layout(binding = TEX_CONTROL) uniform highp sampler2D u_control_tex;
+uniform ivec2 u_control_size;
+
+float control_texel(ivec2 c)
+{
+	return texelFetch(u_control_tex, clamp(c, ivec2(0), u_control_size - 1), 0).r;
+}
+#endif
+
+float control_value(vec2 xz)
+{
+#if HAS_CONTROL_MAP
+	vec2 g = xz / u_control_map_scale + 0.5 * vec2(u_control_size - 1);
+	vec2 g0 = floor(g);
+	vec2 f = g - g0;
+	ivec2 c = ivec2(g0);
+	float a = control_texel(c), b = control_texel(c + ivec2(1, 0));
+	float e = control_texel(c + ivec2(0, 1)), h = control_texel(c + ivec2(1, 1));
+	float top = a + f.x * (b - a), bot = e + f.x * (h - e);
+	return (top + f.y * (bot - top)) * (1.0 / 65535.0);
+#else
+	float n = perlin(vec3(xz.x * u_control_freq + 3.7, 0.5, xz.y * u_control_freq + 9.1));
+	return clamp(0.5 + 1.8 * n, 0.0, 1.0);
+#endif
+}
+#endif
+
+// Marble (Perlin 1985; Clua 1999 §3.2): sine bands along y pushed by
+// turbulence, T = sum_k |n(p 2^k)| / 2^k over four octaves at half the
+// bands' frequency.
+float marble_term(vec3 ws)
+{
+	vec3 p = ws * (0.5 * u_marble_freq) + vec3(5.17, 31.3, 11.9);
+	float t = 0.0, a = 1.0;
+	for (int k = 0; k < 4; k++) {
+		t += abs(perlin(p)) * a;
+		p *= 2.0;
+		a *= 0.5;
+	}
+	return u_marble_amp * sin(2.0 * PI_F * u_marble_freq * (ws.y + u_marble_turb * t));
+}
+
 float density(vec3 ws)
 {
 #if TERM_SCROLL_SPEED
@@ -123,12 +177,21 @@ float density(vec3 ws)
 	}
 
 #if TERM_NOISE_AMP
-	d += u_noise_amp * fractal(ws);
+	float amp = u_noise_amp;
+#if TERM_CONTROL_STRENGTH
+	amp *= 1.0 - u_control_strength * (1.0 - control_value(ws_orig.xz));
+#endif
+	d += amp * fractal(ws);
 #endif
 
 #if TERM_FLOOR_STRENGTH
 	// hard floor on the pre-warp height ("sediment")
 	d += dens_sat((u_floor_y - ws_orig.y) * u_floor_sharpness) * u_floor_strength;
+#endif
+
+#if TERM_MARBLE_AMP
+	if (u_marble_amp != 0.0)
+		d += marble_term(ws);
 #endif
 
 	if (u_terrace == TERRACE_PRE)

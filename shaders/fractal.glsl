@@ -22,6 +22,17 @@
 //   hetero        v = mf_offset + n_0;  v += (n_i + mf_offset) (f_i/f_0)^-H v,
 //                 h = v - (v with all n_i = 0)                (height-damped, Musgrave)
 //   worley        h = sum gain^i (C . F(p_i) - C . E[F])      (F1..F4, Worley 1996)
+//   hybrid        Musgrave's hybrid multifractal: v = (n_0 + mf_offset),
+//                 w = v; then  w = min(w, 1), s_i = (n_i + mf_offset) (f_i/f_0)^-H,
+//                 v += w s_i, w *= s_i;  h = v - (v with all n_i = 0)
+//   slope_damped  v = n_0;  v += saturate(mf_slope |grad_xz v|) (f_i/f_0)^-H n_i
+//                 (Clua 1999 fig. 4.3: the octaves' weight follows the slope of
+//                 the sum so far, so plateaus stay smooth); the gradient is a
+//                 forward difference of SLOPE_EPS lattice cells of octave 0,
+//                 the sum being carried at ws, ws + e x and ws + e z
+//   abs_multifractal  v = prod (mf_offset + mf_contrast (f_i/f_0)^-H |n_i|),
+//                 h = v - prod (mf_offset + mf_contrast (f_i/f_0)^-H E|n|)
+//                 (Clua 1999 fig. 4.5: the cascade on |n|, as turbulence does)
 
 #include "noise.glsl"
 
@@ -35,6 +46,8 @@
 // E[F1..F4] for one feature point per unit cube.
 #define WORLEY_MEAN vec4(0.5205, 0.7167, 0.8451, 0.9437)
 #define OCTAVE_SHIFT vec3(17.31, -9.17, 23.53)
+// slope_damped: the gradient's step, lattice cells of octave 0
+#define SLOPE_EPS 0.05
 
 // The octaves below rotated_octaves (the rotated ones) and those above
 // run in separate loops, each with only its own code: a branch on the
@@ -73,20 +86,43 @@ struct FractalSum {
 	float sum;
 	float center;
 	float weight; // ridged
-	float ew;     // ridged: approximate E[w_i]
+	float ew;     // ridged: approximate E[w_i]; hybrid: w with all n_i = 0
+	float sx;     // slope_damped: the sum at ws + e x
+	float sz;     // slope_damped: the sum at ws + e z
 };
+
+// slope_damped: octave i at ws and at the two gradient points, weighted by
+// the slope of the sum so far.
+void slope_octave(inout FractalSum s, vec3 ws, int i, bool rotated)
+{
+	float e = SLOPE_EPS / max(u_noise_freq, 1e-6);
+	float n = octave_noise(octave_point(ws, i, s.freq, rotated), i, rotated);
+	float nx = octave_noise(octave_point(ws + vec3(e, 0.0, 0.0), i, s.freq, rotated), i, rotated);
+	float nz = octave_noise(octave_point(ws + vec3(0.0, 0.0, e), i, s.freq, rotated), i, rotated);
+	float w = 1.0;
+	if (i > 0) {
+		float gx = (s.sx - s.sum) * (1.0 / SLOPE_EPS), gz = (s.sz - s.sum) * (1.0 / SLOPE_EPS);
+		w = clamp(u_mf_slope * sqrt(gx * gx + gz * gz), 0.0, 1.0);
+	}
+	float k = w * s.hw;
+	s.sum += k * n;
+	s.sx += k * nx;
+	s.sz += k * nz;
+}
 
 // Octave i added to s (hstep = lacunarity^-H, es and wc: the ridged and
 // Worley expectations, constant over the octaves).
 void fractal_octave(inout FractalSum s, vec3 ws, int i, bool rotated, float hstep, float es, float wc)
 {
-	vec3 p = octave_point(ws, i, s.freq, rotated);
-	if (u_fractal == FRACTAL_WORLEY) {
+	if (u_fractal == FRACTAL_SLOPE_DAMPED) {
+		slope_octave(s, ws, i, rotated);
+	} else if (u_fractal == FRACTAL_WORLEY) {
+		vec3 p = octave_point(ws, i, s.freq, rotated);
 		vec4 F = worley(p, i);
 		float v = u_worley_c1 * F.x + u_worley_c2 * F.y + u_worley_c3 * F.z + u_worley_c4 * F.w;
 		s.sum += s.ga * (v - wc);
 	} else {
-		float n = octave_noise(p, i, rotated);
+		float n = octave_noise(octave_point(ws, i, s.freq, rotated), i, rotated);
 		if (u_fractal == FRACTAL_FBM) {
 			s.sum += s.hw * n;
 		} else if (u_fractal == FRACTAL_TURBULENCE) {
@@ -109,6 +145,24 @@ void fractal_octave(inout FractalSum s, vec3 ws, int i, bool rotated, float hste
 				s.sum += (n + u_mf_offset) * s.hw * s.sum;
 				s.center += u_mf_offset * s.hw * s.center;
 			}
+		} else if (u_fractal == FRACTAL_HYBRID) {
+			if (i == 0) {
+				s.sum = n + u_mf_offset;
+				s.weight = s.sum;
+				s.center = u_mf_offset;
+				s.ew = u_mf_offset;
+			} else {
+				float sig = (n + u_mf_offset) * s.hw, csig = u_mf_offset * s.hw;
+				s.weight = min(s.weight, 1.0);
+				s.ew = min(s.ew, 1.0);
+				s.sum += s.weight * sig;
+				s.center += s.ew * csig;
+				s.weight *= sig;
+				s.ew *= csig;
+			}
+		} else if (u_fractal == FRACTAL_ABS_MULTIFRACTAL) {
+			s.sum *= u_mf_offset + u_mf_contrast * s.hw * abs(n);
+			s.center *= u_mf_offset + u_mf_contrast * s.hw * NOISE_MEAN_ABS;
 		} else { // FRACTAL_GEISS
 			s.sum += s.ga * n;
 		}
@@ -132,7 +186,9 @@ float fractal(vec3 ws)
 	s.ew = 1.0;
 	float wc = u_worley_c1 * WORLEY_MEAN.x + u_worley_c2 * WORLEY_MEAN.y + u_worley_c3 * WORLEY_MEAN.z +
 		   u_worley_c4 * WORLEY_MEAN.w;
-	if (u_fractal == FRACTAL_MULTIFRACTAL) {
+	s.sx = 0.0;
+	s.sz = 0.0;
+	if (u_fractal == FRACTAL_MULTIFRACTAL || u_fractal == FRACTAL_ABS_MULTIFRACTAL) {
 		s.sum = 1.0;
 		s.center = 1.0;
 	}

@@ -40,6 +40,23 @@ vec3 soil_color(float t)
 	return mix(c[i], c[i + 1], fract(x));
 }
 
+// Marble colour (Perlin 1985): sine veins along y pushed by a turbulence
+// of the surface texture's height channel (four octaves of |h - 0.5|),
+// mixed into the rock by marble_color.
+vec3 marble_color(vec3 rock, vec3 pos)
+{
+	float t = 0.0, a = 1.0, f = 0.5 * u_marble_freq;
+	for (int k = 0; k < 4; k++) {
+		t += abs(texture(u_surface, pos.xz * f + pos.y * f * 0.37).a - 0.5) * 2.0 * a;
+		f *= 2.0;
+		a *= 0.5;
+	}
+	float s = sin(6.2831853 * u_marble_freq * (pos.y + u_marble_turb * t));
+	float vein = pow(1.0 - abs(s), 6.0);
+	vec3 stone = mix(vec3(0.86, 0.84, 0.80), vec3(0.30, 0.32, 0.36), vein);
+	return mix(rock, stone * (0.85 + 0.15 * s), u_marble_color);
+}
+
 void main()
 {
 	if (u_fade < 1.0 && u_fade <= bayer4(ivec2(gl_FragCoord.xy)))
@@ -76,6 +93,8 @@ void main()
 	vec3 rock = soil_color(slow * 0.8 + band * 0.25);
 	rock *= mix(1.0, 0.72 + 0.5 * band * band, u_strata);
 	rock *= 0.75 + 0.5 * tex;
+	if (u_marble_color > 0.0)
+		rock = marble_color(rock, v_pos);
 	vec3 grass = mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
 	float flat_ground = smoothstep(0.62, 0.86, n0.y + (hgt - 0.5) * 0.3);
 	vec3 albedo = mix(rock, grass, flat_ground);

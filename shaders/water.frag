@@ -1,18 +1,66 @@
 // isoterra — water: deep colour, sky reflection by Fresnel (Schlick), sun
-// glint, small moving waves from the surface texture, fog.
+// glint, fog; the surface normal from layered fBm waves (seed 001): octaves
+// of 2D gradient noise with analytic derivatives, each octave at
+// water_lacunarity times the frequency and water_gain times the height of
+// the one before, turned by its own angle and moving along it at the
+// deep-water phase speed of its wavelength (sqrt(g / k)), so the long swell
+// moves faster than the ripples.
 in vec3 v_pos;
 uniform vec3 u_eye;
 uniform float u_fog_density;
-layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface;
 out vec4 frag;
 #include "shade.glsl"
 
+// A pseudo-random unit gradient per lattice point (integer hash).
+vec2 wave_grad(ivec2 c)
+{
+	uint h = uint(c.x) * 0x8da6b343u ^ uint(c.y) * 0xd8163841u;
+	h ^= h >> 13;
+	h *= 0x5bd1e995u;
+	h ^= h >> 15;
+	float a = float(h & 0xffffu) * (6.2831853 / 65536.0);
+	return vec2(cos(a), sin(a));
+}
+
+// 2D gradient noise and its derivative (quintic fade): (n, dn/dx, dn/dy).
+vec3 wave_noise(vec2 p)
+{
+	vec2 i = floor(p), f = p - i;
+	ivec2 c = ivec2(i);
+	vec2 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
+	vec2 du = 30.0 * f * f * (f * (f - 2.0) + 1.0);
+	vec2 ga = wave_grad(c), gb = wave_grad(c + ivec2(1, 0)), gc = wave_grad(c + ivec2(0, 1)),
+	     gd = wave_grad(c + ivec2(1, 1));
+	float va = dot(ga, f), vb = dot(gb, f - vec2(1.0, 0.0)), vc = dot(gc, f - vec2(0.0, 1.0)),
+	      vd = dot(gd, f - vec2(1.0, 1.0));
+	float n = va + u.x * (vb - va) + u.y * (vc - va) + u.x * u.y * (va - vb - vc + vd);
+	vec2 d = ga + u.x * (gb - ga) + u.y * (gc - ga) + u.x * u.y * (ga - gb - gc + gd) +
+		 du * (u.yx * (va - vb - vc + vd) + vec2(vb, vc) - va);
+	return vec3(n, d);
+}
+
+// Slope (dh/dx, dh/dz) of the wave field at xz, time t.
+vec2 wave_slope(vec2 xz, float t)
+{
+	vec2 s = vec2(0.0);
+	float freq = u_water_freq, amp = u_water_wave;
+	for (int i = 0; i < u_water_octaves; i++) {
+		float a = float(i) * 2.39996; // golden angle: no two octaves share a direction
+		mat2 r = mat2(cos(a), sin(a), -sin(a), cos(a));
+		float speed = sqrt(9.81 / (6.2831853 * freq)); // world units per second
+		vec2 p = r * xz * freq - vec2(t * speed * freq, 0.0) + float(i) * vec2(17.3, 5.9);
+		vec3 n = wave_noise(p);
+		s += amp * freq * (transpose(r) * n.yz); // chain rule back to world axes
+		freq *= u_water_lacunarity;
+		amp *= u_water_gain;
+	}
+	return s;
+}
+
 void main()
 {
-	vec2 uv = v_pos.xz * 0.15;
-	vec2 w1 = texture(u_surface, uv + vec2(u_time * 0.02, u_time * 0.013)).gb - 0.5;
-	vec2 w2 = texture(u_surface, uv * 2.3 - vec2(u_time * 0.017, -u_time * 0.021)).gb - 0.5;
-	vec3 n = normalize(vec3((w1.x + w2.x) * 0.6, 1.0, (w1.y + w2.y) * 0.6));
+	vec2 sl = wave_slope(v_pos.xz, u_time);
+	vec3 n = normalize(vec3(-sl.x, 1.0, -sl.y));
 	vec3 v = normalize(u_eye - v_pos);
 	float f = 0.02 + 0.98 * pow(1.0 - max(dot(n, v), 0.0), 5.0);
 	vec3 r = reflect(-v, n);

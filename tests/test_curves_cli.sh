@@ -43,6 +43,22 @@ expect_ok $SMALL --curves roads.csv --curve-hash-dim 4
 expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --heightmap-detail 1 --curves road.geojson
 printf 'field = heightmap\nheightmap = hm.png\ncurves = roads.csv\nheightmap_scale = 6\n' >edit.conf
 expect_ok $SMALL --config edit.conf
+# the control map: a grayscale PNG; a missing or broken one is one message
+expect_ok $SMALL --control-strength 0.8 --control-map hm.png
+expect_fail "cannot open control map file 'nothere.png'" $SMALL --control-strength 0.8 --control-map nothere.png
+echo 'not a png' >bad.png
+expect_fail "control map: 'bad.png' is not a PNG file" $SMALL --control-strength 0.8 --control-map bad.png
+# 2D positions follow the ground; WGS84 lon/lat (a small area) is projected
+cat >flat.geojson <<'J'
+{ "type": "LineString", "coordinates": [[-14, 9], [0, -1], [14, -9]] }
+J
+expect_ok $SMALL --curves flat.geojson
+expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --curves flat.geojson
+cat >lonlat.geojson <<'J'
+{ "type": "Feature", "properties": { "kind": "road", "width": 4 },
+  "geometry": { "type": "LineString", "coordinates": [[-3.70010, 40.41690], [-3.70000, 40.41700], [-3.69985, 40.41705]] } }
+J
+expect_ok $SMALL --curves lonlat.geojson
 
 # ---- malformed GeoJSON ------------------------------------------------------------
 printf '{ "type": "FeatureCollection", "features": [\n  { "type": "Feature",\n' >trunc.geojson
@@ -51,10 +67,10 @@ cat >twod.geojson <<'J'
 { "type": "FeatureCollection", "features": [
   { "type": "Feature", "geometry": { "type": "LineString", "coordinates": [[0, 0, 0], [1, 1, 1]] } },
   { "type": "Feature", "geometry": { "type": "LineString",
-    "coordinates": [[0, 0], [5, 5]] } }
+    "coordinates": [[0, 0, 0, 1], [5, 5, 0, 1]] } }
 ] }
 J
-expect_fail "twod.geojson:4: feature 2: position 1 has 2 coordinates" $SMALL --curves twod.geojson
+expect_fail "twod.geojson:4: feature 2: position 1 has 4 coordinates; GeoJSON positions are .x east, y north. .the curve follows the ground. or .x east, y north, z up. .z up, unlike the CSV.s y up." $SMALL --curves twod.geojson
 cat >poly.geojson <<'J'
 { "type": "Feature", "geometry": { "type": "Polygon", "coordinates": [] } }
 J

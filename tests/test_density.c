@@ -408,6 +408,53 @@ static void test_terrain(void)
 			CHECK(pos > 64 && neg > 64, "%s: the default volume holds a surface (%d rock, %d air)", kv, pos, neg);
 		}
 
+	/* the newer families against their definitions: hybrid and
+	 * slope_damped start from the plain basis (one octave = fbm's one
+	 * octave); slope_damped with mf_slope 0 keeps only octave 0 (a slope of
+	 * 0 damps every later octave); abs_multifractal's cascade is centred on
+	 * E|n| and reacts only to |n| */
+	{
+		params_defaults(&p);
+		set(&p, "fractal=fbm;octaves=1");
+		float one = density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f);
+		set(&p, "fractal=hybrid");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f), one, 1e-4, "hybrid, one octave = fbm");
+		set(&p, "fractal=slope_damped");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f), one, 1e-4, "slope_damped, one octave = fbm");
+		set(&p, "octaves=9;mf_slope=0");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f), one, 1e-4, "slope_damped, mf_slope 0 = octave 0");
+		set(&p, "mf_slope=3");
+		CHECK(fabsf(density_ref(&p, &ns_a, NULL, 2.3f, 0.7f, -4.1f) - one) > 1e-3, "slope_damped adds octaves");
+		set(&p, "fractal=abs_multifractal;octaves=1;mf_offset=1;mf_contrast=2;hurst=1");
+		float nabs = fabsf(noise_perlin(&ns_a, 0.0f, 0.0f, 0.0f)); /* a lattice point: 0 */
+		CHECK(nabs == 0.0f, "lattice point");
+		/* one octave: h = (1 + 2|n|) - (1 + 2 E|n|) = 2 (|n| - E|n|) >= -2 E|n| */
+		int below = 0;
+		for (int i = 0; i < 200; i++) {
+			float x = -20.0f + 0.37f * (float)i, y = 0.0f, z = 3.0f;
+			float d = density_ref(&p, &ns_a, NULL, x, y, z) - (-y * p.ground_slope);
+			set(&p, "noise_amp=0");
+			d -= density_ref(&p, &ns_a, NULL, x, y, z) - (-y * p.ground_slope);
+			set(&p, "noise_amp=24");
+			below += d / 24.0f < -2.0f * 0.2205f - 1e-4f;
+		}
+		CHECK(below == 0, "abs_multifractal: %d values below its floor -2 E|n|", below);
+	}
+
+	/* marble: without turbulence, plain sine bands along y */
+	params_defaults(&p);
+	set(&p, "warp_amp=0");
+	{
+		float base = density_ref(&p, &ns_a, NULL, 1.3f, 2.1f, -0.4f);
+		set(&p, "marble_amp=2.5;marble_freq=0.2;marble_turb=0");
+		CHECK_NEAR(density_ref(&p, &ns_a, NULL, 1.3f, 2.1f, -0.4f) - base, 2.5 * sin(2.0 * M_PI * 0.2 * 2.1), 1e-4,
+			   "marble bands without turbulence");
+		set(&p, "marble_turb=4");
+		CHECK(fabsf(density_ref(&p, &ns_a, NULL, 1.3f, 2.1f, -0.4f) - base - 2.5f * sinf(2.0f * (float)M_PI * 0.2f * 2.1f)) >
+			      1e-3f,
+		      "marble turbulence moves the bands");
+	}
+
 	/* hard floor alone: no ground, no noise */
 	params_defaults(&p);
 	set(&p, "shape=caves;cave_bias=-5;noise_amp=0;warp_amp=0");
@@ -584,6 +631,11 @@ static void test_gpu(void)
 	gpu_compare("all terms (terrace, shelf, flat spot, scroll)", 33,
 		    "terrace=pre;shelf=post;flat_spot=true;flat_y=-2;time=1.5;scroll_speed=2", false);
 	gpu_compare("terrace=post shelf=pre", 17, "terrace=post;shelf=pre", false);
+	gpu_compare("control_strength=0.9 (noise)", 17, "control_strength=0.9;control_freq=0.06", false);
+	gpu_compare("control_strength=0.9 (noise) noise=texture", 17, "control_strength=0.9;control_freq=0.06;noise=texture",
+		    true);
+	gpu_compare("marble_amp=3", 17, "marble_amp=3;marble_freq=0.2;marble_turb=5", false);
+	gpu_compare("marble_amp=3 noise=texture", 17, "marble_amp=3;noise=texture", true);
 	gpu_compare("shape=planet seed=3", 17, "shape=planet;planet_radius=12;seed=3", false);
 	gpu_compare("shape=caves seed=0", 17, "shape=caves;cave_bias=2;seed=0", false);
 	/* the terms a zero turns off (P_TERM: compiled out), off beside the
@@ -603,6 +655,51 @@ static void test_gpu(void)
 		    "fractal=fbm;octaves=7;warp_amp=0;floor_strength=0;rotated_octaves=0;closed=false;vol_height=1;"
 		    "vol_y=0;noise_freq=0.125;lacunarity=2.03;hurst=0.9785;noise_amp=3.9",
 		    false);
+	/* the control map from a file: plains on the left, mountains on the right */
+	{
+		char dir[] = "/tmp/isoterra-control-XXXXXX", cm[64], e[256];
+		CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+		snprintf(cm, sizeof(cm), "%s/control.png", dir);
+		uint16_t v[7 * 5];
+		for (int i = 0; i < 7 * 5; i++)
+			v[i] = (uint16_t)((i % 7) * 65535 / 6 + (i / 7) * 1000);
+		CHECK(heightmap_write_png16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
+		snprintf(kv, sizeof(kv), "control_strength=0.85;control_map=%s;control_map_scale=5", cm);
+		gpu_compare("control_strength=0.85 (file)", 17, kv, false);
+		/* all black at strength 1: no noise term at all; all white: the full term */
+		struct params p, q;
+		params_defaults(&p);
+		params_defaults(&q);
+		for (int i = 0; i < 7 * 5; i++)
+			v[i] = 0;
+		CHECK(heightmap_write_png16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
+		snprintf(kv, sizeof(kv), "control_strength=1;control_map=%s", cm);
+		set(&p, kv);
+		set(&q, "noise_amp=0");
+		struct edits *ed = edits_create();
+		CHECK(edits_load(ed, &p, e, sizeof(e)) == 0, "edits_load: %s", e);
+		int bad = 0;
+		for (int i = 0; i < 50; i++) {
+			float x = -20.0f + 0.83f * (float)i, y = -3.0f + 0.1f * (float)i, z = 7.0f - 0.5f * (float)i;
+			bad += fabsf(density_ref(&p, &ns_a, ed, x, y, z) - density_ref(&q, &ns_a, NULL, x, y, z)) > 1e-5f;
+		}
+		CHECK(bad == 0, "a black control map at strength 1 removes the noise term (%d of 50 differ)", bad);
+		for (int i = 0; i < 7 * 5; i++)
+			v[i] = 65535;
+		CHECK(heightmap_write_png16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
+		edits_clear(ed); /* the same size and second: reload */
+		CHECK(edits_load(ed, &p, e, sizeof(e)) == 0, "edits_load: %s", e);
+		params_defaults(&q);
+		bad = 0;
+		for (int i = 0; i < 50; i++) {
+			float x = -20.0f + 0.83f * (float)i, y = -3.0f + 0.1f * (float)i, z = 7.0f - 0.5f * (float)i;
+			bad += fabsf(density_ref(&p, &ns_a, ed, x, y, z) - density_ref(&q, &ns_a, NULL, x, y, z)) > 1e-5f;
+		}
+		CHECK(bad == 0, "a white control map leaves the full noise term (%d of 50 differ)", bad);
+		edits_destroy(ed);
+		unlink(cm);
+		rmdir(dir);
+	}
 	/* the heightmap's detail and 3D noise terms, off and on */
 	{
 		char dir[] = "/tmp/isoterra-density-XXXXXX", hm[64], e[256];

@@ -41,7 +41,7 @@ static void test_knobs(void)
 	knob_change(&k, &p, 20);
 	CHECK(p.octaves == 16, "octaves clamped to 16 (%d)", p.octaves);
 	k.sel = 2; /* fractal enum wraps */
-	int nf = 7;
+	int nf = FRACTAL_COUNT;
 	knob_change(&k, &p, -1);
 	CHECK(p.fractal == nf - 1, "enum wraps backwards (%d)", p.fractal);
 	k.sel = 3;

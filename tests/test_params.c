@@ -119,7 +119,7 @@ static void test_set(void)
 	expect_set_error("iso", "nan", "iso: 'nan' is not a number");
 	expect_set_error("gain", "1.5", "gain: 1.5 is out of range [0, 1]");
 	expect_set_error("verbose", "maybe", "verbose: 'maybe' is not a boolean (true/false)");
-	expect_set_error("fractal", "bogus", "fractal: 'bogus' is not one of geiss|fbm|turbulence|ridged|multifractal|hetero|worley");
+	expect_set_error("fractal", "bogus", "fractal: 'bogus' is not one of geiss|fbm|turbulence|ridged|multifractal|hetero|worley|hybrid|slope_damped|abs_multifractal");
 	expect_set_error("compaction", "", "compaction: '' is not one of hp|atomic|none");
 	expect_set_error("nonexistent", "1", "unknown parameter 'nonexistent' (see --help)");
 	char longv[PARAM_STR_MAX + 8];
@@ -306,7 +306,7 @@ static void test_cli(void)
 	PARSE_FAILS("unexpected argument '--' (options only, see --help)", "--");
 	PARSE_FAILS("grid: 1 is out of range [2, 512]", "--grid", "1");
 	PARSE_FAILS("grid: 'x' is not an integer", "--grid=x");
-	PARSE_FAILS("fractal: 'x' is not one of geiss|fbm|turbulence|ridged|multifractal|hetero|worley", "--fractal", "x");
+	PARSE_FAILS("fractal: 'x' is not one of geiss|fbm|turbulence|ridged|multifractal|hetero|worley|hybrid|slope_damped|abs_multifractal", "--fractal", "x");
 	PARSE_FAILS("size: '10x10' is not WxH with W and H in 16..16384", "--size", "10x10");
 	PARSE_FAILS("size: '640' is not WxH with W and H in 16..16384", "--size", "640");
 	PARSE_FAILS("size: '640x480x2' is not WxH with W and H in 16..16384", "--size", "640x480x2");

@@ -21,6 +21,47 @@ static void golden_params(struct params *p)
 	p->count = 1;
 }
 
+/* Pixels that differ by more than 8 in any channel. */
+static int changed(const struct image *a, const struct image *b)
+{
+	int n = 0;
+	for (int i = 0; a->rgba && b->rgba && i < a->width * a->height; i++)
+		for (int c = 0; c < 3; c++)
+			if (abs(a->rgba[4 * i + c] - b->rgba[4 * i + c]) > 8) {
+				n++;
+				break;
+			}
+	return n;
+}
+
+/* Water waves: layered fBm normals move with time; without octaves the
+ * water is a still mirror (nothing else in the frame depends on time). */
+static void test_water_waves(void)
+{
+	struct params p;
+	golden_params(&p);
+	p.water_level = 1.0f; /* much of the box under water */
+	p.cam_spin = 0.0f;
+	char err[512] = "";
+	struct image w0 = { 0 }, w1 = { 0 }, f0 = { 0 }, f1 = { 0 };
+	CHECK(render_to_image(&p, &w0, err, sizeof(err)) == 0, "water t=0: %s", err);
+	p.time = 1.0f;
+	CHECK(render_to_image(&p, &w1, err, sizeof(err)) == 0, "water t=1: %s", err);
+	p.water_octaves = 0;
+	CHECK(render_to_image(&p, &f1, err, sizeof(err)) == 0, "mirror t=1: %s", err);
+	p.time = 0.0f;
+	CHECK(render_to_image(&p, &f0, err, sizeof(err)) == 0, "mirror t=0: %s", err);
+	int moving = changed(&w0, &w1), still = changed(&f0, &f1), waves = changed(&w1, &f1);
+	printf("water: %d pixels move in one second, %d without waves; waves change %d pixels\n", moving, still, waves);
+	CHECK(moving > 200, "the waves move (%d pixels changed in one second)", moving);
+	CHECK(still == 0, "without wave octaves nothing moves (%d pixels)", still);
+	CHECK(waves > 400, "the waves change the water (%d pixels)", waves);
+	image_free(&w0);
+	image_free(&w1);
+	image_free(&f0);
+	image_free(&f1);
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -78,6 +119,7 @@ int main(void)
 	image_free(&a);
 	image_free(&b);
 	image_free(&ref);
+	test_water_waves();
 	platform_close(plat);
 	return tc_done("render");
 }

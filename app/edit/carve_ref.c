@@ -162,6 +162,27 @@ static float seg_d2(const float p[2], const float a[2], const float b[2])
 	return dx * dx + dz * dz;
 }
 
+/* curves.glsl curve_near: quadratic f can reach pos (its control points in c) */
+static bool near(const float c[3][4], const float *prm, const float pos[2])
+{
+	float reach = prm[0] + prm[1];
+	float lox = fminf(fminf(c[0][0], c[1][0]), c[2][0]) - reach, loz = fminf(fminf(c[0][2], c[1][2]), c[2][2]) - reach;
+	float hix = fmaxf(fmaxf(c[0][0], c[1][0]), c[2][0]) + reach, hiz = fmaxf(fmaxf(c[0][2], c[1][2]), c[2][2]) + reach;
+	if (pos[0] < lox || pos[1] < loz || pos[0] > hix || pos[1] > hiz)
+		return false;
+	/* outside the control triangle and beyond the reach of its edges */
+	float q[3][2] = { { c[0][0], c[0][2] }, { c[1][0], c[1][2] }, { c[2][0], c[2][2] } };
+	float e0 = cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], pos[0] - q[0][0], pos[1] - q[0][1]);
+	float e1 = cross2(q[2][0] - q[1][0], q[2][1] - q[1][1], pos[0] - q[1][0], pos[1] - q[1][1]);
+	float e2 = cross2(q[0][0] - q[2][0], q[0][1] - q[2][1], pos[0] - q[2][0], pos[1] - q[2][1]);
+	bool inside = (e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f) || (e0 <= 0.0f && e1 <= 0.0f && e2 <= 0.0f);
+	if (inside)
+		return true;
+	float r = reach * 1.001f + 1e-3f;
+	float d2 = fminf(fminf(seg_d2(pos, q[0], q[1]), seg_d2(pos, q[1], q[2])), seg_d2(pos, q[2], q[0]));
+	return d2 <= r * r;
+}
+
 static void accumulate(const struct edits *e, const struct params *p, const float pos[2], const int32_t *list,
 		       int count, bool iterative, float out[4])
 {
@@ -173,24 +194,8 @@ static void accumulate(const struct edits *e, const struct params *p, const floa
 		for (int k = 0; k < 3; k++)
 			memcpy(c[k], e->quads.ctrl[f + k], sizeof(float) * 4);
 		const float *prm = e->quads.prm[f];
-		float reach = prm[0] + prm[1];
-		float lox = fminf(fminf(c[0][0], c[1][0]), c[2][0]) - reach, loz = fminf(fminf(c[0][2], c[1][2]), c[2][2]) - reach;
-		float hix = fmaxf(fmaxf(c[0][0], c[1][0]), c[2][0]) + reach, hiz = fmaxf(fmaxf(c[0][2], c[1][2]), c[2][2]) + reach;
-		if (pos[0] < lox || pos[1] < loz || pos[0] > hix || pos[1] > hiz)
+		if (!near(c, prm, pos) || prm[2] == (float)CURVE_TUNNEL) /* tunnels: tunnel_ref */
 			continue;
-		/* outside the control triangle and beyond the reach of its edges
-		 * (curves.glsl curve_near) */
-		float q[3][2] = { { c[0][0], c[0][2] }, { c[1][0], c[1][2] }, { c[2][0], c[2][2] } };
-		float e0 = cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], pos[0] - q[0][0], pos[1] - q[0][1]);
-		float e1 = cross2(q[2][0] - q[1][0], q[2][1] - q[1][1], pos[0] - q[1][0], pos[1] - q[1][1]);
-		float e2 = cross2(q[0][0] - q[2][0], q[0][1] - q[2][1], pos[0] - q[2][0], pos[1] - q[2][1]);
-		bool inside = (e0 >= 0.0f && e1 >= 0.0f && e2 >= 0.0f) || (e0 <= 0.0f && e1 <= 0.0f && e2 <= 0.0f);
-		if (!inside) {
-			float r = reach * 1.001f + 1e-3f;
-			float d2 = fminf(fminf(seg_d2(pos, q[0], q[1]), seg_d2(pos, q[1], q[2])), seg_d2(pos, q[2], q[0]));
-			if (d2 > r * r)
-				continue;
-		}
 		if (iterative)
 			closest_iter(c, pos, cl);
 		else
@@ -239,14 +244,42 @@ void carve_ref_eval(const struct edits *e, const struct params *p, float x, floa
 	accumulate(e, p, pos, h->index + h->pivot[2 * c], h->pivot[2 * c + 1], false, out);
 }
 
+/* curves.glsl tunnel_eval: (fill, tube) of the tunnel curves at (x, y, z) */
+static void tunnel_ref(const struct edits *e, float x, float y, float z, float out[2])
+{
+	out[0] = -1e30f;
+	out[1] = 1e30f;
+	const struct curve_hash *h = &e->hash;
+	int cell = curve_hash_cell(h, x, z);
+	if (cell < 0)
+		return;
+	const int32_t *list = h->index + h->pivot[2 * cell];
+	const float pos[2] = { x, z };
+	for (int i = 0; i < h->pivot[2 * cell + 1]; i++) {
+		int f = list[i];
+		float c[3][4], cl[4];
+		for (int k = 0; k < 3; k++)
+			memcpy(c[k], e->quads.ctrl[f + k], sizeof(float) * 4);
+		const float *prm = e->quads.prm[f];
+		if (prm[2] != (float)CURVE_TUNNEL || !near(c, prm, pos))
+			continue;
+		carve_ref_closest(c, pos, cl);
+		float ad = fabsf(cl[0]), below = cl[2] - y, dy = y - (cl[2] + 0.5f * prm[0]);
+		out[0] = fmaxf(out[0], fminf(below, prm[0] + fminf(below, prm[1]) - ad));
+		out[1] = fminf(out[1], fmaxf(sqrtf(ad * ad + dy * dy) - prm[0], below));
+	}
+}
+
 float carve_ref_density(const struct edits *e, const struct params *p, float x, float y, float z, float d)
 {
-	if (e->quads.nquads == 0)
+	if (e->quads.nquads == 0 || !e->hash.pivot)
 		return d;
-	float ev[4];
+	float ev[4], tn[2];
 	carve_ref_eval(e, p, x, z, false, ev);
 	float k = ev[1] * p->curve_strength;
-	return d + k * ((ev[0] - y) - d);
+	d += k * ((ev[0] - y) - d);
+	tunnel_ref(e, x, y, z, tn);
+	return d + p->curve_strength * (fminf(fmaxf(d, tn[0]), tn[1]) - d);
 }
 
 /* ---- heightmap.glsl ------------------------------------------------------------ */

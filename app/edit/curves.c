@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const curve_kind_names[CURVE_KIND_COUNT] = { "road", "river", "railway" };
+const char *const curve_kind_names[CURVE_KIND_COUNT] = { "road", "river", "railway", "tunnel" };
 
 #define MAX_INCLINATION 2.0f /* |tan α| cap (the thesis's MAX_INCLINATION) */
 
@@ -20,6 +20,7 @@ void curve_path_defaults(struct curve_path *p, int kind)
 		{ 8.0f, 8.0f, 0.0f, 0.5f },  /* road */
 		{ 10.0f, 12.0f, 0.0f, 0.5f }, /* river */
 		{ 5.0f, 6.0f, 0.0f, 0.5f },  /* railway */
+		{ 6.0f, 4.0f, 0.0f, 0.5f },  /* tunnel: w = the tube's diameter */
 	};
 	if (kind < 0 || kind >= CURVE_KIND_COUNT)
 		kind = CURVE_ROAD;
@@ -80,6 +81,7 @@ float curve_path_reach(const struct curve_path *p)
 bool curve_path_equal(const struct curve_path *a, const struct curve_path *b)
 {
 	return a->kind == b->kind && a->width == b->width && a->falloff == b->falloff &&
+	       a->follow_ground == b->follow_ground &&
 	       a->inclination == b->inclination && a->smoothing == b->smoothing && a->npts == b->npts &&
 	       (a->npts == 0 || memcmp(a->pts, b->pts, sizeof(float) * 3 * (size_t)a->npts) == 0);
 }

@@ -16,8 +16,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
-enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_KIND_COUNT };
-extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway" */
+/* Road, river and railway are surfaces: the ground is pulled to the curve's
+ * height across its profile.  A tunnel is a tube through the rock with its
+ * floor on the curve (the rock above stays), on an embankment in the open. */
+enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_TUNNEL, CURVE_KIND_COUNT };
+/* shaders/curves.glsl compares the kind with CURVE_KIND_TUNNEL 3.0 */
+_Static_assert(CURVE_TUNNEL == 3, "CURVE_KIND_TUNNEL in shaders/curves.glsl");
+extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway", "tunnel" */
+
+/* What a file says of its coordinates (GeoJSON's "crs" member). */
+enum curve_crs { CURVE_CRS_UNSAID, CURVE_CRS_WGS84, CURVE_CRS_OTHER };
 
 /* One input polyline and its carving parameters. */
 struct curve_path {
@@ -28,6 +36,13 @@ struct curve_path {
 	float smoothing;       /* Ω in [0,1]: handle length, 0 = the polyline itself */
 	int npts;
 	float *pts;            /* npts * 3: world x, y (up), z */
+	bool follow_ground;    /* 2D input: y is taken from the terrain's surface
+				* (curves_follow_ground; until then 0) */
+	int crs;               /* enum curve_crs: what its file said (GeoJSON) */
+	bool geo_rel;          /* GeoJSON that looks like lon/lat (the auto rule,
+				* curves_geo_project): x and -z are degrees from
+				* geo_origin (lon, lat), kept exact in double there */
+	double geo_origin[2];
 	char label[192];       /* where it came from, for messages ("roads.geojson: feature 2") */
 };
 
@@ -157,7 +172,9 @@ void curve_path_padded_box(const struct curve_path *p, float box[4]);
 /* ---- input files (curves_io.c) -------------------------------------------- */
 
 /* GeoJSON (FeatureCollection / Feature / LineString / MultiLineString with
- * [x, y, z] positions, z = up -> world (x, z_up, -y)) or CSV (header line,
+ * positions [x east, y north] (2D: the curve follows the ground) or [x east,
+ * y north, z up] -> world (x, z_up, -y), in degrees until
+ * curves_geo_project) or CSV (header line,
  * columns path,x,y,z[,kind,width,falloff,inclination,smoothing], y up).
  * The format is chosen by the extension (.geojson/.json, .csv).  Errors
  * name file:line and the feature.  0 or -1 with err. */
@@ -165,5 +182,28 @@ int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen)
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
 			 size_t errlen);
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
+
+/* ---- geographic input (curves_geo.c) ------------------------------------------ */
+
+/* Lon/lat or world units: mode CURVES_CRS_LONLAT / _LOCAL forces it;
+ * CURVES_CRS_AUTO takes the file's "crs" member (WGS84 / CRS84 / EPSG:4326:
+ * lon/lat; any other: world units) and, without one, lon/lat when every
+ * position lies in [-180, 180] x [-90, 90] and the data spans less than
+ * one degree both ways (world-unit curves that small would be under a
+ * unit long; the reader applies this rule, geo_rel).  Lon/lat positions are projected to metres on the local
+ * tangent plane around their centroid (lon0, lat0) -- an equirectangular
+ * projection with the WGS84 ellipsoid's radii of curvature there:
+ * east = N cos(lat0) dlon, north = M dlat -- then scaled by `scale` world
+ * units per metre (the up coordinate too).  *lonlat tells which was
+ * chosen, *why the rule (for the log).  0, or -1 with err. */
+int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat, const char **why, double centroid[2],
+		       char *err, size_t errlen);
+/* The terrain's surface height under (x, z) for 2D curves; false when
+ * there is none. */
+typedef bool (*curve_ground_fn)(void *ctx, float x, float z, float *y);
+/* 2D paths (follow_ground): points inserted so no segment is longer than
+ * `step` in XZ, each point's y set to ground(x, z).  0, or -1 with err
+ * naming the path and the position without ground. */
+int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground, void *ctx, char *err, size_t errlen);
 
 #endif

@@ -1,6 +1,7 @@
 /* isoterra — GL side of the terrain edits: the curve hash in SSBOs
  * (BIND_CURVE_PIVOT..BIND_CURVE_PRM), the heightmap as an R32F texture
- * (TEX_HEIGHTMAP), the displacement-map bake and the shader test hook.
+ * (TEX_HEIGHTMAP), the control map likewise (TEX_CONTROL), the
+ * displacement-map bake and the shader test hook.
  * The GL objects belong to one edit state (struct edits_gl). */
 #include "edits.h"
 #include "gpu.h"
@@ -16,9 +17,9 @@ struct edits_gl {
 	GLuint buf[4];           /* pivot, index, ctrl, prm */
 	GLsizeiptr cap[4];       /* explicit capacities (bytes) */
 	unsigned curves_gen;
-	GLuint hm_tex;
-	unsigned hm_gen;
-	bool hm_ready;
+	GLuint hm_tex, control_tex;
+	unsigned hm_gen, control_gen;
+	bool hm_ready, control_ready;
 	GLuint p_bake[8], p_test;     /* bake: [iterative | dense << 1 | heightmap << 2] */
 	GLuint b_bake, b_zero, b_tiles, b_in, b_out;
 	GLsizeiptr bake_cap, zero_cap, tiles_cap, in_cap, out_cap;
@@ -41,6 +42,8 @@ void edits_gl_release(struct edits *ed)
 		glDeleteBuffers(4, G->buf);
 	if (G->hm_tex)
 		glDeleteTextures(1, &G->hm_tex);
+	if (G->control_tex)
+		glDeleteTextures(1, &G->control_tex);
 	for (int i = 0; i < 8; i++)
 		if (G->p_bake[i])
 			glDeleteProgram(G->p_bake[i]);
@@ -102,29 +105,29 @@ static int upload_curves(struct edits_gl *G, const struct edits *e, char *err, s
 	return 0;
 }
 
-static int upload_heightmap(struct edits_gl *G, const struct edits *e, char *err, size_t errlen)
+/* A map of samples (heightmap, control map) as an R32F texture on unit
+ * `unit` (a 1x1 zero texture when there is none). */
+static int upload_map(GLuint *tex, const struct heightmap *m, int unit, const char *what, char *err, size_t errlen)
 {
-	if (G->hm_ready && G->hm_gen == e->hm_gen)
-		return 0;
-	if (G->hm_tex)
-		glDeleteTextures(1, &G->hm_tex);
-	glGenTextures(1, &G->hm_tex);
+	if (*tex)
+		glDeleteTextures(1, tex);
+	glGenTextures(1, tex);
 	GLint prev = 0;
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
-	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
-	glBindTexture(GL_TEXTURE_2D, G->hm_tex);
-	int w = e->hm.w ? e->hm.w : 1, hh = e->hm.w ? e->hm.h : 1;
+	glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+	glBindTexture(GL_TEXTURE_2D, *tex);
+	int w = m->w ? m->w : 1, hh = m->w ? m->h : 1;
 	GLint max_tex = 0;
 	glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
 	if (max_tex > 0 && (w > max_tex || hh > max_tex)) {
-		snprintf(err, errlen, "heightmap of %dx%d samples exceeds the GL texture limit (%d)", w, hh, max_tex);
+		snprintf(err, errlen, "%s of %dx%d samples exceeds the GL texture limit (%d)", what, w, hh, max_tex);
 		glActiveTexture((GLenum)prev);
 		return -1;
 	}
 	static const float zero = 0.0f;
 	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 	glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, hh);
-	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, hh, GL_RED, GL_FLOAT, e->hm.w ? (const void *)e->hm.v : &zero);
+	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, hh, GL_RED, GL_FLOAT, m->w ? (const void *)m->v : &zero);
 	/* R32F is not filterable in ES: texelFetch only, and NEAREST keeps the
 	 * texture complete */
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -132,10 +135,23 @@ static int upload_heightmap(struct edits_gl *G, const struct edits *e, char *err
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 	glActiveTexture((GLenum)prev);
-	if (gpu_check("heightmap texture") < 0)
-		return -1;
-	G->hm_gen = e->hm_gen;
-	G->hm_ready = true;
+	return gpu_check(what);
+}
+
+static int upload_heightmap(struct edits_gl *G, const struct edits *e, char *err, size_t errlen)
+{
+	if (!(G->hm_ready && G->hm_gen == e->hm_gen)) {
+		if (upload_map(&G->hm_tex, &e->hm, TEX_HEIGHTMAP, "heightmap", err, errlen) < 0)
+			return -1;
+		G->hm_gen = e->hm_gen;
+		G->hm_ready = true;
+	}
+	if (!(G->control_ready && G->control_gen == e->control_gen)) {
+		if (upload_map(&G->control_tex, &e->control, TEX_CONTROL, "control map", err, errlen) < 0)
+			return -1;
+		G->control_gen = e->control_gen;
+		G->control_ready = true;
+	}
 	return 0;
 }
 
@@ -158,6 +174,8 @@ static void set_uniforms(GLuint prog, const struct edits *e)
 		glProgramUniform2f(prog, l, any ? h->cell[0] : 1.0f, any ? h->cell[1] : 1.0f);
 	if ((l = glGetUniformLocation(prog, "u_heightmap_size")) >= 0)
 		glProgramUniform2i(prog, l, e->hm.w, e->hm.h);
+	if ((l = glGetUniformLocation(prog, "u_control_size")) >= 0)
+		glProgramUniform2i(prog, l, e->control.w, e->control.h);
 }
 
 int edits_gl_bind(struct edits *ed, GLuint prog, const struct params *p, char *err, size_t errlen)
@@ -173,6 +191,8 @@ int edits_gl_bind(struct edits *ed, GLuint prog, const struct params *p, char *e
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
 	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
 	glBindTexture(GL_TEXTURE_2D, G->hm_tex);
+	glActiveTexture(GL_TEXTURE0 + TEX_CONTROL);
+	glBindTexture(GL_TEXTURE_2D, G->control_tex);
 	glActiveTexture((GLenum)prev);
 	set_uniforms(prog, ed);
 	return gpu_check("curve/heightmap bind");

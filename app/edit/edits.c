@@ -2,6 +2,8 @@
  * files the parameters name (reloaded when a file changes) or set through
  * the API, and the record of the region that changed. */
 #include "edits.h"
+#include "core.h"
+#include "image.h"
 
 #include <float.h>
 #include <stdio.h>
@@ -113,6 +115,46 @@ int edits_set_curves(struct edits *ed, const struct curve_set *s, int dim, char 
 
 static const float whole_plane[4] = { -FLT_MAX, -FLT_MAX, FLT_MAX, FLT_MAX };
 
+void edits_set_ground(struct edits *ed, edits_ground_fn fn, void *ctx)
+{
+	ed->ground = fn;
+	ed->ground_ctx = ctx;
+}
+
+struct ground_call {
+	const struct edits *ed;
+	const struct params *p;
+};
+
+static bool ground_at(void *ctx, float x, float z, float *y)
+{
+	const struct ground_call *c = ctx;
+	return c->ed->ground(c->ed->ground_ctx, c->p, c->ed, x, z, y);
+}
+
+/* The file's curves in world units: lon/lat projected, 2D curves on the
+ * ground (curves_geo.c). */
+static int load_curves_file(struct edits *ed, const struct params *p, struct curve_set *s, char *err, size_t errlen)
+{
+	if (curves_load(p->curves, s, err, errlen) < 0)
+		return -1;
+	bool lonlat;
+	const char *why;
+	double c[2];
+	if (curves_geo_project(s, p->curves_crs, p->curves_geo_scale, &lonlat, &why, c, err, errlen) < 0)
+		goto fail;
+	if (lonlat)
+		log_info("%s: WGS84 lon/lat (%s), projected to the tangent plane at lon %.6f lat %.6f, %g world units "
+			 "per metre", p->curves, why, c[0], c[1], (double)p->curves_geo_scale);
+	struct ground_call gc = { ed, p };
+	if (curves_follow_ground(s, p->curves_follow_step, ed->ground ? ground_at : NULL, &gc, err, errlen) < 0)
+		goto fail;
+	return 0;
+fail:
+	curve_set_free(s);
+	return -1;
+}
+
 /* The curves file p->curves, (re)loaded when it changed. */
 static int load_curves(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
@@ -126,7 +168,7 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 		}
 		if (!same_key(&k, &ed->curves_file) || !ed->curves_from_file) {
 			struct curve_set s;
-			if (curves_load(p->curves, &s, err, errlen) < 0)
+			if (load_curves_file(ed, p, &s, err, errlen) < 0)
 				return -1;
 			if (install_curves(ed, &s, p->curve_hash_dim, true, err, errlen) < 0)
 				return -1;
@@ -179,9 +221,67 @@ static int load_heightmap(struct edits *ed, const struct params *p, char *err, s
 	return 0;
 }
 
+/* A control map: any PNG, read as 16-bit gray (image.c). */
+static int control_map_load(const char *path, struct heightmap *m, char *err, size_t errlen)
+{
+	memset(m, 0, sizeof(*m));
+	uint16_t *s = NULL;
+	int w = 0, h = 0;
+	char e[512];
+	if (image_read_png_gray16(path, &s, &w, &h, e, sizeof(e)) < 0) {
+		snprintf(err, errlen, "control map: %s (a grayscale PNG is needed)", e);
+		return -1;
+	}
+	if (w < 2 || h < 2 || w > 8192 || h > 8192) {
+		snprintf(err, errlen, "control map '%s' is %dx%d; 2x2 to 8192x8192 pixels are supported", path, w, h);
+		free(s);
+		return -1;
+	}
+	m->v = malloc(sizeof(float) * (size_t)w * (size_t)h);
+	if (!m->v) {
+		free(s);
+		snprintf(err, errlen, "out of memory for the control map '%s'", path);
+		return -1;
+	}
+	for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+		m->v[i] = (float)s[i];
+	free(s);
+	m->w = w;
+	m->h = h;
+	return 0;
+}
+
+/* The control map file p->control_map, (re)loaded when it changed. */
+static int load_control(struct edits *ed, const struct params *p, char *err, size_t errlen)
+{
+	if (p->control_map[0]) {
+		struct edits_file k;
+		if (file_key_of(p->control_map, &k, "control map", err, errlen) < 0)
+			return -1;
+		if (!same_key(&k, &ed->control_file)) {
+			struct heightmap m;
+			if (control_map_load(p->control_map, &m, err, errlen) < 0)
+				return -1;
+			heightmap_free(&ed->control);
+			ed->control = m;
+			ed->control_gen++;
+			ed->control_file = k;
+			note_change(ed, whole_plane);
+		}
+	} else if (ed->control.w) {
+		heightmap_free(&ed->control);
+		ed->control_gen++;
+		memset(&ed->control_file, 0, sizeof(ed->control_file));
+		note_change(ed, whole_plane);
+	}
+	return 0;
+}
+
 int edits_load(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
-	if (load_curves(ed, p, err, errlen) < 0 || load_heightmap(ed, p, err, errlen) < 0)
+	/* the heightmap first: 2D curves may follow it */
+	if (load_heightmap(ed, p, err, errlen) < 0 || load_control(ed, p, err, errlen) < 0 ||
+	    load_curves(ed, p, err, errlen) < 0)
 		return -1;
 	if (p->field == FIELD_HEIGHTMAP && !ed->hm.w) {
 		snprintf(err, errlen, "field=heightmap needs a heightmap file (--heightmap FILE.png, 16-bit grayscale)");
@@ -196,10 +296,21 @@ void edits_clear(struct edits *ed)
 	curve_quads_free(&ed->quads);
 	curve_hash_free(&ed->hash);
 	heightmap_free(&ed->hm);
+	heightmap_free(&ed->control);
+	ed->control_gen++;
+	memset(&ed->control_file, 0, sizeof(ed->control_file));
 	ed->curves_from_file = false;
 	ed->curves_gen++;
 	ed->hm_gen++;
 	memset(&ed->curves_file, 0, sizeof(ed->curves_file));
 	memset(&ed->hm_file, 0, sizeof(ed->hm_file));
 	ed->changed = false;
+}
+
+bool edits_has_tunnels(const struct edits *ed)
+{
+	for (int k = 0; k < ed->quads.nquads; k++)
+		if (ed->quads.prm[ed->quads.first[k]][2] == (float)CURVE_TUNNEL)
+			return true;
+	return false;
 }

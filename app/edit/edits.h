@@ -44,6 +44,12 @@ struct edits_file {
 };
 
 struct edits_gl; /* curves_gl.c */
+struct edits;
+
+/* The terrain's surface height under (x, z) for parameters p, before any
+ * edit (the field or the heightmap alone); false when there is none. */
+typedef bool (*edits_ground_fn)(void *ctx, const struct params *p, const struct edits *ed, float x, float z,
+				float *y);
 
 struct edits {
 	/* read freely; changed only through the functions below */
@@ -52,14 +58,18 @@ struct edits {
 	struct curve_hash hash;    /* over quads */
 	bool curves_from_file;
 	struct heightmap hm;       /* w == 0: none */
+	struct heightmap control;  /* the control map, samples 0..65535; w == 0: none */
 	unsigned curves_gen, hm_gen; /* bumped on every change (GPU re-upload) */
+	unsigned control_gen;
 	/* private: the files loaded, the hash size, the region changed since
 	 * the last edits_take_changes(), the GL side (NULL until first bound) */
-	struct edits_file curves_file, hm_file;
+	struct edits_file curves_file, hm_file, control_file;
 	int hash_dim;
 	bool changed;
 	float changed_box[4];
 	struct edits_gl *gl;
+	edits_ground_fn ground; /* edits_set_ground: 2D curves follow it */
+	void *ground_ctx;
 };
 
 /* An empty edit state (no curves, no heightmap); NULL when out of memory. */
@@ -85,6 +95,11 @@ bool edits_take_changes(struct edits *ed, float aabb[4]);
 /* Drops the curves and the heightmap (the GL objects stay, re-uploaded on
  * the next bind). */
 void edits_clear(struct edits *ed);
+/* The ground that 2D curves follow (the terrain provider sets it; NULL
+ * drops it: 2D curves are then refused). */
+void edits_set_ground(struct edits *ed, edits_ground_fn fn, void *ctx);
+/* The edit state holds a curve of kind tunnel (the carve's 3D part). */
+bool edits_has_tunnels(const struct edits *ed);
 
 /* ---- GL (curves_gl.c) ------------------------------------------------------- */
 

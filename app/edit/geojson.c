@@ -1,6 +1,8 @@
 /* isoterra — curve input, GeoJSON: FeatureCollection / Feature /
- * LineString / MultiLineString with [x, y, z] positions and the per-path
- * parameters in "properties".  Errors name file:line and the feature. */
+ * LineString / MultiLineString with [x east, y north] or [x east, y north,
+ * z up] positions, the per-path parameters in "properties", the "crs"
+ * member noted for curves_geo_project.  Errors name file:line and the
+ * feature, and the axis convention where a position is wrong. */
 #include "curves.h"
 #include "curves_internal.h"
 #include "json.h"
@@ -16,7 +18,66 @@ struct gctx {
 	char *err;
 	size_t errlen;
 	struct curve_set *s;
+	int crs;           /* enum curve_crs */
+	bool rel;          /* positions stored as degrees from origin */
+	double origin[2];  /* lon, lat: the positions' centroid */
 };
+
+/* All positions' ranges and centroid (longitudes relative to the first). */
+struct geo_stats {
+	double lo[2], hi[2], sum[2], ref;
+	long n;
+};
+
+static double geo_dlon(double lon, double lon0)
+{
+	double d = fmod(lon - lon0 + 540.0, 360.0);
+	return (d < 0.0 ? d + 360.0 : d) - 180.0;
+}
+
+/* The positions under "features", "geometry" and "coordinates". */
+static void geo_scan(const struct json_value *v, struct geo_stats *st, int depth)
+{
+	if (depth > 8)
+		return;
+	if (v->type == JSON_OBJECT) {
+		for (int i = 0; i < v->n; i++)
+			if (!strcmp(v->keys[i], "features") || !strcmp(v->keys[i], "geometry") ||
+			    !strcmp(v->keys[i], "coordinates"))
+				geo_scan(&v->items[i], st, depth + 1);
+	} else if (v->type == JSON_ARRAY && v->n >= 2 && v->items[0].type == JSON_NUMBER &&
+		   v->items[1].type == JSON_NUMBER) {
+		double c[2] = { v->items[0].num, v->items[1].num };
+		if (st->n == 0)
+			st->ref = c[0];
+		for (int a = 0; a < 2; a++) {
+			st->lo[a] = fmin(st->lo[a], c[a]);
+			st->hi[a] = fmax(st->hi[a], c[a]);
+		}
+		st->sum[0] += geo_dlon(c[0], st->ref);
+		st->sum[1] += c[1];
+		st->n++;
+	} else if (v->type == JSON_ARRAY) {
+		for (int i = 0; i < v->n; i++)
+			geo_scan(&v->items[i], st, depth + 1);
+	}
+}
+
+/* The auto rule (curves.h, curves_geo_project): lon/lat when the crs member
+ * names WGS84, or without one when every position is within lon/lat
+ * ranges and the data spans under a degree both ways. */
+static void geo_decide(struct gctx *g, const struct json_value *root)
+{
+	struct geo_stats st = { { 1e300, 1e300 }, { -1e300, -1e300 }, { 0.0, 0.0 }, 0.0, 0 };
+	geo_scan(root, &st, 0);
+	bool ranges = st.n > 0 && st.lo[0] >= -180.0 && st.hi[0] <= 180.0 && st.lo[1] >= -90.0 && st.hi[1] <= 90.0;
+	g->rel = g->crs == CURVE_CRS_WGS84 ||
+		 (g->crs == CURVE_CRS_UNSAID && ranges && st.hi[0] - st.lo[0] < 1.0 && st.hi[1] - st.lo[1] < 1.0);
+	if (g->rel && st.n > 0) {
+		g->origin[0] = geo_dlon(st.ref + st.sum[0] / (double)st.n, 0.0);
+		g->origin[1] = st.sum[1] / (double)st.n;
+	}
+}
 
 static int gfail(struct gctx *g, int line, const char *what, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
@@ -42,7 +103,7 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 	const struct json_value *k = json_get(props, "kind");
 	if (k) {
 		if (k->type != JSON_STRING || curve_kind_parse(k->str) < 0)
-			return gfail(g, k->line, what, "\"kind\" must be \"road\", \"river\" or \"railway\"");
+			return gfail(g, k->line, what, "\"kind\" must be \"road\", \"river\", \"railway\" or \"tunnel\"");
 		curve_path_defaults(base, curve_kind_parse(k->str));
 	}
 	for (int i = 0; i < CURVE_NPARAMS; i++) {
@@ -59,6 +120,9 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 	}
 	return 0;
 }
+
+/* GeoJSON's axes, for messages (the CSV's are x, y up, z) */
+#define GEO_AXES "GeoJSON positions are [x east, y north] (the curve follows the ground) or [x east, y north, z up]"
 
 static int geo_line(struct gctx *g, const struct json_value *coords, const char *what, const struct curve_path *base,
 		    int part)
@@ -78,32 +142,48 @@ static int geo_line(struct gctx *g, const struct json_value *coords, const char 
 	p.pts = malloc(sizeof(float) * 3 * (size_t)coords->n);
 	if (!p.pts)
 		return gfail(g, coords->line, label, "out of memory");
+	static const char *const axis[3] = { "x (east)", "y (north)", "z (up)" };
+	int dim = coords->items[0].type == JSON_ARRAY ? coords->items[0].n : 0;
+	p.follow_ground = dim == 2;
 	for (int i = 0; i < coords->n; i++) {
 		const struct json_value *pos = &coords->items[i];
 		if (pos->type != JSON_ARRAY) {
 			free(p.pts);
-			return gfail(g, pos->line, label, "position %d must be an array [x, y, z], not %s", i + 1,
+			return gfail(g, pos->line, label, "position %d must be an array, not %s; " GEO_AXES, i + 1,
 				     json_type_names[pos->type]);
 		}
-		if (pos->n != 3) {
+		if ((pos->n != 2 && pos->n != 3) || pos->n != dim) {
 			free(p.pts);
-			return gfail(g, pos->line, label, "position %d has %d coordinates; 3D positions [x, y, z] are needed",
-				     i + 1, pos->n);
+			if (pos->n == 2 || pos->n == 3)
+				return gfail(g, pos->line, label,
+					     "position %d has %d coordinates, position 1 has %d: a line string is all 2D "
+					     "[x east, y north] or all 3D [x east, y north, z up]",
+					     i + 1, pos->n, dim);
+			return gfail(g, pos->line, label, "position %d has %d coordinates; " GEO_AXES
+				     " (z up, unlike the CSV's y up)", i + 1, pos->n);
 		}
-		double c[3];
-		for (int a = 0; a < 3; a++) {
+		double c[3] = { 0.0, 0.0, 0.0 };
+		for (int a = 0; a < pos->n; a++) {
 			if (pos->items[a].type != JSON_NUMBER || !isfinite(pos->items[a].num) || fabs(pos->items[a].num) > 1e7) {
 				free(p.pts);
-				return gfail(g, pos->line, label, "position %d: coordinate %d is not a number within +-1e7", i + 1,
-					     a + 1);
+				return gfail(g, pos->line, label, "position %d: %s is not a number within +-1e7", i + 1,
+					     axis[a]);
 			}
 			c[a] = pos->items[a].num;
+		}
+		if (g->rel) { /* degrees from the centroid, exact before rounding */
+			c[0] = geo_dlon(c[0], g->origin[0]);
+			c[1] -= g->origin[1];
 		}
 		/* GeoJSON [east, north, up] -> world (x, y up, z = -north) */
 		p.pts[3 * i + 0] = (float)c[0];
 		p.pts[3 * i + 1] = (float)c[2];
 		p.pts[3 * i + 2] = (float)-c[1];
 	}
+	p.crs = g->crs;
+	p.geo_rel = g->rel;
+	p.geo_origin[0] = g->rel ? g->origin[0] : 0.0;
+	p.geo_origin[1] = g->rel ? g->origin[1] : 0.0;
 	snprintf(p.label, sizeof(p.label), "%.80s: %.96s", g->fname, label);
 	if (curve_path_dedup(&p) < 2) {
 		free(p.pts);
@@ -193,6 +273,49 @@ static long count_positions(const char *text, size_t len)
 	return n;
 }
 
+/* The "crs" member (GeoJSON 2008; RFC 7946 dropped it and says WGS84):
+ * {"type": "name", "properties": {"name": "urn:ogc:def:crs:OGC:1.3:CRS84"}}
+ * or "EPSG:4326" names WGS84 lon/lat, any other name another system. */
+static int geo_crs(struct gctx *g, const struct json_value *root)
+{
+	const struct json_value *crs = root->type == JSON_OBJECT ? json_get(root, "crs") : NULL;
+	if (!crs || crs->type == JSON_NULL)
+		return CURVE_CRS_UNSAID;
+	const struct json_value *pr = crs->type == JSON_OBJECT ? json_get(crs, "properties") : NULL;
+	const struct json_value *nm = pr && pr->type == JSON_OBJECT ? json_get(pr, "name") : NULL;
+	if (!nm || nm->type != JSON_STRING)
+		return gfail(g, crs->line, "GeoJSON", "\"crs\" must be {\"type\": \"name\", \"properties\": {\"name\": "
+			     "\"...\"}}");
+	const char *n = nm->str;
+	if (strstr(n, "CRS84") || strstr(n, "crs84") || strstr(n, "EPSG::4326") || strstr(n, "EPSG:4326") ||
+	    strstr(n, "WGS84") || strstr(n, "WGS 84"))
+		return CURVE_CRS_WGS84;
+	return CURVE_CRS_OTHER;
+}
+
+/* The top level: a FeatureCollection, a Feature or a bare geometry. */
+static int geo_root(struct gctx *g, const struct json_value *root)
+{
+	const struct json_value *t = root->type == JSON_OBJECT ? json_get(root, "type") : NULL;
+	if (!t || t->type != JSON_STRING)
+		return gfail(g, root->line, "GeoJSON", "the top level must be an object with a \"type\"");
+	if (!strcmp(t->str, "FeatureCollection")) {
+		const struct json_value *fs = json_get(root, "features");
+		if (!fs || fs->type != JSON_ARRAY)
+			return gfail(g, root->line, "GeoJSON", "a FeatureCollection needs a \"features\" array");
+		for (int i = 0; i < fs->n; i++)
+			if (geo_feature(g, &fs->items[i], i) < 0)
+				return -1;
+		return 0;
+	}
+	if (!strcmp(t->str, "Feature"))
+		return geo_feature(g, root, 0);
+	if (!strcmp(t->str, "LineString") || !strcmp(t->str, "MultiLineString"))
+		return geo_geometry(g, root, NULL, "geometry");
+	return gfail(g, t->line, "GeoJSON", "type \"%s\" is not supported (FeatureCollection, Feature, LineString, "
+		     "MultiLineString)", t->str);
+}
+
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
 			 size_t errlen)
 {
@@ -206,24 +329,12 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 	struct json_value root;
 	if (json_parse(text, len, fname, &root, err, errlen) < 0)
 		return -1;
-	struct gctx g = { fname, err, errlen, s };
-	int rc = 0;
-	const struct json_value *t = root.type == JSON_OBJECT ? json_get(&root, "type") : NULL;
-	if (!t || t->type != JSON_STRING) {
-		rc = gfail(&g, root.line, "GeoJSON", "the top level must be an object with a \"type\"");
-	} else if (!strcmp(t->str, "FeatureCollection")) {
-		const struct json_value *fs = json_get(&root, "features");
-		if (!fs || fs->type != JSON_ARRAY)
-			rc = gfail(&g, root.line, "GeoJSON", "a FeatureCollection needs a \"features\" array");
-		for (int i = 0; rc == 0 && i < fs->n; i++)
-			rc = geo_feature(&g, &fs->items[i], i);
-	} else if (!strcmp(t->str, "Feature")) {
-		rc = geo_feature(&g, &root, 0);
-	} else if (!strcmp(t->str, "LineString") || !strcmp(t->str, "MultiLineString")) {
-		rc = geo_geometry(&g, &root, NULL, "geometry");
-	} else {
-		rc = gfail(&g, t->line, "GeoJSON", "type \"%s\" is not supported (FeatureCollection, Feature, LineString, "
-			   "MultiLineString)", t->str);
+	struct gctx g = { fname, err, errlen, s, CURVE_CRS_UNSAID, false, { 0.0, 0.0 } };
+	int rc = geo_crs(&g, &root);
+	if (rc >= 0) {
+		g.crs = rc;
+		geo_decide(&g, &root);
+		rc = geo_root(&g, &root);
 	}
 	if (rc == 0 && s->npaths == 0)
 		rc = gfail(&g, root.line, "GeoJSON", "no line strings");

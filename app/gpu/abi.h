@@ -33,6 +33,7 @@
 #define TEX_NOISE1 1
 #define TEX_NOISE2 2
 #define TEX_HEIGHTMAP 3    /* the heightmap (edit/curves_gl.c) */
+#define TEX_CONTROL 4      /* the control map (edit/curves_gl.c) */
 #define TEX_SURFACE 7      /* the generated surface texture (render/surface_tex.c) */
 #define TEX_FRAME 0        /* the finished frame, read by the V4L2 conversion and the OSD's pass */
 

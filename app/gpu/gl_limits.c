@@ -22,7 +22,8 @@
  * the pyramid's base (1) and levels (2); mc_status.glsl the status block (6);
  * density.glsl, through carve.glsl -> curves.glsl, the curves' four buffers
  * (8..11), and through noise.glsl and heightmap.glsl the noise block, three
- * 3D noise samplers and the heightmap sampler.  Uniform components: the
+ * 3D noise samplers, the heightmap sampler and (with a control map file,
+ * counted here: HAS_CONTROL_MAP 1) the control map's.  Uniform components: the
  * largest count seen on llvmpipe (Mesa 22.3 and 25.0 split sky's between
  * the stages differently). */
 static const struct gl_pass passes[] = {
@@ -31,8 +32,8 @@ static const struct gl_pass passes[] = {
 	/* the terrain field's programs (app/terrain/terrain.c): the density
 	 * pass, and the vertex pass with ambient occlusion (its rays sample
 	 * the field: + curves, noise) */
-	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n", false,
-	  CS(5, 4, 0, 1, 80), { 4, 4, 4 }, BIND_CURVE_PRM, 0 },
+	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n#define HAS_CONTROL_MAP 1\n", false,
+	  CS(5, 5, 0, 1, 88), { 4, 4, 4 }, BIND_CURVE_PRM, 0 },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 9), { 64, 1, 1 }, BIND_MC_TABLES, 0 },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false,
@@ -43,9 +44,10 @@ static const struct gl_pass passes[] = {
 	  CS(5, 0, 0, 0, 22), { 1, 1, 1 }, BIND_STATUS, 0 },
 	{ "mc_vertices.comp", "mc_vertices.comp", NULL, NULL, NULL, false,
 	  CS(6, 0, 0, 0, 29), { 64, 1, 1 }, BIND_STATUS, 0 },
-	{ "mc_vertices.comp (WITH_AO)", "density.comp", NULL, NULL, "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n",
+	{ "mc_vertices.comp (WITH_AO)", "density.comp", NULL, NULL,
+	  "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define HAS_CONTROL_MAP 1\n",
 	  false,
-	  CS(10, 4, 0, 1, 101), { 64, 1, 1 }, BIND_CURVE_PRM, 0 },
+	  CS(10, 5, 0, 1, 109), { 64, 1, 1 }, BIND_CURVE_PRM, 0 },
 	{ "mc_indices.comp", "mc_indices.comp", NULL, NULL, NULL, false,
 	  CS(6, 0, 0, 0, 23), { 64, 1, 1 }, BIND_STATUS, 0 },
 	{ "mc_atomic.comp", "mc_atomic.comp", NULL, NULL, NULL, false,
@@ -61,9 +63,9 @@ static const struct gl_pass passes[] = {
 	{ "v4l2_convert.comp", "v4l2_convert.comp", NULL, NULL, "#define FMT 0u\n", false,
 	  CS(0, 1, 1, 0, 9), { 64, 1, 1 }, -1, 0 },
 	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", NULL, false,
-	  VF(16, 1, 18), { 0, 0, 0 }, -1, 2 },
+	  VF(16, 1, 21), { 0, 0, 0 }, -1, 2 },
 	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false,
-	  VF(21, 1, 10), { 0, 0, 0 }, -1, 0 },
+	  VF(21, 0, 15), { 0, 0, 0 }, -1, 0 },
 	{ "sky.vert + sky.frag", NULL, "sky.vert", "sky.frag", NULL, false,
 	  VF(19, 0, 6), { 0, 0, 0 }, -1, 0 },
 	{ "osd.vert + osd.frag", NULL, "osd.vert", "osd.frag", NULL, false,

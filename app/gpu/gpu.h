@@ -39,6 +39,18 @@ struct gpu_program_cache_stats {
 	unsigned writes, write_errors;
 };
 struct gpu_program_cache_stats gpu_program_cache_stats(void);
+/* Live editing (shader_watch.c): watches dir (the --shader-dir) with
+ * inotify; every program the loader builds from then on is recorded.
+ * Open it before building programs.  NULL with err. */
+struct shader_watch;
+struct shader_watch *shader_watch_open(const char *dir, char *err, size_t errlen);
+void shader_watch_close(struct shader_watch *w); /* NULL is fine */
+/* Between frames, with the programs' context current: the files saved
+ * since the last call rebuild every program made of them (in place: the
+ * same GLuint); a program whose rebuild fails keeps its last good version.
+ * The number rebuilt, or -1 with the first failure's "file:line: message"
+ * in msg (the others still rebuilt).  NULL w: 0. */
+int shader_watch_poll(struct shader_watch *w, char *msg, size_t msglen);
 /* Sets every u_<name> uniform the program uses from the parameter table. */
 void gpu_set_param_uniforms(GLuint prog, const struct params *p);
 

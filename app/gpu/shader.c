@@ -1,8 +1,10 @@
 /* isoterra — shader loader: embedded or on-disk sources, host-side
- * #include expansion, file:line error reports. */
+ * #include expansion, file:line error reports; every program it builds is
+ * noted with the live-editing watcher (shader_watch.c) when one is open. */
 #include "gpu.h"
 #include "gpu_int.h"
 #include "log.h"
+#include "shader_int.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -294,34 +296,42 @@ static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t e
 	return prog;
 }
 
-/* One program from n stages (file[i] compiled as type[i] with stage_define[i]):
- * sources assembled first, then the binary cache, then the driver. */
-static GLuint make_program(int n, const GLenum *type, const char *const *stage_define, const char *const *file,
-			   const char *defines, char *err, size_t errlen)
+/* A program from d's stages: sources assembled (deps, if not NULL, gets
+ * the files), then, with use_cache, the binary cache tried, else the
+ * driver compiles and links (and the cache keeps the result). */
+static GLuint build(const struct shader_desc *d, struct shader_deps *deps, bool use_cache, char *err, size_t errlen)
 {
+	static const GLenum types[3] = { GL_COMPUTE_SHADER, GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+	static const char *const stages[3] = { "#define STAGE_COMPUTE 1\n", "#define STAGE_VERTEX 1\n",
+					       "#define STAGE_FRAGMENT 1\n" };
+	int n = d->compute ? 1 : 2, first = d->compute ? 0 : 1;
 	struct srcbuf b[2];
 	memset(b, 0, sizeof(b));
 	GLuint prog = 0;
 	int made = 0;
-	for (; made < n; made++)
-		if (assemble(&b[made], stage_define[made], file[made], defines, err, errlen) < 0)
+	if (deps)
+		deps->n = 0;
+	for (; made < n; made++) {
+		if (assemble(&b[made], stages[first + made], d->file[made], d->defines, err, errlen) < 0)
 			goto out;
+		for (int i = 1; deps && i < b[made].nfiles && deps->n < SHADER_MAX_DEPS; i++)
+			snprintf(deps->names[deps->n++], sizeof(deps->names[0]), "%s", b[made].names[i]);
+	}
 	const char *src[2] = { b[0].s, n > 1 ? b[1].s : NULL };
 	uint64_t key[2] = { 0, 0 };
-	prog = program_cache_load(src, n, key);
-	if (prog)
+	if (use_cache && (prog = program_cache_load(src, n, key)) != 0)
 		goto out;
 	GLuint sh[2] = { 0, 0 };
 	for (int i = 0; i < n; i++) {
-		sh[i] = compile(type[i], &b[i], file[i], err, errlen);
+		sh[i] = compile(types[first + i], &b[i], d->file[i], err, errlen);
 		if (!sh[i]) {
 			while (i-- > 0)
 				glDeleteShader(sh[i]);
 			goto out;
 		}
 	}
-	prog = link(sh, n, file[0], err, errlen);
-	if (prog)
+	prog = link(sh, n, d->file[0], err, errlen);
+	if (prog && use_cache)
 		program_cache_store(prog, key);
 out:
 	for (int i = 0; i < n && i <= made; i++)
@@ -329,20 +339,37 @@ out:
 	return prog;
 }
 
+/* The watcher's rebuilds need the program's shaders attached: never from
+ * the binary cache. */
+GLuint shader_build(const struct shader_desc *d, struct shader_deps *deps, char *err, size_t errlen)
+{
+	return build(d, deps, false, err, errlen);
+}
+
+/* Builds the program (through the binary cache) and notes it with the
+ * watcher (live editing). */
+static GLuint build_noted(const struct shader_desc *d, char *err, size_t errlen)
+{
+	struct shader_deps deps;
+	GLuint prog = build(d, &deps, true, err, errlen);
+	if (prog)
+		shader_watch_note(prog, d, &deps);
+	return prog;
+}
+
 GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen)
 {
-	const GLenum type[1] = { GL_COMPUTE_SHADER };
-	const char *const stage[1] = { "#define STAGE_COMPUTE 1\n" };
-	const char *const files[1] = { file };
-	return make_program(1, type, stage, files, defines, err, errlen);
+	struct shader_desc d = { .compute = true, .defines = defines };
+	snprintf(d.file[0], sizeof(d.file[0]), "%s", file);
+	return build_noted(&d, err, errlen);
 }
 
 GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen)
 {
-	const GLenum type[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
-	const char *const stage[2] = { "#define STAGE_VERTEX 1\n", "#define STAGE_FRAGMENT 1\n" };
-	const char *const files[2] = { vs_file, fs_file };
-	return make_program(2, type, stage, files, defines, err, errlen);
+	struct shader_desc d = { .compute = false, .defines = defines };
+	snprintf(d.file[0], sizeof(d.file[0]), "%s", vs_file);
+	snprintf(d.file[1], sizeof(d.file[1]), "%s", fs_file);
+	return build_noted(&d, err, errlen);
 }
 
 void gpu_set_param_uniforms(GLuint prog, const struct params *p)

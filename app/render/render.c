@@ -96,10 +96,6 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 		renderer_destroy(r);
 		return NULL;
 	}
-	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
-	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
-	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
-	r->l_fade = glGetUniformLocation(r->prog, "u_fade");
 	glGenVertexArrays(1, &r->vao);
 	r->surface = surface_texture_create();
 	if (!r->surface) {
@@ -159,6 +155,11 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	glDisable(GL_CULL_FACE); /* the volume's cut sides show back faces */
 
 	glUseProgram(r->prog);
+	/* looked up per frame: a live shader edit may move them */
+	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
+	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
+	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
+	r->l_fade = glGetUniformLocation(r->prog, "u_fade");
 	gpu_set_param_uniforms(r->prog, p);
 	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(r->l_eye, 1, c->eye);

@@ -15,6 +15,7 @@
 #define NOISE_MEAN_SQ 0.0734f
 static const float worley_mean[4] = { 0.5205f, 0.7167f, 0.8451f, 0.9437f };
 static const float octave_shift[3] = { 17.31f, -9.17f, 23.53f };
+#define SLOPE_EPS 0.05f
 #define PI_F 3.14159265358979f
 
 /* FIELD_*, SHAPE_*, NOISE_*, FRACTAL_*, TERRACE_*: params_enums.h, generated
@@ -64,70 +65,134 @@ static float octave_noise(const struct params *p, const struct noise_set *ns, co
 	return noise_perlin(ns, q[0], q[1], q[2]);
 }
 
+/* The running state of the fractal sum (fractal.glsl's FractalSum). */
+struct fsum {
+	float freq, ga, hw, sum, center, weight, ew, sx, sz;
+};
+
+static float octave_at(const struct params *p, const struct noise_set *ns, const float ws[3], int i, float freq)
+{
+	float q[3];
+	octave_point(p, ns, ws, i, freq, q);
+	return octave_noise(p, ns, q, i);
+}
+
+/* slope_damped: octave i at ws and at the two gradient points, weighted by
+ * the slope of the sum so far. */
+static void slope_octave(const struct params *p, const struct noise_set *ns, struct fsum *s, const float ws[3], int i)
+{
+	float e = SLOPE_EPS / fmaxf(p->noise_freq, 1e-6f);
+	const float wx[3] = { ws[0] + e, ws[1] + 0.0f, ws[2] + 0.0f };
+	const float wz[3] = { ws[0] + 0.0f, ws[1] + 0.0f, ws[2] + e };
+	float n = octave_at(p, ns, ws, i, s->freq);
+	float nx = octave_at(p, ns, wx, i, s->freq);
+	float nz = octave_at(p, ns, wz, i, s->freq);
+	float w = 1.0f;
+	if (i > 0) {
+		float gx = (s->sx - s->sum) * (1.0f / SLOPE_EPS), gz = (s->sz - s->sum) * (1.0f / SLOPE_EPS);
+		w = clampf(p->mf_slope * sqrtf(gx * gx + gz * gz), 0.0f, 1.0f);
+	}
+	float k = w * s->hw;
+	s->sum += k * n;
+	s->sx += k * nx;
+	s->sz += k * nz;
+}
+
+/* hybrid multifractal, octave i (basis n) */
+static void hybrid_octave(const struct params *p, struct fsum *s, int i, float n)
+{
+	if (i == 0) {
+		s->sum = n + p->mf_offset;
+		s->weight = s->sum;
+		s->center = p->mf_offset;
+		s->ew = p->mf_offset;
+		return;
+	}
+	float sig = (n + p->mf_offset) * s->hw, csig = p->mf_offset * s->hw;
+	s->weight = fminf(s->weight, 1.0f);
+	s->ew = fminf(s->ew, 1.0f);
+	s->sum += s->weight * sig;
+	s->center += s->ew * csig;
+	s->weight *= sig;
+	s->ew *= csig;
+}
+
+/* Octave i of every family but slope_damped (fractal.glsl's fractal_octave). */
+static void fractal_octave_ref(const struct params *p, const struct noise_set *ns, struct fsum *s, const float ws[3],
+			       int i, float es, float wc)
+{
+	if (p->fractal == FRACTAL_WORLEY) {
+		float q[3], F[4];
+		octave_point(p, ns, ws, i, s->freq, q);
+		noise_worley(ns, q[0], q[1], q[2], i, F);
+		float v = p->worley_c1 * F[0] + p->worley_c2 * F[1] + p->worley_c3 * F[2] + p->worley_c4 * F[3];
+		s->sum += s->ga * (v - wc);
+		return;
+	}
+	float n = octave_at(p, ns, ws, i, s->freq);
+	switch (p->fractal) {
+	case FRACTAL_FBM:
+		s->sum += s->hw * n;
+		break;
+	case FRACTAL_TURBULENCE:
+		s->sum += s->ga * (fabsf(n) - NOISE_MEAN_ABS);
+		break;
+	case FRACTAL_RIDGED: {
+		float r = p->ridge_offset - fabsf(n);
+		r = r * r * s->weight;
+		s->sum += s->hw * r;
+		s->weight = clampf(r * p->ridge_gain, 0.0f, 1.0f);
+		s->center += s->hw * es * s->ew;
+		s->ew = fminf(es * s->ew * p->ridge_gain, 1.0f);
+		break;
+	}
+	case FRACTAL_MULTIFRACTAL:
+		s->sum *= p->mf_offset + p->mf_contrast * s->hw * n;
+		s->center *= p->mf_offset;
+		break;
+	case FRACTAL_HETERO:
+		if (i == 0) {
+			s->sum = p->mf_offset + n;
+			s->center = p->mf_offset;
+		} else {
+			s->sum += (n + p->mf_offset) * s->hw * s->sum;
+			s->center += p->mf_offset * s->hw * s->center;
+		}
+		break;
+	case FRACTAL_HYBRID:
+		hybrid_octave(p, s, i, n);
+		break;
+	case FRACTAL_ABS_MULTIFRACTAL:
+		s->sum *= p->mf_offset + p->mf_contrast * s->hw * fabsf(n);
+		s->center *= p->mf_offset + p->mf_contrast * s->hw * NOISE_MEAN_ABS;
+		break;
+	default: /* FRACTAL_GEISS */
+		s->sum += s->ga * n;
+		break;
+	}
+}
+
 static float fractal_ref(const struct params *p, const struct noise_set *ns, const float ws[3])
 {
-	float freq = p->noise_freq;
-	float ga = 1.0f, hw = 1.0f;
+	struct fsum s = { .freq = p->noise_freq, .ga = 1.0f, .hw = 1.0f, .weight = 1.0f, .ew = 1.0f };
 	float hstep = powf(p->lacunarity, -p->hurst);
-	float sum = 0.0f, center = 0.0f;
-	float weight = 1.0f;
 	float es = p->ridge_offset * p->ridge_offset - 2.0f * p->ridge_offset * NOISE_MEAN_ABS + NOISE_MEAN_SQ;
-	float ew = 1.0f;
 	float wc = p->worley_c1 * worley_mean[0] + p->worley_c2 * worley_mean[1] + p->worley_c3 * worley_mean[2] +
 		   p->worley_c4 * worley_mean[3];
-	if (p->fractal == FRACTAL_MULTIFRACTAL) {
-		sum = 1.0f;
-		center = 1.0f;
+	if (p->fractal == FRACTAL_MULTIFRACTAL || p->fractal == FRACTAL_ABS_MULTIFRACTAL) {
+		s.sum = 1.0f;
+		s.center = 1.0f;
 	}
 	for (int i = 0; i < p->octaves; i++) {
-		float q[3];
-		octave_point(p, ns, ws, i, freq, q);
-		if (p->fractal == FRACTAL_WORLEY) {
-			float F[4];
-			noise_worley(ns, q[0], q[1], q[2], i, F);
-			float v = p->worley_c1 * F[0] + p->worley_c2 * F[1] + p->worley_c3 * F[2] + p->worley_c4 * F[3];
-			sum += ga * (v - wc);
-		} else {
-			float n = octave_noise(p, ns, q, i);
-			switch (p->fractal) {
-			case FRACTAL_FBM:
-				sum += hw * n;
-				break;
-			case FRACTAL_TURBULENCE:
-				sum += ga * (fabsf(n) - NOISE_MEAN_ABS);
-				break;
-			case FRACTAL_RIDGED: {
-				float s = p->ridge_offset - fabsf(n);
-				s = s * s * weight;
-				sum += hw * s;
-				weight = clampf(s * p->ridge_gain, 0.0f, 1.0f);
-				center += hw * es * ew;
-				ew = fminf(es * ew * p->ridge_gain, 1.0f);
-				break;
-			}
-			case FRACTAL_MULTIFRACTAL:
-				sum *= p->mf_offset + p->mf_contrast * hw * n;
-				center *= p->mf_offset;
-				break;
-			case FRACTAL_HETERO:
-				if (i == 0) {
-					sum = p->mf_offset + n;
-					center = p->mf_offset;
-				} else {
-					sum += (n + p->mf_offset) * hw * sum;
-					center += p->mf_offset * hw * center;
-				}
-				break;
-			default: /* FRACTAL_GEISS */
-				sum += ga * n;
-				break;
-			}
-		}
-		freq *= p->lacunarity;
-		ga *= p->gain;
-		hw *= hstep;
+		if (p->fractal == FRACTAL_SLOPE_DAMPED)
+			slope_octave(p, ns, &s, ws, i);
+		else
+			fractal_octave_ref(p, ns, &s, ws, i, es, wc);
+		s.freq *= p->lacunarity;
+		s.ga *= p->gain;
+		s.hw *= hstep;
 	}
-	return sum - center;
+	return s.sum - s.center;
 }
 
 /* ---- density.glsl ------------------------------------------------------- */
@@ -171,6 +236,45 @@ static void domain_warp(const struct params *p, const struct noise_set *ns, cons
 	w[0] = noise_perlin(ns, x + 11.3f, y + 47.9f, z + 23.1f);
 	w[1] = noise_perlin(ns, x + 71.7f, y + 5.3f, z + 89.9f);
 	w[2] = noise_perlin(ns, x + 37.1f, y + 63.7f, z + 13.9f);
+}
+
+/* density.glsl control_value: the control map's c in [0, 1] at (x, z) */
+static float control_value(const struct params *p, const struct noise_set *ns, const struct edits *ed, float x,
+			   float z)
+{
+	const struct heightmap *m = &ed->control;
+	if (!m->w) {
+		float n = noise_perlin(ns, x * p->control_freq + 3.7f, 0.5f, z * p->control_freq + 9.1f);
+		return clampf(0.5f + 1.8f * n, 0.0f, 1.0f);
+	}
+	float gx = x / p->control_map_scale + 0.5f * (float)(m->w - 1);
+	float gz = z / p->control_map_scale + 0.5f * (float)(m->h - 1);
+	float x0 = floorf(gx), z0 = floorf(gz), fx = gx - x0, fz = gz - z0;
+	int ix = (int)x0, iz = (int)z0;
+	float t[4];
+	for (int k = 0; k < 4; k++) {
+		int cx = ix + (k & 1), cz = iz + (k >> 1);
+		cx = cx < 0 ? 0 : (cx > m->w - 1 ? m->w - 1 : cx);
+		cz = cz < 0 ? 0 : (cz > m->h - 1 ? m->h - 1 : cz);
+		t[k] = m->v[(size_t)cz * (size_t)m->w + (size_t)cx];
+	}
+	float top = t[0] + fx * (t[1] - t[0]), bot = t[2] + fx * (t[3] - t[2]);
+	return (top + fz * (bot - top)) * (1.0f / 65535.0f);
+}
+
+static float marble_term(const struct params *p, const struct noise_set *ns, const float ws[3])
+{
+	float h = 0.5f * p->marble_freq;
+	float x = ws[0] * h + 5.17f, y = ws[1] * h + 31.3f, z = ws[2] * h + 11.9f;
+	float t = 0.0f, a = 1.0f;
+	for (int k = 0; k < 4; k++) {
+		t += fabsf(noise_perlin(ns, x, y, z)) * a;
+		x *= 2.0f;
+		y *= 2.0f;
+		z *= 2.0f;
+		a *= 0.5f;
+	}
+	return p->marble_amp * sinf(2.0f * PI_F * p->marble_freq * (ws[1] + p->marble_turb * t));
 }
 
 static float terrace_term(const struct params *p, float y)
@@ -255,9 +359,15 @@ float density_ref(const struct params *p, const struct noise_set *ns, const stru
 		d = -ws[1] * p->ground_slope;
 	}
 
-	d += p->noise_amp * fractal_ref(p, ns, ws);
+	float amp = p->noise_amp;
+	if (p->control_strength != 0.0f)
+		amp *= 1.0f - p->control_strength * (1.0f - control_value(p, ns, ed, orig[0], orig[2]));
+	d += amp * fractal_ref(p, ns, ws);
 
 	d += sat((p->floor_y - orig[1]) * p->floor_sharpness) * p->floor_strength;
+
+	if (p->marble_amp != 0.0f)
+		d += marble_term(p, ns, ws);
 
 	if (p->terrace == TERRACE_PRE)
 		d += terrace_term(p, orig[1]);

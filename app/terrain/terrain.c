@@ -1,7 +1,9 @@
 /* isoterra — the terrain field provider: binds the noise (textures
  * TEX_NOISE0..2, uniform block UBIND_NOISE) and the edits (curve SSBOs,
  * heightmap texture) for shaders/density.comp and sets their uniforms;
- * specializes the program on what the edit state holds (HAS_CURVES). */
+ * specializes the program on what the edit state holds (HAS_CURVES), and
+ * gives the edit state the ground that 2D curves follow (a CPU search of
+ * the density's top surface). */
 #include "terrain.h"
 #include "noise.h"
 
@@ -15,7 +17,50 @@ struct terrain {
 	struct noise_set ns;
 	struct noise_gl ng;
 	bool noise_ready;
+	struct noise_set cpu_ns; /* the ground search's (CPU) noise */
+	int cpu_seed;
+	bool cpu_ready;
 };
+
+/* The ground search: from GROUND_TOP down in steps of GROUND_STEP to the
+ * first rock, then bisection. */
+#define GROUND_TOP 256.0f
+#define GROUND_STEP 0.5f
+
+/* edits_ground_fn: the top surface of the unedited field under (x, z) --
+ * the heightmap's height (with its fractal detail) for field=heightmap,
+ * else the highest air-to-rock crossing of density_ref between
+ * -GROUND_TOP and GROUND_TOP. */
+static bool terrain_ground(void *ctx, const struct params *p, const struct edits *ed, float x, float z, float *y)
+{
+	struct terrain *t = ctx;
+	if (!t->cpu_ready || t->cpu_seed != p->seed) {
+		noise_set_init(&t->cpu_ns, p->seed);
+		t->cpu_seed = p->seed;
+		t->cpu_ready = true;
+	}
+	if (p->field == FIELD_HEIGHTMAP) {
+		*y = heightmap_ref_height(ed, p, &t->cpu_ns, x, z, true);
+		return ed->hm.w > 0;
+	}
+	float hi = GROUND_TOP;
+	if (density_ref(p, &t->cpu_ns, NULL, x, hi, z) >= p->iso)
+		return false; /* rock at the top: no surface to find */
+	for (float lo = hi - GROUND_STEP; lo >= -GROUND_TOP; hi = lo, lo -= GROUND_STEP) {
+		if (density_ref(p, &t->cpu_ns, NULL, x, lo, z) < p->iso)
+			continue;
+		for (int i = 0; i < 24; i++) { /* air at hi, rock at lo */
+			float mid = 0.5f * (lo + hi);
+			if (density_ref(p, &t->cpu_ns, NULL, x, mid, z) >= p->iso)
+				lo = mid;
+			else
+				hi = mid;
+		}
+		*y = 0.5f * (lo + hi);
+		return true;
+	}
+	return false;
+}
 
 /* The noise for this seed: uploaded on first use and when the seed changes. */
 static int noise_for(struct terrain *t, int seed, char *err, size_t errlen)
@@ -42,7 +87,8 @@ static int terrain_bind(void *ctx, GLuint prog, const struct params *p, char *er
 }
 
 /* The edit state's switches: HAS_CURVES 0 compiles the carve out
- * (shaders/carve.glsl).  The state is brought in line with p first (the
+ * (shaders/carve.glsl), HAS_TUNNELS 0 its tunnels' walk, HAS_CONTROL_MAP
+ * 1 reads the control map file instead of painting it with noise.  The state is brought in line with p first (the
  * curves file loaded or dropped), so the program chosen matches what bind
  * uploads.  The heightmap needs no switch: its code is compiled only for
  * field=heightmap (a specialized enum), which requires a map. */
@@ -52,7 +98,8 @@ static int terrain_defines(void *ctx, const struct params *p, char *buf, size_t 
 	if (edits_load(t->ed, p, err, errlen) < 0)
 		return -1;
 	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
-	int n = snprintf(buf, len, "#define HAS_CURVES %d\n", curves);
+	int n = snprintf(buf, len, "#define HAS_CURVES %d\n#define HAS_TUNNELS %d\n#define HAS_CONTROL_MAP %d\n", curves,
+			 curves && edits_has_tunnels(t->ed), t->ed->control.w > 0);
 	return n < 0 || (size_t)n >= len ? -1 : n;
 }
 
@@ -68,6 +115,7 @@ struct terrain *terrain_create(struct edits *ed)
 	t->field.bind = terrain_bind;
 	t->field.defines = terrain_defines;
 	t->field.ctx = t;
+	edits_set_ground(ed, terrain_ground, t);
 	return t;
 }
 
@@ -77,6 +125,8 @@ void terrain_destroy(struct terrain *t)
 		return;
 	if (t->noise_ready)
 		noise_gl_destroy(&t->ng);
+	if (t->ed->ground_ctx == t)
+		edits_set_ground(t->ed, NULL, NULL);
 	free(t);
 }
 

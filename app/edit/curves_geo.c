@@ -1,0 +1,181 @@
+/* isoterra — geographic curve input: WGS84 lon/lat detected and projected
+ * to local metres around the data's centroid, and 2D curves put on the
+ * terrain's surface.  See curves.h and docs/CURVES.md. */
+#include "curves.h"
+#include "params.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* WGS84 ellipsoid */
+#define WGS84_A 6378137.0
+#define WGS84_F (1.0 / 298.257223563)
+#define DEG (3.14159265358979323846 / 180.0)
+
+/* Longitude difference folded into [-180, 180) (data across the antimeridian). */
+static double dlon(double lon, double lon0)
+{
+	double d = fmod(lon - lon0 + 540.0, 360.0);
+	return (d < 0.0 ? d + 360.0 : d) - 180.0;
+}
+
+static bool choose_lonlat(const struct curve_set *s, int mode, const char **why)
+{
+	const struct curve_path *p = &s->paths[0]; /* one file: the same for every path */
+	if (mode == CURVES_CRS_LONLAT) {
+		*why = "curves_crs=lonlat";
+		return true;
+	}
+	if (mode == CURVES_CRS_LOCAL) {
+		*why = "curves_crs=local";
+		return false;
+	}
+	if (p->crs == CURVE_CRS_WGS84)
+		*why = "the crs member names WGS84";
+	else if (p->crs == CURVE_CRS_OTHER)
+		*why = "the crs member names another system";
+	else if (p->geo_rel)
+		*why = "every position within lon/lat ranges, spanning under a degree";
+	else
+		*why = "the values are not lon/lat of a small area";
+	return p->geo_rel;
+}
+
+/* Every path's positions as degrees from one origin (lon, lat): as the
+ * reader stored them, or (lon/lat forced on absolute values) from their
+ * centroid.  -1 with err for a latitude beyond +-90. */
+static int to_relative(struct curve_set *s, double origin[2], char *err, size_t errlen)
+{
+	if (s->paths[0].geo_rel) {
+		origin[0] = s->paths[0].geo_origin[0];
+		origin[1] = s->paths[0].geo_origin[1];
+	} else {
+		double ref = s->paths[0].pts[0], sx = 0.0, sy = 0.0;
+		long n = 0;
+		for (int i = 0; i < s->npaths; i++)
+			for (int k = 0; k < s->paths[i].npts; k++, n++) {
+				sx += dlon(s->paths[i].pts[3 * k], ref);
+				sy -= s->paths[i].pts[3 * k + 2];
+			}
+		origin[0] = dlon(ref + sx / (double)n, 0.0);
+		origin[1] = sy / (double)n;
+		for (int i = 0; i < s->npaths; i++)
+			for (int k = 0; k < s->paths[i].npts; k++) {
+				float *q = s->paths[i].pts + 3 * k;
+				q[0] = (float)dlon(q[0], origin[0]);
+				q[2] = (float)(q[2] + origin[1]);
+			}
+	}
+	for (int i = 0; i < s->npaths; i++)
+		for (int k = 0; k < s->paths[i].npts; k++) {
+			double lat = origin[1] - s->paths[i].pts[3 * k + 2];
+			if (!(fabs(lat) <= 90.0)) {
+				snprintf(err, errlen, "%s: position %d: latitude %g (y north) is not within [-90, 90]",
+					 s->paths[i].label, k + 1, lat);
+				return -1;
+			}
+		}
+	return 0;
+}
+
+int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat, const char **why, double centroid[2],
+		       char *err, size_t errlen)
+{
+	centroid[0] = centroid[1] = 0.0;
+	*lonlat = false;
+	*why = "no curves";
+	if (s->npaths == 0)
+		return 0;
+	*lonlat = choose_lonlat(s, mode, why);
+	if (!*lonlat) {
+		for (int i = 0; i < s->npaths; i++) { /* world units: absolute again */
+			struct curve_path *p = &s->paths[i];
+			for (int k = 0; p->geo_rel && k < p->npts; k++) {
+				p->pts[3 * k] = (float)(p->pts[3 * k] + p->geo_origin[0]);
+				p->pts[3 * k + 2] = (float)(p->pts[3 * k + 2] - p->geo_origin[1]);
+			}
+			p->geo_rel = false;
+		}
+		return 0;
+	}
+	if (to_relative(s, centroid, err, errlen) < 0)
+		return -1;
+	double e2 = WGS84_F * (2.0 - WGS84_F), sp = sin(centroid[1] * DEG), w = sqrt(1.0 - e2 * sp * sp);
+	double N = WGS84_A / w, M = WGS84_A * (1.0 - e2) / (w * w * w);
+	double kx = N * cos(centroid[1] * DEG) * DEG, kz = M * DEG;
+	for (int i = 0; i < s->npaths; i++) {
+		for (int k = 0; k < s->paths[i].npts; k++) {
+			float *q = s->paths[i].pts + 3 * k;
+			q[0] = (float)(kx * q[0] * scale);
+			q[1] = (float)(q[1] * scale);
+			q[2] = (float)(kz * q[2] * scale); /* -north = -(kz * dlat), dlat = -z */
+		}
+		s->paths[i].geo_rel = false;
+	}
+	return 0;
+}
+
+/* Path p with points inserted so no XZ segment is longer than step. */
+static int densify(struct curve_path *p, float step)
+{
+	int n = 1;
+	for (int k = 1; k < p->npts; k++) {
+		float dx = p->pts[3 * k] - p->pts[3 * k - 3], dz = p->pts[3 * k + 2] - p->pts[3 * k - 1];
+		float len = sqrtf(dx * dx + dz * dz);
+		n += len > step ? (int)ceilf(len / step) : 1;
+		if (n > 1000000)
+			return -1;
+	}
+	float *out = malloc(sizeof(float) * 3 * (size_t)n);
+	if (!out)
+		return -1;
+	int m = 0;
+	memcpy(out, p->pts, sizeof(float) * 3);
+	m = 1;
+	for (int k = 1; k < p->npts; k++) {
+		const float *a = p->pts + 3 * k - 3, *b = p->pts + 3 * k;
+		float dx = b[0] - a[0], dz = b[2] - a[2];
+		float len = sqrtf(dx * dx + dz * dz);
+		int parts = len > step ? (int)ceilf(len / step) : 1;
+		for (int j = 1; j <= parts; j++) {
+			float t = (float)j / (float)parts;
+			out[3 * m] = a[0] + dx * t;
+			out[3 * m + 1] = 0.0f;
+			out[3 * m + 2] = a[2] + dz * t;
+			m++;
+		}
+	}
+	free(p->pts);
+	p->pts = out;
+	p->npts = m;
+	return 0;
+}
+
+int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground, void *ctx, char *err, size_t errlen)
+{
+	for (int i = 0; i < s->npaths; i++) {
+		struct curve_path *p = &s->paths[i];
+		if (!p->follow_ground)
+			continue;
+		if (!ground) {
+			snprintf(err, errlen, "%s: 2D positions [x east, y north] follow the terrain, and there is none to "
+				 "follow here; give [x east, y north, z up]", p->label);
+			return -1;
+		}
+		if (densify(p, step) < 0) {
+			snprintf(err, errlen, "%s: out of memory following the ground", p->label);
+			return -1;
+		}
+		for (int k = 0; k < p->npts; k++) {
+			float *q = p->pts + 3 * k;
+			if (!ground(ctx, q[0], q[2], &q[1])) {
+				snprintf(err, errlen, "%s: no ground under world (x, z) = (%g, %g) to put the 2D curve on",
+					 p->label, q[0], q[2]);
+				return -1;
+			}
+		}
+	}
+	return 0;
+}
