@@ -66,8 +66,9 @@ struct pipeline {
 	unsigned compiles;             /* programs compiled (pipeline_compiles) */
 	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
-	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
+	GLuint b_dens, b_signs, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
 	uint32_t owners, words;        /* owner cells, level-0 words */
+	uint32_t sign_words;           /* the sign buffer's capacity (words) */
 	struct hp_levels hp;
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
 	uint64_t verts_alloc;          /* vertices the vertex buffer holds */

@@ -32,9 +32,9 @@ static const struct gl_pass passes[] = {
 	 * pass, and the vertex pass with ambient occlusion (its rays sample
 	 * the field: + curves, noise) */
 	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n", false,
-	  CS(5, 4, 0, 1, 80), { 4, 4, 4 }, BIND_CURVE_PRM, 0 },
+	  CS(6, 4, 0, 1, 81), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false,
-	  CS(4, 0, 0, 0, 9), { 64, 1, 1 }, BIND_MC_TABLES, 0 },
+	  CS(4, 0, 0, 0, 9), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 19), { 64, 1, 1 }, BIND_MC_TABLES, 0 },
 	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false,
@@ -109,8 +109,9 @@ static const struct limit_def defs[] = {
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, 128), N_LOCAL, 0, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1, 128), N_LOCAL, 1, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 2, 64), N_LOCAL, 2, 0, NULL },
-	/* no shader declares 'shared' variables (tests/test_gl_limits.c checks) */
-	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 0, "no shared variables" },
+	/* the one 'shared' variable: the density pass's uint s_inside[64]
+	 * (tests/test_gl_limits.c checks there is no other) */
+	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 64 * 4, "common.glsl s_inside (sign bits)" },
 	{ LIM(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_COMPUTE, 0, NULL },
 	{ LIM(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_VERTEX, 0, NULL },
 	{ LIM(GL_MAX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_FRAGMENT, 0, NULL },
