@@ -1,8 +1,8 @@
 // isoterra — classify every owner cell from the density pass's sign bits:
 // triangle count from the case byte (corner bit n = corner n inside) and
 // the vertices it owns on edges 3, 0, 8; write HistoPyramid level 0 (packed
-// bytes) and level 1 (sums of four).  One invocation: 16 owner cells (four
-// level-0 words).  Per piece of a row (one piece, two where the 16 cross a
+// bytes), level 1 (sums of four) and level 2 (sums of sixteen).  One
+// invocation: 16 owner cells (four level-0 words, one level-2 node).  Per piece of a row (one piece, two where the 16 cross a
 // row's end) it reads four runs of sign bits, rows y and y+1 of slabs z and
 // z+1, one or two words each: at most one word per cell for rows of 16 cells
 // or more.  Cells whose eight corners agree are skipped with a few bit
@@ -13,6 +13,7 @@ layout(local_size_x = 64) in;
 #include "hp.glsl"
 uniform uint u_words;   // real level-0 words: ceil(owner cells / 4)
 uniform uint u_words_padded;
+uniform uint u_level2_nodes; // level 2's padded size (1 when level 1 is the top)
 
 // MC corner n (mc_tables.c order: 000 010 110 100 001 011 111 101, xyz) of
 // cell j of a piece from the runs of rows (y, z) r00, (y+1, z) r10,
@@ -56,7 +57,7 @@ void piece(ivec3 c, uint n, uint p, inout uvec4 w)
 void main()
 {
 	uint g = lin_id();
-	if (4u * g >= u_words_padded)
+	if (g >= u_level2_nodes)
 		return;
 	uvec4 w = uvec4(0u);
 	ivec3 o = u_cells + 1;
@@ -69,6 +70,7 @@ void main()
 		piece(c, n, cell - first, w);
 		cell += n;
 	}
+	uvec2 sum2 = uvec2(0u);
 	for (uint k = 0u; k < 4u; ++k) {
 		uint wi = 4u * g + k;
 		uvec2 sum = uvec2(0u);
@@ -80,5 +82,8 @@ void main()
 			hp_l0[wi] = w[k];
 		if (wi < u_words_padded)
 			hp[u_hp_off[1] + wi] = sum;
+		sum2 += sum;
 	}
+	if (u_hp_top >= 2)
+		hp[u_hp_off[2] + g] = sum2;
 }

@@ -44,9 +44,10 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h);
 /* glDispatchCompute of 64-wide groups over items, split in 2D past
  * max_groups. */
 void hp_dispatch_1d(uint64_t items, int max_groups);
-/* With level 1 written (buffer b_hp at BIND_HP_LEVELS): levels 2..top by
- * the reduction, then every node's prefix sum, top down (down-sweep). */
-void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
+/* With levels 1 .. from-1 written (buffer b_hp at BIND_HP_LEVELS): levels
+ * from..top by the reduction, then the prefix sum of every node of levels
+ * 2..top, top down (down-sweep). */
+void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
 
 /* ---- the pipeline (pipeline.c) ---------------------------------------------- */
 

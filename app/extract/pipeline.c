@@ -483,11 +483,15 @@ static int run_hp(struct pipeline *pl, const struct params *p, char *err, size_t
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
 	glUseProgram(pl->p_classify);
-	hp_dispatch_1d(div_up(pl->hp.pad[1], 4), pl->max_groups); /* four level-0 words an invocation */
+	/* an invocation: four level-0 words, their level-1 nodes and the
+	 * level-2 node above them (or a level-2 pad) */
+	uint32_t l2 = pl->hp.top >= 2 ? pl->hp.pad[2] : 1;
+	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_level2_nodes"), l2);
+	hp_dispatch_1d(l2, pl->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_CLASSIFY, &t);
 
-	hp_build(&pl->hp, pl->p_reduce, pl->p_downsweep, pl->b_hp, pl->max_groups);
+	hp_build(&pl->hp, 3, pl->p_reduce, pl->p_downsweep, pl->b_hp, pl->max_groups);
 	GLintptr status_off;
 	GLuint status = setup_pass(pl, p, &status_off);
 	mark(pl, PASS_REDUCE, &t);

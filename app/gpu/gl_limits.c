@@ -34,7 +34,7 @@ static const struct gl_pass passes[] = {
 	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n", false,
 	  CS(6, 4, 0, 1, 81), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false,
-	  CS(4, 0, 0, 0, 9), { 64, 1, 1 }, BIND_SIGNS, 0 },
+	  CS(4, 0, 0, 0, 11), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 19), { 64, 1, 1 }, BIND_MC_TABLES, 0 },
 	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false,
