@@ -146,7 +146,17 @@ layout(std430, binding = BIND_MC_TABLES) restrict readonly buffer McTables {
 	ivec4 mc_corner[8];
 };
 
-#ifndef PASS_READS_SIGNS
+#ifdef PASS_READS_SIGNS
+// The case byte of cell c from its corners' sign bits (corner order of
+// mc_tables.c: 000 010 110 100 001 011 111 101, xyz).
+int cell_case(ivec3 c)
+{
+	uint a = sign_run(sign_bit_index(c), 2u), b = sign_run(sign_bit_index(c + ivec3(0, 1, 0)), 2u);
+	uint e = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), 2u), f = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), 2u);
+	return int((a & 1u) | ((b & 1u) << 1) | ((b & 2u) << 1) | ((a & 2u) << 2) | ((e & 1u) << 4) | ((f & 1u) << 5) |
+		   ((f & 2u) << 5) | ((e & 2u) << 6));
+}
+#else
 int cell_case(ivec3 c)
 {
 	int cs = 0;

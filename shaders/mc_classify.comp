@@ -15,9 +15,8 @@ uniform uint u_words;   // real level-0 words: ceil(owner cells / 4)
 uniform uint u_words_padded;
 uniform uint u_level2_nodes; // level 2's padded size (1 when level 1 is the top)
 
-// MC corner n (mc_tables.c order: 000 010 110 100 001 011 111 101, xyz) of
-// cell j of a piece from the runs of rows (y, z) r00, (y+1, z) r10,
-// (y, z+1) r01, (y+1, z+1) r11.
+// The case byte of cell j of a piece from the runs of rows (y, z) r00,
+// (y+1, z) r10, (y, z+1) r01, (y+1, z+1) r11 (corner order as cell_case's).
 uint case_of(uint j, uint r00, uint r10, uint r01, uint r11)
 {
 	uint a = r00 >> j, b = r10 >> j, c = r01 >> j, d = r11 >> j;

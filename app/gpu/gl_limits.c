@@ -17,8 +17,10 @@
 #define CS(s, t, i, u, c) { [GLS_COMPUTE] = { s, t, i, u, c } }
 #define VF(vs_c, fs_t, fs_c) { [GLS_VERTEX] = { 0, 0, 0, 0, vs_c }, [GLS_FRAGMENT] = { 0, fs_t, 0, 0, fs_c } }
 
-/* Storage blocks per compute pass: common.glsl declares the density (0) and
- * the Marching Cubes tables (3) unless the pass writes the density; hp.glsl
+/* Storage blocks per compute pass: common.glsl declares the density (0), or
+ * the sign bits (14) for classification and the index pass, and the
+ * Marching Cubes tables (3) unless the pass writes the density (then the
+ * density and the sign bits); hp.glsl
  * the pyramid's base (1) and levels (2); mc_status.glsl the status block (6);
  * density.glsl, through carve.glsl -> curves.glsl, the curves' four buffers
  * (8..11), and through noise.glsl and heightmap.glsl the noise block, three
@@ -47,7 +49,7 @@ static const struct gl_pass passes[] = {
 	  false,
 	  CS(10, 4, 0, 1, 101), { 64, 1, 1 }, BIND_CURVE_PRM, 0 },
 	{ "mc_indices.comp", "mc_indices.comp", NULL, NULL, NULL, false,
-	  CS(6, 0, 0, 0, 23), { 64, 1, 1 }, BIND_STATUS, 0 },
+	  CS(6, 0, 0, 0, 23), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "mc_atomic.comp", "mc_atomic.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 13), { 64, 1, 1 }, BIND_STATUS, 0 },
 	{ "mc_nocompact.comp", "mc_nocompact.comp", NULL, NULL, NULL, false,
