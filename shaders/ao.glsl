@@ -2,11 +2,14 @@
 // field (GPU Gems 3 ch.1 §4): short range from the block's density volume
 // (nearest samples, u_ao_short_steps steps of one cell), long range
 // (u_ao_long_steps steps of u_ao_long_step world units) from the same
-// volume, trilinear, where the step lands in it, and from the density
-// function with its highest octaves dropped where it lands outside, so
-// gorges and overhangs beyond the volume darken too.  The volume is already
-// in memory: a long step inside it costs eight loads, not an evaluation of
-// the field.  Returns visibility, 1 = open sky.
+// volume, trilinear: eight loads a step, not an evaluation of the field.
+// A step that lands outside the volume: for a block of a larger world
+// (AO_FAR_OUTSIDE, the pipeline defines it for grids with an extra margin)
+// the density function with its highest octaves dropped, so gorges and
+// overhangs beyond the block darken too; for a lone volume, where nothing
+// outside is drawn, the volume's nearest point.  (A compile-time switch: a
+// SIMD driver runs both sides of a divergent branch.)  Returns visibility,
+// 1 = open sky.
 // Rays: a spherical Fibonacci set of u_ao_rays directions, the same for
 // every vertex.
 
@@ -52,11 +55,15 @@ float ao_visibility(vec3 ws, vec3 nrm)
 		for (int s = 1; s <= u_ao_long_steps; s++) {
 			float dist = float(s) * u_ao_long_step;
 			vec3 q = gpos + dir * (dist / u_cell);
+#ifdef AO_FAR_OUTSIDE
 			float d;
 			if (all(greaterThanEqual(q, vec3(lo))) && all(lessThan(q, vec3(hi))))
 				d = D_lin(q);
 			else
 				d = density_far(ws + dir * dist);
+#else
+			float d = D_lin(clamp(q, vec3(lo), vec3(hi) - 1e-3));
+#endif
 			v *= clamp(1.0 - (d - u_iso) * u_ao_long_k, 0.0, 1.0);
 		}
 		vis += v;

@@ -76,6 +76,7 @@ struct pipeline {
 	int max_groups;
 	int max_ssbo;
 	int last_mode;                 /* compaction of the last run, -1 none */
+	bool said_no_ao;               /* append compaction's "no AO" said (once) */
 	bool profile;                  /* glFinish + time every pass (benchmarks) */
 	float density_bias;            /* subtracted from the density (LOD) */
 	bool has_target;

@@ -222,9 +222,14 @@ static GLuint density_program(struct pipeline *pl, const struct params *p, char 
  * no parameter that selects code). */
 static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
+	/* AO: a grid with an extra margin is a block of a larger world, whose
+	 * long rays evaluate the field outside it (shaders/ao.glsl) */
 	if (p->ao_rays > 0)
-		return variant_program(pl, pl->field->program, "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n", p,
-				       true, err, errlen);
+		return variant_program(pl, pl->field->program,
+				       pl->g.margin_extra > 0 ? "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n"
+								"#define AO_FAR_OUTSIDE 1\n"
+							      : "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n",
+				       p, true, err, errlen);
 	return variant_program(pl, "mc_vertices.comp", "", p, false, err, errlen);
 }
 
@@ -506,6 +511,11 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 		return -1;
 	if (!pl->p_finish && !(pl->p_finish = program(pl, "mc_finish.comp", err, errlen)))
 		return -1;
+	if (p->ao_rays > 0 && !pl->said_no_ao) {
+		log_warn("compaction %s computes no ambient occlusion (it has no vertex pass; only hp does): "
+			 "--ao-rays %d ignored", nocompact ? "none" : "atomic", p->ao_rays);
+		pl->said_no_ao = true;
+	}
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
 	if (ensure_vertex_room(pl, need, err, errlen) < 0)
 		return -1;
