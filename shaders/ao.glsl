@@ -15,12 +15,17 @@
 
 float density_far(vec3 ws); // the field's, without its finest detail (app/extract/field.h)
 
-vec3 ao_dir(int i, int n)
+// Ray i of n: height y = 1 - (2i + 1) / n, azimuth i times the golden
+// angle; (cos, sin) of the azimuth is cs, advanced by one rotation per ray
+// (no trigonometry per ray and vertex).
+const vec2 AO_GOLDEN = vec2(-0.73736888, 0.67549029); // cos, sin of 2.39996323
+vec3 ao_dir(int i, int n, inout vec2 cs)
 {
 	float y = 1.0 - (2.0 * float(i) + 1.0) / float(n);
 	float r = sqrt(max(0.0, 1.0 - y * y));
-	float phi = 2.39996323 * float(i);
-	return vec3(r * cos(phi), y, r * sin(phi));
+	vec3 d = vec3(r * cs.x, y, r * cs.y);
+	cs = vec2(cs.x * AO_GOLDEN.x - cs.y * AO_GOLDEN.y, cs.x * AO_GOLDEN.y + cs.y * AO_GOLDEN.x);
+	return d;
 }
 
 // the stored densities at grid coordinates g, trilinear (g within [lo, hi))
@@ -42,8 +47,9 @@ float ao_visibility(vec3 ws, vec3 nrm)
 	ivec3 lo = ivec3(-u_margin), hi = u_cells + u_margin;
 	vec3 gpos = (ws - u_origin) / u_cell - vec3(u_base); // grid coordinates
 	float vis = 0.0;
+	vec2 cs = vec2(1.0, 0.0);
 	for (int r = 0; r < n; r++) {
-		vec3 dir = ao_dir(r, n);
+		vec3 dir = ao_dir(r, n, cs);
 		if (dot(dir, nrm) < -0.2)
 			dir = reflect(dir, nrm); // rays into the rock tell nothing
 		float v = 1.0;
