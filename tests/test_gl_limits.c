@@ -163,7 +163,7 @@ static void check_pass(const struct gl_pass *p, bool exact)
 /* One shader declares a workgroup-shared variable, the density pass's
  * "shared uint s_inside[64];" in common.glsl (the table's need of 256 bytes
  * of GL_MAX_COMPUTE_SHARED_MEMORY_SIZE). */
-static void check_no_shared(void)
+static void check_shared(void)
 {
 	int found = 0, known = 0;
 	for (size_t i = 0; i < embedded_shader_count; i++) {
@@ -211,7 +211,7 @@ int main(void)
 	printf("passes, as the driver counts them (compute/vertex/fragment):\n");
 	for (size_t i = 0; i < np; i++)
 		check_pass(&passes[i], exact);
-	check_no_shared();
+	check_shared();
 
 	size_t nl;
 	const struct gl_limit *lim = gl_limits_list(&nl);
