@@ -5,7 +5,7 @@
 
 // A field's program: its work group comes first (lin_id() needs it).
 #if defined(FIELD_PASS_DENSITY)
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(local_size_x = 64) in; // 64 samples of one z slab (see sign bits below)
 #elif defined(FIELD_PASS_VERTICES)
 layout(local_size_x = 64) in; // mc_vertices.comp's
 #endif
@@ -25,33 +25,102 @@ uint lin_id()
 	       gl_LocalInvocationID.x;
 }
 
+// Sign bits: one bit per density sample, 1 = inside (d > u_iso), written
+// by the density pass beside the densities so classification reads 32
+// samples a word.  Slab z holds its dim.x * dim.y samples x fastest, padded
+// to a multiple of 64 bits (one density work group writes two whole words),
+// so sample (x, y, z) of the density grid is bit z * sign_slab_bits() +
+// x + dim.x * y.
+uint sign_slab_bits()
+{
+	ivec3 d = dens_dims();
+	return uint((d.x * d.y + 63) / 64 * 64);
+}
+
 #ifdef FIELD_PASS_DENSITY
 // The density pass: the field at every corner of the grid plus the margin
-// (for gradients, and the ambient-occlusion rays of world blocks).
+// (for gradients, and the ambient-occlusion rays of world blocks), and the
+// sign bits.  Dispatch: (ceil(dim.x * dim.y / 64), dim.z) groups of 64.
 float density(vec3 ws); // the field's
 layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float dens_out[]; };
+layout(std430, binding = BIND_SIGNS) restrict writeonly buffer SignOut { uint sign_out[]; };
 uniform float u_density_bias; // subtracted (coarse LOD blocks erode a little)
+uniform uint u_sign_words;    // the sign buffer's capacity in words
+shared uint s_inside[64];
+
+// Density grid sample of slab index i (x + dim.x * y): y by a float
+// reciprocal corrected once each way (exact while i < 2^23; no integer
+// division, which a SIMD driver runs lane by lane).
+ivec2 slab_xy(int i, int dx)
+{
+	int y = int(float(i) * (1.0 / float(dx)));
+	int x = i - y * dx;
+	if (x < 0) {
+		y--;
+		x += dx;
+	} else if (x >= dx) {
+		y++;
+		x -= dx;
+	}
+	return ivec2(x, y);
+}
 
 void main()
 {
 	ivec3 dim = dens_dims();
-	ivec3 id = ivec3(gl_GlobalInvocationID);
-	if (any(greaterThanEqual(id, dim)))
-		return;
-	vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
-	float d = density(ws) - u_density_bias;
-	if (u_closed != 0) {
-		// air on the border corners (walls where the box cuts rock) and
-		// clearly air in the margin (so the walls' gradients point out)
-		ivec3 lo = ivec3(u_margin), hi = dim - 1 - u_margin;
-		if (any(lessThan(id, lo)) || any(greaterThan(id, hi)))
-			d = min(d, u_iso - u_cell);
-		else if (any(equal(id, lo)) || any(equal(id, hi)))
-			d = min(d, u_iso - 1e-3 * u_cell);
+	int i = int(gl_WorkGroupID.x * 64u + gl_LocalInvocationID.x);
+	ivec3 id = ivec3(slab_xy(i, dim.x), int(gl_WorkGroupID.y));
+	bool inside = false;
+	if (i < dim.x * dim.y) {
+		vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
+		float d = density(ws) - u_density_bias;
+		if (u_closed != 0) {
+			// air on the border corners (walls where the box cuts rock) and
+			// clearly air in the margin (so the walls' gradients point out)
+			ivec3 lo = ivec3(u_margin), hi = dim - 1 - u_margin;
+			if (any(lessThan(id, lo)) || any(greaterThan(id, hi)))
+				d = min(d, u_iso - u_cell);
+			else if (any(equal(id, lo)) || any(equal(id, hi)))
+				d = min(d, u_iso - 1e-3 * u_cell);
+		}
+		dens_out[i + dim.x * dim.y * id.z] = d;
+		inside = d > u_iso;
 	}
-	dens_out[id.x + dim.x * (id.y + dim.y * id.z)] = d;
+	// 32 lanes' bits -> one word: each lane its bit, one barrier, then
+	// lanes 0 and 32 gather
+	uint l = gl_LocalInvocationID.x;
+	s_inside[l] = uint(inside) << (l & 31u);
+	memoryBarrierShared();
+	barrier();
+	if ((l & 31u) == 0u) {
+		uint w = 0u;
+		for (uint k = 0u; k < 32u; ++k)
+			w |= s_inside[l + k];
+		uint wi = (uint(id.z) * sign_slab_bits() + gl_WorkGroupID.x * 64u + l) >> 5u;
+		if (wi < u_sign_words)
+			sign_out[wi] = w;
+	}
 }
-#else // every other pass reads the densities
+#else // every other pass reads the densities, or their sign bits
+#ifdef PASS_READS_SIGNS
+layout(std430, binding = BIND_SIGNS) restrict readonly buffer Signs { uint signs[]; };
+// len (1..32) sign bits from bit b on, bit 0 = sample b
+uint sign_run(uint b, uint len)
+{
+	uint w = b >> 5u, s = b & 31u;
+	uint v = signs[w] >> s;
+	if (s + len > 32u)
+		v |= signs[w + 1u] << (32u - s);
+	return len >= 32u ? v : v & ((1u << len) - 1u);
+}
+// the sign bit of corner c (each component -margin .. n+margin)
+uint sign_bit_index(ivec3 c)
+{
+	ivec3 d = dens_dims();
+	c += u_margin;
+	return uint(c.z) * sign_slab_bits() + uint(c.x + d.x * c.y);
+}
+#else
 layout(std430, binding = BIND_DENSITY) restrict readonly buffer Dens { float dens[]; };
 // density at corner c (each component -1 .. n+1)
 float D(ivec3 c)
@@ -67,6 +136,8 @@ vec3 grad_at(ivec3 c)
 		    D(c + ivec3(0, 0, 1)) - D(c - ivec3(0, 0, 1)));
 }
 
+#endif // PASS_READS_SIGNS
+
 // Marching Cubes tables (mc_tables.c), uploaded verbatim.
 layout(std430, binding = BIND_MC_TABLES) restrict readonly buffer McTables {
 	uint mc_tricount[256];
@@ -75,6 +146,17 @@ layout(std430, binding = BIND_MC_TABLES) restrict readonly buffer McTables {
 	ivec4 mc_corner[8];
 };
 
+#ifdef PASS_READS_SIGNS
+// The case byte of cell c from its corners' sign bits (corner order of
+// mc_tables.c: 000 010 110 100 001 011 111 101, xyz).
+int cell_case(ivec3 c)
+{
+	uint a = sign_run(sign_bit_index(c), 2u), b = sign_run(sign_bit_index(c + ivec3(0, 1, 0)), 2u);
+	uint e = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), 2u), f = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), 2u);
+	return int((a & 1u) | ((b & 1u) << 1) | ((b & 2u) << 1) | ((a & 2u) << 2) | ((e & 1u) << 4) | ((f & 1u) << 5) |
+		   ((f & 2u) << 5) | ((e & 2u) << 6));
+}
+#else
 int cell_case(ivec3 c)
 {
 	int cs = 0;
@@ -98,4 +180,5 @@ void edge_vertex(ivec3 c, int a, out vec4 pos, out vec4 nrm)
 	float len = length(g);
 	nrm = vec4(len > 1e-20 ? -g / len : vec3(0.0, 1.0, 0.0), 1.0); // w: ambient visibility
 }
+#endif // !PASS_READS_SIGNS
 #endif // FIELD_PASS_DENSITY

@@ -45,11 +45,18 @@ void hp_traverse(uint key, int comp, out uint cell, out uint rank)
 }
 
 // Number of outputs of component comp emitted by cells before `cell`, from
-// the down-swept prefix sums (valid after hp_downsweep.comp).
+// the down-swept prefix sums of level 2 (valid after hp_downsweep.comp)
+// plus the left siblings at level 1 and the bytes before it in its word.
 uint hp_prefix_fast(uint cell, int comp)
 {
-	uint w = hp_l0[cell >> 2];
-	uint sum = hp[u_pre_base + u_hp_off[1] + (cell >> 2)][comp];
+	uint i = cell >> 2;
+	uint w = hp_l0[i];
+	uint sum = 0u;
+	if (u_hp_top >= 2) {
+		sum = hp[u_pre_base + u_hp_off[2] + (i >> 2)][comp];
+		for (uint m = i & ~3u; m < i; ++m)
+			sum += hp[u_hp_off[1] + m][comp];
+	}
 	for (uint j = 0u; j < (cell & 3u); ++j)
 		sum += byte_count((w >> (8u * j)) & 255u, comp);
 	return sum;

@@ -2,11 +2,11 @@
 // node (outputs of all nodes before it at its level), from the top down:
 // pre(node) = pre(parent) + counts of its left siblings.  Stored after the
 // pyramid (offset u_pre_base) so the index pass finds a cell's first vertex
-// with two loads instead of a walk up every level.
+// with a few loads instead of a walk up every level.
 layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "hp.glsl"
-uniform int u_level;   // level being written (top-1 .. 1)
+uniform int u_level;   // level being written (top-1 .. 2)
 uniform uint u_count;  // real nodes at this level
 
 void main()

@@ -1,88 +1,88 @@
-// isoterra — classify every owner cell: triangle count from the case byte
-// (corner bit n = corner n inside) and the vertices it owns on edges 3, 0, 8;
-// write HistoPyramid level 0 (packed bytes) and level 1 (sums of four).
+// isoterra — classify every owner cell from the density pass's sign bits:
+// triangle count from the case byte (corner bit n = corner n inside) and
+// the vertices it owns on edges 3, 0, 8; write HistoPyramid level 0 (packed
+// bytes), level 1 (sums of four) and level 2 (sums of sixteen).  One
+// invocation: 16 owner cells (four level-0 words, one level-2 node).  Per piece of a row (one piece, two where the 16 cross a
+// row's end) it reads four runs of sign bits, rows y and y+1 of slabs z and
+// z+1, one or two words each: at most one word per cell for rows of 16 cells
+// or more.  Cells whose eight corners agree are skipped with a few bit
+// operations per piece.
 layout(local_size_x = 64) in;
+#define PASS_READS_SIGNS 1
 #include "common.glsl"
 #include "hp.glsl"
 uniform uint u_words;   // real level-0 words: ceil(owner cells / 4)
 uniform uint u_words_padded;
+uniform uint u_level2_nodes; // level 2's padded size (1 when level 1 is the top)
 
-uint cell_byte(uint cell)
+// The case byte of cell j of a piece from the runs of rows (y, z) r00,
+// (y+1, z) r10, (y, z+1) r01, (y+1, z+1) r11 (corner order as cell_case's).
+uint case_of(uint j, uint r00, uint r10, uint r01, uint r11)
 {
-	ivec3 o = u_cells + 1;
-	if (cell >= uint(o.x * o.y * o.z))
-		return 0u;
-	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
-	uint tris = 0u;
-	if (all(lessThan(c, u_cells)))
-		tris = mc_tricount[cell_case(c)];
-	bool in0 = D(c) > u_iso;
-	uint m = 0u;
-	if (c.x < u_cells.x && c.y <= u_cells.y && c.z <= u_cells.z && in0 != (D(c + ivec3(1, 0, 0)) > u_iso))
-		m |= 1u;
-	if (c.y < u_cells.y && c.x <= u_cells.x && c.z <= u_cells.z && in0 != (D(c + ivec3(0, 1, 0)) > u_iso))
-		m |= 2u;
-	if (c.z < u_cells.z && c.x <= u_cells.x && c.y <= u_cells.y && in0 != (D(c + ivec3(0, 0, 1)) > u_iso))
-		m |= 4u;
-	return tris | (m << 3);
+	uint a = r00 >> j, b = r10 >> j, c = r01 >> j, d = r11 >> j;
+	return (a & 1u) | ((b & 1u) << 1) | ((b & 2u) << 1) | ((a & 2u) << 2) | ((c & 1u) << 4) | ((d & 1u) << 5) |
+	       ((d & 2u) << 5) | ((c & 2u) << 6);
 }
 
-// Four cells of one row at once: the 5x2x2 corners they touch are loaded
-// once (20 loads instead of 44).
-uint row_bytes(ivec3 c)
+// The bytes of n cells of one row from owner cell c on, or-ed into w at
+// byte p (of the invocation's 16).
+void piece(ivec3 c, uint n, uint p, inout uvec4 w)
 {
-	uint in_bits = 0u; // bit (x + 5*(y + 2*z)) = corner inside
-	for (int z = 0; z < 2; ++z)
-		for (int y = 0; y < 2; ++y)
-			for (int x = 0; x < 5; ++x)
-				in_bits |= uint(D(c + ivec3(x, y, z)) > u_iso) << uint(x + 5 * (y + 2 * z));
-	uint w = 0u;
-	for (int j = 0; j < 4; ++j) {
-		ivec3 q = c + ivec3(j, 0, 0);
+	uint len = n + 1u;
+	uint r00 = sign_run(sign_bit_index(c), len);
+	uint r10 = sign_run(sign_bit_index(c + ivec3(0, 1, 0)), len);
+	uint r01 = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), len);
+	uint r11 = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), len);
+	uint any4 = r00 | r10 | r01 | r11, all4 = r00 & r10 & r01 & r11;
+	uint mixed = ((any4 | (any4 >> 1)) & ~(all4 & (all4 >> 1))) & ((1u << n) - 1u);
+	if (mixed == 0u)
+		return; // every corner of the piece inside, or every one outside
+	uint ex = r00 ^ (r00 >> 1), ey = r00 ^ r10, ez = r00 ^ r01; // owned edges cross
+	bool yz_tris = c.y < u_cells.y && c.z < u_cells.z;
+	do {
+		uint j = uint(findLSB(mixed));
+		mixed &= mixed - 1u;
+		int x = c.x + int(j);
 		uint tris = 0u;
-		if (all(lessThan(q, u_cells))) {
-			uint cs = 0u;
-			for (int n = 0; n < 8; ++n) {
-				ivec3 o = mc_corner[n].xyz;
-				cs |= ((in_bits >> uint(j + o.x + 5 * (o.y + 2 * o.z))) & 1u) << uint(n);
-			}
-			tris = mc_tricount[cs];
-		}
-		uint b0 = (in_bits >> uint(j)) & 1u;
-		uint m = 0u;
-		if (q.x < u_cells.x && b0 != ((in_bits >> uint(j + 1)) & 1u))
-			m |= 1u;
-		if (q.y < u_cells.y && b0 != ((in_bits >> uint(j + 5)) & 1u))
-			m |= 2u;
-		if (q.z < u_cells.z && b0 != ((in_bits >> uint(j + 10)) & 1u))
-			m |= 4u;
-		w |= (tris | (m << 3)) << (8u * uint(j));
-	}
-	return w;
+		if (yz_tris && x < u_cells.x)
+			tris = mc_tricount[case_of(j, r00, r10, r01, r11)];
+		uint m = (x < u_cells.x ? (ex >> j) & 1u : 0u) | (c.y < u_cells.y ? ((ey >> j) & 1u) << 1 : 0u) |
+			 (c.z < u_cells.z ? ((ez >> j) & 1u) << 2 : 0u);
+		uint q = p + j;
+		w[q >> 2] |= (tris | (m << 3)) << (8u * (q & 3u));
+	} while (mixed != 0u);
 }
 
 void main()
 {
 	uint g = lin_id();
-	if (g >= u_words_padded)
+	if (g >= u_level2_nodes)
 		return;
-	uint w = 0u;
-	uvec2 sum = uvec2(0u);
-	if (g < u_words) {
-		ivec3 o = u_cells + 1;
-		int cell = int(4u * g);
-		ivec3 c = ivec3(cell % o.x, (cell / o.x) % o.y, cell / (o.x * o.y));
-		if (c.x + 3 < o.x && cell + 3 < o.x * o.y * o.z) {
-			w = row_bytes(c);
-		} else {
-			for (uint j = 0u; j < 4u; ++j)
-				w |= cell_byte(4u * g + j) << (8u * j);
-		}
+	uvec4 w = uvec4(0u);
+	ivec3 o = u_cells + 1;
+	uint owners = uint(o.x * o.y * o.z);
+	uint first = 16u * g, end = min(first + 16u, owners);
+	for (uint cell = first; cell < end;) {
+		int ic = int(cell);
+		ivec3 c = ivec3(ic % o.x, (ic / o.x) % o.y, ic / (o.x * o.y));
+		uint n = min(end - cell, uint(o.x - c.x));
+		piece(c, n, cell - first, w);
+		cell += n;
+	}
+	uvec2 sum2 = uvec2(0u);
+	for (uint k = 0u; k < 4u; ++k) {
+		uint wi = 4u * g + k;
+		uvec2 sum = uvec2(0u);
 		for (uint j = 0u; j < 4u; ++j) {
-			uint b = (w >> (8u * j)) & 255u;
+			uint b = (w[k] >> (8u * j)) & 255u;
 			sum += uvec2(b & 7u, uint(bitCount(b >> 3)));
 		}
-		hp_l0[g] = w;
+		if (wi < u_words)
+			hp_l0[wi] = w[k];
+		if (wi < u_words_padded)
+			hp[u_hp_off[1] + wi] = sum;
+		sum2 += sum;
 	}
-	hp[u_hp_off[1] + g] = sum;
+	if (u_hp_top >= 2)
+		hp[u_hp_off[2] + g] = sum2;
 }

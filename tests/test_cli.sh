@@ -64,6 +64,19 @@ else
 	bad "--count 3 with %03d: $(cat seq.txt; ls)"
 fi
 
+# compaction without a vertex pass computes no ambient occlusion: the run
+# says so once (not per frame); with --ao-rays 0 there is nothing to say
+for c in atomic none; do
+	if "$BIN" --size 64x48 --grid 12 --count 2 --compaction $c --out ao.png >ao.txt 2>&1; then
+		n=$(grep -c "compaction $c computes no ambient occlusion" ao.txt)
+		[ "$n" -eq 1 ] && ok || bad "--compaction $c: $n AO notices, want 1: $(cat ao.txt)"
+	else
+		bad "--compaction $c: $(cat ao.txt)"
+	fi
+	"$BIN" --size 64x48 --grid 12 --compaction $c --ao-rays 0 --out ao.png >ao.txt 2>&1 &&
+		! grep -q "ambient occlusion" ao.txt && ok || bad "--compaction $c --ao-rays 0: $(cat ao.txt)"
+done
+
 # the world scene exports its mesh too (every block the world holds), no
 # warning; the PLY is checked against the world rebuilt independently
 # (tests/world_export_check.c: triangle count, block bounds, every vertex

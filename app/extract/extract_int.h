@@ -44,9 +44,10 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h);
 /* glDispatchCompute of 64-wide groups over items, split in 2D past
  * max_groups. */
 void hp_dispatch_1d(uint64_t items, int max_groups);
-/* With level 1 written (buffer b_hp at BIND_HP_LEVELS): levels 2..top by
- * the reduction, then every node's prefix sum, top down (down-sweep). */
-void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
+/* With levels 1 .. from-1 written (buffer b_hp at BIND_HP_LEVELS): levels
+ * from..top by the reduction, then the prefix sum of every node of levels
+ * 2..top, top down (down-sweep). */
+void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
 
 /* ---- the pipeline (pipeline.c) ---------------------------------------------- */
 
@@ -66,14 +67,16 @@ struct pipeline {
 	unsigned compiles;             /* programs compiled (pipeline_compiles) */
 	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
-	GLuint b_dens, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
+	GLuint b_dens, b_signs, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
 	uint32_t owners, words;        /* owner cells, level-0 words */
+	uint32_t sign_words;           /* the sign buffer's capacity (words) */
 	struct hp_levels hp;
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
 	uint64_t verts_alloc;          /* vertices the vertex buffer holds */
 	int max_groups;
 	int max_ssbo;
 	int last_mode;                 /* compaction of the last run, -1 none */
+	bool said_no_ao;               /* append compaction's "no AO" said (once) */
 	bool profile;                  /* glFinish + time every pass (benchmarks) */
 	float density_bias;            /* subtracted from the density (LOD) */
 	bool has_target;

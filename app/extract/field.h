@@ -18,7 +18,8 @@
  *                          field at every corner of the grid and its margin
  *     FIELD_PASS_VERTICES  the vertex pass when it computes ambient
  *                          occlusion (WITH_AO; main() in mc_vertices.comp):
- *                          the long rays read density_far()
+ *                          the long rays of a world block (AO_FAR_OUTSIDE)
+ *                          read density_far() outside the block
  * defined, after the parameters' specialization #defines
  * (params_glsl_specialization: the enum terms as constants, TERM_<NAME>
  * 0|1) and the provider's own (`defines` below); the parameter

@@ -53,14 +53,14 @@ void hp_dispatch_1d(uint64_t items, int max_groups)
 	glDispatchCompute(gx, div_up(groups, gx), 1);
 }
 
-void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups)
+void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups)
 {
 	hp_set_uniforms(reduce, h);
 	GLint l_level = glGetUniformLocation(reduce, "u_level");
 	GLint l_count = glGetUniformLocation(reduce, "u_count");
 	GLint l_pad = glGetUniformLocation(reduce, "u_padded");
 	glUseProgram(reduce);
-	for (int k = 2; k <= h->top; k++) {
+	for (int k = from; k <= h->top; k++) {
 		glProgramUniform1i(reduce, l_level, k);
 		glProgramUniform1ui(reduce, l_count, h->n[k]);
 		glProgramUniform1ui(reduce, l_pad, h->pad[k]);
@@ -68,7 +68,8 @@ void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
 
-	/* prefix sums, top down: the top node's prefix is 0 */
+	/* prefix sums, top down to level 2 (hp_prefix_fast adds a level-1
+	 * node's left siblings itself): the top node's prefix is 0 */
 	hp_set_uniforms(downsweep, h);
 	glUseProgram(downsweep);
 	uint32_t zero[2] = { 0, 0 };
@@ -77,7 +78,7 @@ void hp_build(const struct hp_levels *h, GLuint reduce, GLuint downsweep, GLuint
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 	GLint l_lev = glGetUniformLocation(downsweep, "u_level");
 	GLint l_cnt = glGetUniformLocation(downsweep, "u_count");
-	for (int k = h->top - 1; k >= 1; k--) {
+	for (int k = h->top - 1; k >= 2; k--) {
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 		glProgramUniform1i(downsweep, l_lev, k);
 		glProgramUniform1ui(downsweep, l_cnt, h->n[k]);
@@ -167,7 +168,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		glProgramUniform1ui(t.prog, glGetUniformLocation(t.prog, "u_words"), t.words);
 		glProgramUniform1i(t.prog, glGetUniformLocation(t.prog, "u_comp"), comp);
 		hp_test_pass(&t, 0, t.h.pad[1]); /* level 1 from the bytes */
-		hp_build(&t.h, t.reduce, t.down, t.b_hp, t.max_groups);
+		hp_build(&t.h, 2, t.reduce, t.down, t.b_hp, t.max_groups);
 		rc = gpu_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);
 	}
 	if (rc == 0) {

@@ -222,9 +222,14 @@ static GLuint density_program(struct pipeline *pl, const struct params *p, char 
  * no parameter that selects code). */
 static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
+	/* AO: a grid with an extra margin is a block of a larger world, whose
+	 * long rays evaluate the field outside it (shaders/ao.glsl) */
 	if (p->ao_rays > 0)
-		return variant_program(pl, pl->field->program, "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n", p,
-				       true, err, errlen);
+		return variant_program(pl, pl->field->program,
+				       pl->g.margin_extra > 0 ? "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n"
+								"#define AO_FAR_OUTSIDE 1\n"
+							      : "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n",
+				       p, true, err, errlen);
 	return variant_program(pl, "mc_vertices.comp", "", p, false, err, errlen);
 }
 
@@ -295,9 +300,19 @@ static int create_programs(struct pipeline *pl, const struct params *p, char *er
 	return 0;
 }
 
+/* The sign buffer's words: a bit per density sample, every z slab padded
+ * to a multiple of 64 bits (shaders/common.glsl, sign_slab_bits). */
+static uint32_t sign_words(const struct grid *g)
+{
+	int m2 = 1 + 2 * grid_margin(g);
+	uint64_t slab_bits = (uint64_t)div_up((uint64_t)(g->nx + m2) * (g->ny + m2), 64) * 64;
+	return (uint32_t)(slab_bits / 32 * (uint64_t)(g->nz + m2));
+}
+
 static int create_buffers(struct pipeline *pl, char *err, size_t errlen)
 {
 	pl->b_dens = extract_buffer((GLsizeiptr)grid_dens_count(&pl->g) * 4, NULL, GL_DYNAMIC_COPY);
+	pl->b_signs = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_l0 = extract_buffer((GLsizeiptr)pl->words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 16, NULL, GL_DYNAMIC_COPY); /* pyramid + prefix sums */
 	pl->b_idx = extract_buffer((GLsizeiptr)pl->tri_cap * 12 + GUARD_BYTES, NULL, GL_DYNAMIC_DRAW);
@@ -340,13 +355,16 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 
 	uint64_t owners = (uint64_t)(g->nx + 1) * (g->ny + 1) * (g->nz + 1);
 	uint64_t dens = (uint64_t)grid_dens_count(g);
-	if (dens * 4 > (uint64_t)pl->max_ssbo || owners > 0x3fffffffu) {
+	int m2 = 1 + 2 * grid_margin(g);
+	uint64_t slab_groups = div_up((uint64_t)(g->nx + m2) * (g->ny + m2), 64);
+	if (dens * 4 > (uint64_t)pl->max_ssbo || owners > 0x3fffffffu || slab_groups > (uint64_t)pl->max_groups) {
 		snprintf(err, errlen, "grid %dx%dx%d needs a %llu MB density buffer, over the GL limit (%d MB)", g->nx, g->ny,
 			 g->nz, (unsigned long long)(dens * 4 >> 20), pl->max_ssbo >> 20);
 		free(pl);
 		return NULL;
 	}
 	pl->owners = (uint32_t)owners;
+	pl->sign_words = sign_words(g);
 	pl->words = div_up(owners, 4);
 	hp_plan(&pl->hp, pl->words);
 	plan_capacities(pl, p);
@@ -371,7 +389,7 @@ void pipeline_destroy(struct pipeline *pl)
 	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
-	GLuint bufs[] = { pl->b_dens, pl->b_l0, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
+	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_l0, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
@@ -381,6 +399,7 @@ void pipeline_destroy(struct pipeline *pl)
 static void bind_all(const struct pipeline *pl)
 {
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_DENSITY, pl->b_dens);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, pl->b_l0);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, pl->b_hp);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_MC_TABLES, pl->b_tables);
@@ -402,9 +421,10 @@ int pipeline_density(struct pipeline *pl, const struct params *p, char *err, siz
 		return -1;
 	glUseProgram(pl->p_density);
 	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
+	glProgramUniform1ui(pl->p_density, glGetUniformLocation(pl->p_density, "u_sign_words"), pl->sign_words);
+	/* one z slab of 64-sample groups per row of groups (common.glsl) */
 	int m2 = 1 + 2 * grid_margin(&pl->g);
-	glDispatchCompute(div_up((uint64_t)pl->g.nx + m2, 4), div_up((uint64_t)pl->g.ny + m2, 4),
-			  div_up((uint64_t)pl->g.nz + m2, 4));
+	glDispatchCompute(div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64), (GLuint)(pl->g.nz + m2), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");
@@ -468,11 +488,15 @@ static int run_hp(struct pipeline *pl, const struct params *p, char *err, size_t
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
 	glUseProgram(pl->p_classify);
-	hp_dispatch_1d(pl->hp.pad[1], pl->max_groups);
+	/* an invocation: four level-0 words, their level-1 nodes and the
+	 * level-2 node above them (or a level-2 pad) */
+	uint32_t l2 = pl->hp.top >= 2 ? pl->hp.pad[2] : 1;
+	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_level2_nodes"), l2);
+	hp_dispatch_1d(l2, pl->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_CLASSIFY, &t);
 
-	hp_build(&pl->hp, pl->p_reduce, pl->p_downsweep, pl->b_hp, pl->max_groups);
+	hp_build(&pl->hp, 3, pl->p_reduce, pl->p_downsweep, pl->b_hp, pl->max_groups);
 	GLintptr status_off;
 	GLuint status = setup_pass(pl, p, &status_off);
 	mark(pl, PASS_REDUCE, &t);
@@ -487,6 +511,11 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 		return -1;
 	if (!pl->p_finish && !(pl->p_finish = program(pl, "mc_finish.comp", err, errlen)))
 		return -1;
+	if (p->ao_rays > 0 && !pl->said_no_ao) {
+		log_warn("compaction %s computes no ambient occlusion (it has no vertex pass; only hp does): "
+			 "--ao-rays %d ignored", nocompact ? "none" : "atomic", p->ao_rays);
+		pl->said_no_ao = true;
+	}
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
 	if (ensure_vertex_room(pl, need, err, errlen) < 0)
 		return -1;

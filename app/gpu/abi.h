@@ -24,6 +24,7 @@
 #define BIND_CURVE_PRM 11  /* per-quadratic profile parameters */
 #define BIND_AUX_A 12      /* pass-specific: curve bake output, curve test input */
 #define BIND_AUX_B 13      /* pass-specific: curve bake tiles, curve test output */
+#define BIND_SIGNS 14      /* sign bit per density sample, 1 = inside (density pass writes, classify reads) */
 
 /* ---- uniform buffers --------------------------------------------------- */
 #define UBIND_NOISE 0      /* noise rotations and seed keys (terrain/noise_gl.c) */

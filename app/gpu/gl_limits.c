@@ -17,8 +17,10 @@
 #define CS(s, t, i, u, c) { [GLS_COMPUTE] = { s, t, i, u, c } }
 #define VF(vs_c, fs_t, fs_c) { [GLS_VERTEX] = { 0, 0, 0, 0, vs_c }, [GLS_FRAGMENT] = { 0, fs_t, 0, 0, fs_c } }
 
-/* Storage blocks per compute pass: common.glsl declares the density (0) and
- * the Marching Cubes tables (3) unless the pass writes the density; hp.glsl
+/* Storage blocks per compute pass: common.glsl declares the density (0), or
+ * the sign bits (14) for classification and the index pass, and the
+ * Marching Cubes tables (3) unless the pass writes the density (then the
+ * density and the sign bits); hp.glsl
  * the pyramid's base (1) and levels (2); mc_status.glsl the status block (6);
  * density.glsl, through carve.glsl -> curves.glsl, the curves' four buffers
  * (8..11), and through noise.glsl and heightmap.glsl the noise block, three
@@ -33,9 +35,9 @@ static const struct gl_pass passes[] = {
 	 * pass, and the vertex pass with ambient occlusion (its rays sample
 	 * the field: + curves, noise) */
 	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n#define HAS_CONTROL_MAP 1\n", false,
-	  CS(5, 5, 0, 1, 88), { 4, 4, 4 }, BIND_CURVE_PRM, 0 },
+	  CS(6, 5, 0, 1, 89), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false,
-	  CS(4, 0, 0, 0, 9), { 64, 1, 1 }, BIND_MC_TABLES, 0 },
+	  CS(4, 0, 0, 0, 11), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 19), { 64, 1, 1 }, BIND_MC_TABLES, 0 },
 	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false,
@@ -45,11 +47,11 @@ static const struct gl_pass passes[] = {
 	{ "mc_vertices.comp", "mc_vertices.comp", NULL, NULL, NULL, false,
 	  CS(6, 0, 0, 0, 29), { 64, 1, 1 }, BIND_STATUS, 0 },
 	{ "mc_vertices.comp (WITH_AO)", "density.comp", NULL, NULL,
-	  "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define HAS_CONTROL_MAP 1\n",
+	  "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n#define HAS_CONTROL_MAP 1\n",
 	  false,
 	  CS(10, 5, 0, 1, 109), { 64, 1, 1 }, BIND_CURVE_PRM, 0 },
 	{ "mc_indices.comp", "mc_indices.comp", NULL, NULL, NULL, false,
-	  CS(6, 0, 0, 0, 23), { 64, 1, 1 }, BIND_STATUS, 0 },
+	  CS(6, 0, 0, 0, 23), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "mc_atomic.comp", "mc_atomic.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 13), { 64, 1, 1 }, BIND_STATUS, 0 },
 	{ "mc_nocompact.comp", "mc_nocompact.comp", NULL, NULL, NULL, false,
@@ -114,8 +116,9 @@ static const struct limit_def defs[] = {
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, 128), N_LOCAL, 0, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1, 128), N_LOCAL, 1, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 2, 64), N_LOCAL, 2, 0, NULL },
-	/* no shader declares 'shared' variables (tests/test_gl_limits.c checks) */
-	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 0, "no shared variables" },
+	/* the one 'shared' variable: the density pass's uint s_inside[64]
+	 * (tests/test_gl_limits.c checks there is no other) */
+	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 64 * 4, "common.glsl s_inside (sign bits)" },
 	{ LIM(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_COMPUTE, 0, NULL },
 	{ LIM(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_VERTEX, 0, NULL },
 	{ LIM(GL_MAX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_FRAGMENT, 0, NULL },
