@@ -36,12 +36,12 @@ for n in $names; do
 		-dict="tests/fuzz/$n.dict" -artifact_prefix="$B/crash-$n-" \
 		"$B/corpus/$n" "tests/fuzz/corpus/$n" >"$log" 2>&1
 	rc=$?
-	runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+	execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
 	t=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)
 	rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
 	if [ $rc -eq 0 ]; then
 		pass=$((pass + 1))
-		echo "fuzz $n: ${runs:-?} executions in ${t:-?} s (${rate:-?}/s), no crash"
+		echo "fuzz $n: ${execs:-?} executions in ${t:-?} s (${rate:-?}/s), no crash"
 	else
 		fail=$((fail + 1))
 		echo "FAIL: fuzz $n (exit $rc), $log:" >&2
