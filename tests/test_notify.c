@@ -146,9 +146,14 @@ int main(int argc, char **argv)
 	CHECK(wait_for(&w, pings + 2, stalled_at, 120000), "pings again once frames complete");
 
 	kill(pid, SIGTERM);
-	int status = 0;
-	while (waitpid(pid, &status, WNOHANG) == 0)
+	int status = 0, t = 0;
+	for (; waitpid(pid, &status, WNOHANG) == 0 && t < 120000; t += 100)
 		step(&w, 100);
+	CHECK(t < 120000, "SIGTERM ends the run");
+	if (t >= 120000) {
+		kill(pid, SIGKILL);
+		waitpid(pid, &status, 0);
+	}
 	while (step(&w, 200) > 0)
 		;
 	CHECK(WIFEXITED(status), "exited (status %#x)", status);
