@@ -135,7 +135,8 @@ int main(int argc, char **argv)
 		quiet = r > 0 ? 0 : quiet + 100;
 	}
 	CHECK(quiet >= 2000, "no ping for 2 s (10 watchdog intervals) while the frame loop is stalled");
-	long long most = (w.bytes + cap + 65536) / FRAME_BYTES + 1; /* what the pipe and stdio can hold */
+	/* what was read, the pipe and a stdio buffer (up to 1 MiB) can hold */
+	long long most = (w.bytes + cap + (1 << 20)) / FRAME_BYTES + 1;
 	CHECK(w.frames <= most, "the pings report only frames that were written (%d, at most %lld; %d messages)",
 	      w.frames, most, w.msgs - before);
 	CHECK(waitpid(pid, NULL, WNOHANG) == 0, "the program is alive, only stalled");
