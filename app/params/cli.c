@@ -187,8 +187,12 @@ int cli_numbered_name(const char *pattern, int n, char *buf, size_t len)
 		return 0;
 	}
 	const char *q = pc + 1; /* %d, %Nd, %0Nd: printf's flag and width */
-	while (*q >= '0' && *q <= '9')
-		q++;
+	size_t width = 0;
+	for (; *q >= '0' && *q <= '9'; q++) {
+		width = width * 10 + (size_t)(*q - '0');
+		if (width >= len) /* no name holds it (and printf would pad it out first) */
+			return -1;
+	}
 	if (*q != 'd' || strchr(q + 1, '%'))
 		return -1;
 	char fmt[32];
@@ -207,7 +211,8 @@ int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t er
 	char name[PARAM_STR_MAX + 32];
 	int numbered = cli_numbered_name(out, 0, name, sizeof(name));
 	if (numbered < 0) {
-		snprintf(err, errlen, "--out '%s': only one %%d (or %%0Nd) is allowed in the file name", out);
+		snprintf(err, errlen, "--out '%s': only one %%d (or %%0Nd, N less than a file name) is allowed in the file name",
+			 out);
 		return -1;
 	}
 	*kind = y4m ? CLI_OUT_Y4M : numbered ? CLI_OUT_PNG_SEQUENCE : CLI_OUT_PNG;

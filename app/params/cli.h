@@ -25,7 +25,7 @@ int cli_parse_out(const char *out, enum cli_out_kind *kind, char *err, size_t er
 /* "frame%04d.png" style names (--out, screenshot): pattern with n in place
  * of its %d / %Nd / %0Nd (printf's meaning) into buf.  1 when the pattern
  * has one, 0 when it has none (buf = pattern), -1 when it is malformed (more
- * than one %, or another conversion). */
+ * than one %, another conversion, or a width of len or more). */
 int cli_numbered_name(const char *pattern, int n, char *buf, size_t len);
 void cli_print_help(const char *argv0);
 
