@@ -5,9 +5,10 @@
 # Each starts from its committed seeds (tests/fuzz/corpus/NAME) and the
 # inputs that once failed it (tests/fuzz/regress/NAME), all replayed at
 # start, and keeps what it finds in build-fuzz/corpus/NAME; crashes are
-# written to build-fuzz/crash-NAME-*.  The readers that take a path get their input
-# as a file under $FUZZ_TMPDIR (default /dev/shm: a disk-backed /tmp makes
-# them ~20 times slower).  Exit status 1 when any harness fails.
+# written to build-fuzz/crash-NAME-*.  The readers that take a path get
+# their input as a file under $FUZZ_TMPDIR (default /dev/shm: a
+# disk-backed /tmp makes them ~20 times slower).  Exit status 1 when any
+# harness fails.
 #   tools/fuzz.sh [SECONDS [NAME...]]      FUZZ_RUNS=N: at most N executions
 #                                          each, and at most SECONDS
 set -u
