@@ -7,6 +7,7 @@
 #include "controls.h"
 #include "gpu.h"
 #include "log.h"
+#include "notify.h"
 #include "platform.h"
 #include "render.h"
 #include "scene.h"
@@ -54,6 +55,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		if (q < 0)
 			return -1;
 		lp->frames = f + 1;
+		notify_frame(lp->notify);
 		if (q > 0)
 			break;
 	}
@@ -229,8 +231,9 @@ static int run_frames(struct run *rn)
 				 .shaders = rn->shaders,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,
 				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz,
-				 .timing = p->results[0] != 0 };
+				 .timing = p->results[0] != 0, .notify = notify_open() };
 	int rc = frame_loop_run(&lp, err, sizeof(err)) < 0 ? 1 : 0;
+	notify_close(lp.notify); /* STOPPING=1 */
 	rn->r = lp.r;
 	rn->w = lp.w;
 	rn->h = lp.h;

@@ -12,6 +12,7 @@ struct scene;
 struct controls;
 struct sink_set;
 struct renderer;
+struct notify;
 
 /* One frame loop for every scene and every destination: per frame the
  * controls are polled, the scene draws, the controls draw over it (OSD,
@@ -28,6 +29,7 @@ struct frame_loop {
 	bool watch_signals;      /* headless: SIGINT/SIGTERM end the loop (signals.h) */
 	double refresh_hz;       /* the display's, when known (else 0) */
 	bool timing;             /* the scene waits for the GPU and times update and draw (results) */
+	struct notify *notify;   /* NULL: none; told of every finished frame (notify.h) */
 	int frames;              /* out: frames finished */
 };
 /* Frames until p->count (0: until a sink stops), a quit from the controls

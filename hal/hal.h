@@ -121,5 +121,9 @@ void hal_keys_close(struct hal_keys *k);
 /* Decodes raw terminal bytes (tests): arrows, [ ] - + p s n r q, flight keys.
  * *esc_state carries an escape sequence split across reads (start at 0). */
 void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc_state, struct hal_input *in);
+/* Decodes raw evdev bytes (struct input_event records: key presses and
+ * auto-repeats): the number of events, or -1 (nothing decoded) when n is not
+ * a whole number of them. */
+int hal_keys_feed_evdev(const void *buf, size_t n, struct hal_input *in);
 
 #endif

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -22,10 +23,12 @@ struct hal_keys {
 	int ev_fd;             /* evdev, -1 when not used */
 	char ev_path[HAL_NAME_MAX];
 	uint64_t ev_next_try;  /* while ev_fd < 0: when to try opening it again */
+	bool ev_warned;        /* the failure to open it again is logged once */
 	struct hal_log log;
 };
 
 #define EV_RETRY_NS 2000000000ull /* a vanished evdev keyboard: every 2 s */
+#define EV_READS_PER_POLL 4        /* at most 4 x 32 events a frame: a poll always returns */
 
 void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc, struct hal_input *in)
 {
@@ -97,6 +100,26 @@ static struct hal_keys *open_tty(struct hal_keys *k)
 	return k;
 }
 
+/* Opens k->ev_path (non-blocking) and checks that it is an evdev node (the
+ * EVIOCGVERSION ioctl answers): 0, -1 when it cannot be opened (missing,
+ * no permission: worth retrying), -2 when it is a file of another kind. */
+static int evdev_open(struct hal_keys *k, char *why, size_t len)
+{
+	int fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0) {
+		snprintf(why, len, "cannot open %s: %s", k->ev_path, strerror(errno));
+		return -1;
+	}
+	int version = 0;
+	if (ioctl(fd, EVIOCGVERSION, &version) < 0) {
+		snprintf(why, len, "%s is not an evdev input device (EVIOCGVERSION: %s)", k->ev_path, strerror(errno));
+		close(fd);
+		return -2;
+	}
+	k->ev_fd = fd;
+	return 0;
+}
+
 struct hal_keys *hal_keys_open(const struct hal_keys_config *cfg, char *err, size_t errlen)
 {
 	err[0] = 0;
@@ -124,9 +147,16 @@ struct hal_keys *hal_keys_open(const struct hal_keys_config *cfg, char *err, siz
 	if (mode != HAL_KEYS_EVDEV)
 		return open_tty(k);
 	snprintf(k->ev_path, sizeof(k->ev_path), "%s", cfg->evdev);
-	k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-	if (k->ev_fd < 0) {
-		hal_logf(&k->log, HAL_WARN, "keys: cannot open %s: %s; retrying every 2 s", k->ev_path, strerror(errno));
+	char why[HAL_NAME_MAX + 96];
+	int rc = evdev_open(k, why, sizeof(why));
+	if (rc == -2) { /* a file of another kind: a configuration error, not a missing device */
+		snprintf(err, errlen, "--keyboard-evdev %s", why);
+		free(k);
+		return NULL;
+	}
+	if (rc < 0) {
+		hal_logf(&k->log, HAL_WARN, "keys: %s; retrying every 2 s", why);
+		k->ev_warned = true;
 		k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
 	}
 	return k;
@@ -167,6 +197,72 @@ static void evdev_key(int code, struct hal_input *in)
 	}
 }
 
+int hal_keys_feed_evdev(const void *buf, size_t n, struct hal_input *in)
+{
+	if (n % sizeof(struct input_event))
+		return -1;
+	const unsigned char *b = buf;
+	for (size_t i = 0; i < n / sizeof(struct input_event); i++) {
+		struct input_event ev;
+		memcpy(&ev, b + i * sizeof(ev), sizeof(ev));
+		if (ev.type == EV_KEY && ev.value >= 1) /* press and auto-repeat */
+			evdev_key(ev.code, in);
+	}
+	return (int)(n / sizeof(struct input_event));
+}
+
+static void evdev_lost(struct hal_keys *k, const char *why)
+{
+	hal_logf(&k->log, HAL_WARN, "keys: %s: %s; retrying every 2 s", k->ev_path, why);
+	close(k->ev_fd);
+	k->ev_fd = -1;
+	k->ev_warned = true;
+	k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
+}
+
+static void evdev_retry(struct hal_keys *k)
+{
+	uint64_t now = hal_now_ns();
+	if (now < k->ev_next_try)
+		return;
+	k->ev_next_try = now + EV_RETRY_NS;
+	char why[HAL_NAME_MAX + 96];
+	if (evdev_open(k, why, sizeof(why)) == 0) {
+		hal_logf(&k->log, HAL_INFO, "keys: %s opened", k->ev_path);
+		k->ev_warned = false;
+	} else if (!k->ev_warned) {
+		hal_logf(&k->log, HAL_WARN, "keys: %s; retrying every 2 s", why);
+		k->ev_warned = true;
+	}
+}
+
+/* At most EV_READS_PER_POLL reads: a device that never runs dry (or a
+ * flood of events) cannot hold the frame loop. */
+static void evdev_poll(struct hal_keys *k, struct hal_input *in)
+{
+	struct input_event ev[32];
+	for (int r = 0; r < EV_READS_PER_POLL; r++) {
+		ssize_t n = read(k->ev_fd, ev, sizeof(ev));
+		if (n < 0) {
+			if (errno != EAGAIN && errno != EINTR)
+				evdev_lost(k, strerror(errno));
+			return;
+		}
+		if (n == 0) {
+			evdev_lost(k, "end of file");
+			return;
+		}
+		if (hal_keys_feed_evdev(ev, (size_t)n, in) < 0) { /* evdev only ever returns whole events */
+			char why[96];
+			snprintf(why, sizeof(why), "a read of %zd bytes is not a whole number of events", n);
+			evdev_lost(k, why);
+			return;
+		}
+		if ((size_t)n < sizeof(ev))
+			return;
+	}
+}
+
 void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 {
 	if (!k)
@@ -177,33 +273,8 @@ void hal_keys_poll(struct hal_keys *k, struct hal_input *in)
 		if (n > 0)
 			hal_keys_feed_tty(buf, (size_t)n, &k->esc, in);
 	}
-	if (k->ev_path[0] && k->ev_fd < 0) {
-		uint64_t now = hal_now_ns();
-		if (now >= k->ev_next_try) {
-			k->ev_next_try = now + EV_RETRY_NS;
-			if ((k->ev_fd = open(k->ev_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) >= 0)
-				hal_logf(&k->log, HAL_INFO, "keys: %s opened", k->ev_path);
-		}
-	}
-	if (k->ev_fd >= 0) {
-		struct input_event ev[32];
-		for (;;) {
-			ssize_t n = read(k->ev_fd, ev, sizeof(ev));
-			if (n < 0) {
-				if (errno != EAGAIN && errno != EINTR) {
-					hal_logf(&k->log, HAL_WARN, "keys: %s: %s; retrying every 2 s", k->ev_path,
-						 strerror(errno));
-					close(k->ev_fd);
-					k->ev_fd = -1;
-					k->ev_next_try = hal_now_ns() + EV_RETRY_NS;
-				}
-				break;
-			}
-			for (size_t i = 0; i < (size_t)n / sizeof(ev[0]); i++)
-				if (ev[i].type == EV_KEY && ev[i].value >= 1) /* press and auto-repeat */
-					evdev_key(ev[i].code, in);
-			if ((size_t)n < sizeof(ev))
-				break;
-		}
-	}
+	if (k->ev_path[0] && k->ev_fd < 0)
+		evdev_retry(k);
+	if (k->ev_fd >= 0)
+		evdev_poll(k, in);
 }

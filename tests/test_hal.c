@@ -10,6 +10,7 @@
 #include "tcheck.h"
 #include "gpu_fixture.h"
 
+#include <linux/input.h>
 #include <math.h>
 #include <string.h>
 
@@ -75,6 +76,30 @@ static void test_keys(void)
 	CHECK(in.fly[0] == 2 && in.fly[1] == 0 && in.fly[2] == 1 && in.fly[3] == 0 && in.fly[4] == -1 &&
 		      in.change == 0 && in.select == 0,
 	      "flight keys (%d %d %d %d %d)", in.fly[0], in.fly[1], in.fly[2], in.fly[3], in.fly[4]);
+}
+
+/* The evdev reader: whole events decoded, a short read refused, a file that
+ * is not an evdev node (it would read zeros forever) refused at open. */
+static void test_evdev(void)
+{
+	struct input_event ev[4];
+	memset(ev, 0, sizeof(ev));
+	ev[0].type = EV_KEY, ev[0].code = KEY_UP, ev[0].value = 1;     /* press */
+	ev[1].type = EV_KEY, ev[1].code = KEY_UP, ev[1].value = 2;     /* auto-repeat */
+	ev[2].type = EV_KEY, ev[2].code = KEY_UP, ev[2].value = 0;     /* release: nothing */
+	ev[3].type = EV_KEY, ev[3].code = KEY_Q, ev[3].value = 1;
+	struct hal_input in;
+	memset(&in, 0, sizeof(in));
+	CHECK(hal_keys_feed_evdev(ev, sizeof(ev), &in) == 4, "four events");
+	CHECK(in.change == 2 && in.actions[HAL_QUIT] == 1, "up twice, quit (%d %d)", in.change, in.actions[HAL_QUIT]);
+	memset(&in, 0, sizeof(in));
+	CHECK(hal_keys_feed_evdev(ev, sizeof(ev) - 1, &in) == -1 && in.change == 0 && in.actions[HAL_QUIT] == 0,
+	      "a short read is refused, nothing decoded");
+	char err[256];
+	struct hal_keys_config kc = {.mode = HAL_KEYS_EVDEV, .evdev = "/dev/zero"};
+	struct hal_keys *k = hal_keys_open(&kc, err, sizeof(err));
+	CHECK(!k && strstr(err, "/dev/zero") && strstr(err, "not an evdev"), "/dev/zero refused: %s", err);
+	hal_keys_close(k);
 }
 
 static void test_osd(void)
@@ -214,6 +239,7 @@ int main(void)
 	test_config();
 	test_knobs();
 	test_keys();
+	test_evdev();
 	struct platform *plat = fixture_open();
 	test_osd();
 	test_open();

@@ -34,5 +34,11 @@ run --screenshot shot.jpg
 [ $? -eq 2 ] && grep -q "screenshot" err && ok || bad "bad screenshot name: $(cat err)"
 run --enc1-steps-per-detent 3 --gpio-chip x --enc1-a 0 --enc1-b 1
 [ $? -eq 2 ] && grep -q "1, 2 or 4" err && ok || bad "3 steps per detent: $(cat err)"
+# a file that is not an evdev node (/dev/zero reads zeros forever): refused at
+# start, not read until the end of time
+timeout -k 5 60 "$BIN" --size 64x48 --grid 8 --count 3 --out o.png --keyboard evdev --keyboard-evdev /dev/zero >out 2>err
+rc=$?
+[ $rc -eq 2 ] && grep -q "/dev/zero is not an evdev input device" err && ok ||
+	bad "/dev/zero as evdev keyboard: rc $rc (124 or 137: hung): $(cat err)"
 echo "hal_cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -327,6 +327,14 @@ static void test_cli(void)
 	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++)
 		CHECK(cli_parse_size(bad[i], &w, &h) == -1, "size '%s' accepted", bad[i]);
 
+	/* a width no file name can hold is refused, not padded out (found by
+	 * tests/fuzz/fuzz_cli: printf spent seconds writing 620 M zeros) */
+	char name[64];
+	CHECK(cli_numbered_name("f%04d.png", 7, name, sizeof(name)) == 1 && !strcmp(name, "f0007.png"), "%s", name);
+	CHECK(cli_numbered_name("f%0620531529d.png", 0, name, sizeof(name)) == -1, "huge %%d width refused");
+	CHECK(cli_numbered_name("f%64d.png", 0, name, sizeof(name)) == -2, "a name wider than the buffer is refused, never cut");
+	CHECK(PARSE(&p, err, "--out=f%0620531529d.png") == CLI_ERROR && strstr(err, "--out"), "--out: %s", err);
+
 	CHECK(quiet_parse("--help") == CLI_EXIT_OK, "--help");
 	CHECK(quiet_parse("-h") == CLI_EXIT_OK, "-h");
 	CHECK(quiet_parse("--version") == CLI_EXIT_OK, "--version");

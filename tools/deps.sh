@@ -16,6 +16,12 @@ $SUDO apt-get install -y -q --no-install-recommends \
 $SUDO apt-get install -y -q --no-install-recommends \
 	libgpiod-dev v4l-utils make \
 	qemu-system-x86 busybox-static cpio kmod linux-image-amd64 linux-headers-amd64 linux-source-6.1
+# systemd's notifications for the kiosk unit (Type=notify, the watchdog;
+# optional: the build works without libsystemd and sends none)
+$SUDO apt-get install -y -q --no-install-recommends libsystemd-dev
+# the libFuzzer harnesses of tests/fuzz/ (tools/fuzz.sh): Debian's clang,
+# and its compiler-rt (libFuzzer, the sanitizers; only recommended by clang)
+$SUDO apt-get install -y -q --no-install-recommends clang libclang-rt-dev
 # GeoTIFF heightmaps (optional: the build finds GDAL through pkg-config and
 # works without it; with it the GeoTIFF test runs)
 $SUDO apt-get install -y -q --no-install-recommends libgdal-dev

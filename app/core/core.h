@@ -1,6 +1,7 @@
 /* isoterra — app/core, the folder's door: what every other folder builds
  * on (logging, the clock, small helpers, atomic files, PNG through libpng,
- * meshes, grids).  Depends on nothing else of the program. */
+ * meshes, grids, the service manager's notifications).  Depends on nothing
+ * else of the program. */
 #ifndef ISOTERRA_CORE_H
 #define ISOTERRA_CORE_H
 
@@ -11,5 +12,6 @@
 #include "image.h"
 #include "mesh.h"
 #include "grid.h"
+#include "notify.h"
 
 #endif
