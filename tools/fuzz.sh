@@ -8,7 +8,8 @@
 # written to build-fuzz/crash-NAME-*.  The readers that take a path get
 # their input as a file under $FUZZ_TMPDIR (default /dev/shm: a
 # disk-backed /tmp makes them ~20 times slower).  Exit status 1 when any
-# harness fails.
+# harness fails.  Limits per input: 10 s, 2 GB resident, no single
+# allocation over 1.5 GB (more than the largest valid heightmap needs).
 #   tools/fuzz.sh [SECONDS [NAME...]]      FUZZ_RUNS=N: at most N executions
 #                                          each, and at most SECONDS
 set -u
@@ -37,8 +38,8 @@ for n in $names; do
 	regress=""
 	[ -d "tests/fuzz/regress/$n" ] && regress="tests/fuzz/regress/$n"
 	# shellcheck disable=SC2086 # $regress: nothing or one folder
-	"$B/tests/fuzz/fuzz_$n" "$runs" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-		-dict="tests/fuzz/$n.dict" -artifact_prefix="$B/crash-$n-" \
+	"$B/tests/fuzz/fuzz_$n" "$runs" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1536 \
+		-print_final_stats=1 -dict="tests/fuzz/$n.dict" -artifact_prefix="$B/crash-$n-" \
 		"$B/corpus/$n" "tests/fuzz/corpus/$n" $regress >"$log" 2>&1
 	rc=$?
 	execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)

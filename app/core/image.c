@@ -166,6 +166,11 @@ static png_structp png_reader(struct png_ctx *ctx, png_infop *info)
 	png_set_read_fn(png, ctx, png_read_fn);
 	png_set_sig_bytes(png, 8);
 	png_set_user_limits(png, IMAGE_MAX_DIM, IMAGE_MAX_DIM);
+	/* the ancillary chunks nothing here uses (text, ICC profiles, suggested
+	 * palettes, Exif) are skipped unread: libpng would allocate what their
+	 * length field claims (up to 2 GB) before finding the file too short */
+	static const png_byte skip[] = "iCCP\0iTXt\0sPLT\0tEXt\0zTXt\0eXIf";
+	png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, skip, (int)(sizeof(skip) / 5));
 	return png;
 }
 
