@@ -47,6 +47,20 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 run_suite "ASan+UBSan" build-asan -Dwerror=true -Dbuildtype=debug -Db_sanitize=address,undefined \
 	-Db_lundef=false -Dc_args=-fno-sanitize-recover=all || status=1
 
+# the libFuzzer harnesses (tests/fuzz/, docs/RELIABILITY.md): 60 s each under
+# ASan+UBSan, built with clang in build-fuzz/ (tools/fuzz.sh)
+echo "=== fuzz: tests/fuzz, 60 s per harness (clang, ASan+UBSan)"
+fuzz_log=$(mktemp)
+sh tools/fuzz.sh 60 >"$fuzz_log" 2>&1
+rc=$?
+cat "$fuzz_log"
+line=$(grep -E '^== fuzz: [0-9]+ passed, [0-9]+ failed' "$fuzz_log" | tail -1)
+rm -f "$fuzz_log"
+total_pass=$((total_pass + $(echo "$line" | awk '{print $3+0}')))
+total_fail=$((total_fail + $(echo "$line" | awk '{print $5+0}')))
+[ -n "$line" ] || total_fail=$((total_fail + 1))
+[ $rc -eq 0 ] || status=1
+
 # Debian 13 (trixie) in a chroot, as root (tools/chroot.sh; cached in
 # build-d13/): the tests with Mesa 25 and GCC 14, the arm64 cross build run
 # under qemu-user, the Debian package built, linted and installed.  Each

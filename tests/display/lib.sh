@@ -133,3 +133,19 @@ compare() {
 			echo "   (grab kept as $T/fail-$(basename "$1").png; set ISOTERRA_KEEP=1 to keep $T)" >&2
 	fi
 }
+
+# wait_caught PID SIGNUM SECONDS: until the process has a handler for the
+# signal (its SigCgt mask in /proc), so a signal sent next is not fatal
+# because it came before the handler; 1 on timeout or when it is gone
+wait_caught() {
+	_bit=$(( 1 << ($2 - 1) ))
+	_n=0
+	while [ $_n -lt $(( $3 * 10 )) ]; do
+		_mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$1/status" 2>/dev/null) || return 1
+		[ -n "$_mask" ] || return 1
+		[ $(( 0x$_mask & _bit )) -ne 0 ] && return 0
+		sleep 0.1
+		_n=$((_n + 1))
+	done
+	return 1
+}

@@ -65,7 +65,8 @@ fi
 #    SIGTERM ends it cleanly; SIGUSR1 prints the frame rate
 "$BIN" --platform x11 --fullscreen $ARGS --count 0 >"$T/app2.log" 2>&1 &
 APID=$!
-sleep 0.5
+# SIGUSR1's default action ends a process: send it once the handler is in
+wait_caught "$APID" 10 120 || bad "x11: no SIGUSR1 handler after 120 s: $(cat "$T/app2.log")"
 n=0
 while [ $n -lt 300 ] && ! grep -q 'fps' "$T/app2.log"; do kill -USR1 "$APID" 2>/dev/null; sleep 0.2; n=$((n + 1)); done
 if grep -Eq 'fps [0-9.]+ .*[0-9]+ presented' "$T/app2.log"; then
