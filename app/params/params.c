@@ -337,7 +337,7 @@ const struct preset presets[] = {
 	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=2.5;terrace_strength=3" },
 	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=2.5;terrace_strength=3;warp_amp=6" },
 	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.05;warp_amp=14;noise_amp=16" },
-	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=1;noise_amp=16;noise_freq=0.06;floor_strength=0" },
+	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;floor_strength=0" },
 	{ "planet", "a small planet", "shape=planet;planet_radius=12;vol_y=-12;vol_height=1;noise_amp=4;floor_strength=0;warp_amp=1" },
 	{ "plains", "height-damped multifractal: smooth lowlands, rough peaks", "fractal=hetero;noise_amp=8" },
 	{ "cells", "Worley F2-F1 cellular terrain", "fractal=worley;noise_amp=14;noise_freq=0.06;octaves=2;gain=0.5;warp_amp=2" },

@@ -14,7 +14,7 @@ struct renderer {
 	GLuint fbo, rb_color;
 	GLuint prog, vao, sky, water;
 	bool draw_sky;
-	GLint l_viewproj, l_eye, l_fog, l_fade;
+	GLint l_viewproj, l_eye, l_fog, l_sink;
 	float clear[3];
 	GLuint surface;
 };
@@ -94,7 +94,7 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
 	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
 	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
-	r->l_fade = glGetUniformLocation(r->prog, "u_fade");
+	r->l_sink = glGetUniformLocation(r->prog, "u_sink");
 	glGenVertexArrays(1, &r->vao);
 	r->surface = surface_texture_create();
 	if (!r->surface) {
@@ -158,7 +158,7 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	glUniform3fv(r->l_eye, 1, c->eye);
 	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
 	glUniform1f(r->l_fog, 0.35f / fog_range);
-	glUniform1f(r->l_fade, 1.0f);
+	glUniform1f(r->l_sink, 0.0f);
 	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
 	glActiveTexture(GL_TEXTURE0);
@@ -166,9 +166,9 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	return 0;
 }
 
-void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade)
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink)
 {
-	glUniform1f(r->l_fade, fade);
+	glUniform1f(r->l_sink, sink);
 	glBindBuffer(GL_ARRAY_BUFFER, vbo);
 	glEnableVertexAttribArray(0);
 	glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, (const void *)0);
