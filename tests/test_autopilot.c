@@ -71,6 +71,13 @@ static void fly(const struct params *p, const struct noise_set *ns, struct verdi
 	autopilot_free(&ap);
 }
 
+static void preset_params(size_t i, struct params *p)
+{
+	char err[256];
+	params_defaults(p);
+	CHECK(params_apply_preset(p, presets[i].name, err, sizeof(err)) == 0, "%s", err);
+}
+
 int main(int argc, char **argv)
 {
 	static const int seeds[] = { 10, 1, 77, 12345 };
@@ -84,9 +91,7 @@ int main(int argc, char **argv)
 		for (size_t si = 0; si < sizeof(seeds) / sizeof(seeds[0]); si++)
 			for (size_t vi = 0; vi < sizeof(speeds) / sizeof(speeds[0]); vi++) {
 				struct params p;
-				char err[256];
-				params_defaults(&p);
-				CHECK(params_apply_preset(&p, presets[pi].name, err, sizeof(err)) == 0, "%s", err);
+				preset_params(pi, &p);
 				p.scene = SCENE_WORLD;
 				p.seed = seeds[si];
 				p.fly_speed = speeds[vi];

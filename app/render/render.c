@@ -193,7 +193,7 @@ void renderer_set_clear(struct renderer *r, float red, float green, float blue)
 
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
 {
-	if (!p->water)
+	if (!p->water || p->shape == SHAPE_PLANET) /* a flat plane would cut through a planet */
 		return;
 	glUseProgram(r->water);
 	gpu_set_param_uniforms(r->water, p);

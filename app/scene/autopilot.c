@@ -443,11 +443,19 @@ void autopilot_advance(struct autopilot *a, double t)
 
 void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far)
 {
-	/* look along the heading, a little down, from the current position */
-	float up[3];
+	/* look along the heading, a little down, from the current position;
+	 * over a planet down to 10 degrees under its horizon (the horizon
+	 * dips by acos(radius / distance from the centre)) */
+	float up[3], down = 0.15f;
 	local_up(a, a->pos, up);
+	if (a->p->shape == SHAPE_PLANET) {
+		float cv[3] = { a->pos[0], a->pos[1] + a->p->planet_radius, a->pos[2] };
+		float dist = sqrtf(dot3(cv, cv));
+		if (dist > a->p->planet_radius)
+			down = tanf(fmaxf(acosf(a->p->planet_radius / dist) - 0.17f, 0.15f));
+	}
 	float at[3];
 	for (int k = 0; k < 3; k++)
-		at[k] = a->pos[k] + a->dir[k] * 10.0f - up[k] * 1.5f;
+		at[k] = a->pos[k] + (a->dir[k] - up[k] * down) * 10.0f;
 	camera_look_up(c, a->pos, at, up, fov, aspect, 0.05f, far);
 }
