@@ -344,7 +344,7 @@ const struct preset presets[] = {
 	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },
 	{ "fbm", "fractional Brownian motion", "fractal=fbm;hurst=1.0" },
 	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal;noise_amp=18" },
-	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=0;flat_inner=4;flat_outer=8" },
+	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=-4;flat_inner=16;flat_outer=26;cam_pitch=50" },
 	{ "diorama", "the default terrain as a closed block with cut walls, orbited from outside",
 	  "closed=true;vol_size=32;vol_height=0.75;vol_y=-1;cam_dist=1.9;cam_pitch=26" },
 	{ "torus", "test field: torus", "field=torus;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
