@@ -3,23 +3,16 @@
 // projection, a detail normal near the camera, per-vertex ambient occlusion,
 // altitude/strata colour bands over a soil colour table, snow on flat high
 // ground, sun + hemispheric sky light, distance/height fog towards the sky
-// colour, gamma-correct output.  u_fade < 1 dissolves a block (dither).
+// colour, gamma-correct output.
 in vec3 v_pos;
 in vec3 v_nrm;
 in float v_ao;
 uniform vec3 u_eye;
 uniform float u_fog_density;
-uniform float u_fade;
 layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
 out vec4 frag;
 
 #include "shade.glsl"
-
-float bayer4(ivec2 p)
-{
-	int m[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
-	return (float(m[(p.y & 3) * 4 + (p.x & 3)]) + 0.5) / 16.0;
-}
 
 // soil colour tables (sRGB), indexed by a slow variation; interpolated
 vec3 soil_color(float t)
@@ -59,8 +52,6 @@ vec3 marble_color(vec3 rock, vec3 pos)
 
 void main()
 {
-	if (u_fade < 1.0 && u_fade <= bayer4(ivec2(gl_FragCoord.xy)))
-		discard;
 	vec3 n0 = normalize(v_nrm);
 	float back = gl_FrontFacing ? 1.0 : 0.45; // inside of the volume's cut
 	if (!gl_FrontFacing)

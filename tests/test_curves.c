@@ -1214,7 +1214,7 @@ static void test_road_centreline(struct edits *ed)
 	char err[512] = "";
 	struct params p;
 	params_defaults(&p);
-	set(&p, "grid=48;octaves=5;noise_amp=16");
+	set(&p, "grid=48;octaves=5;noise_amp=16;closed=true;vol_size=32;vol_height=0.75;vol_y=-1"); /* the diorama box */
 	struct grid g;
 	grid_from_params(&g, &p);
 	/* the road: an S across the volume; first the uncarved surface along it */

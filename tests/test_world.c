@@ -251,6 +251,72 @@ static void check_determinism_and_golden(const struct params *p_in)
 	image_free(&ref);
 }
 
+/* Pixels that stand out from all four neighbours the same way (by more
+ * than 24 of 255 in green): an ordered or random dither's dots. */
+static int speckles(const struct image *img)
+{
+	int n = 0, w = img->width;
+	for (int y = 1; y + 1 < img->height; y++)
+		for (int x = 1; x + 1 < w; x++) {
+			int c = img->rgba[4 * (y * w + x) + 1], up = 0, dn = 0;
+			const int nb[4] = { -1, 1, -w, w };
+			for (int k = 0; k < 4; k++) {
+				int v = img->rgba[4 * (y * w + x + nb[k]) + 1];
+				up += c > v + 24;
+				dn += c < v - 24;
+			}
+			n += up == 4 || dn == 4;
+		}
+	return n;
+}
+
+/* A level of detail fading in shows no dotted pattern: a still frame with
+ * the finer blocks halfway through their fade is compared with the same
+ * view settled.  Fading blocks are drawn sunk behind the coarser level, so
+ * the mid-fade frame has no more isolated dots than the settled one and
+ * differs from it only where surfaces are still rising. */
+static void check_fade_no_dots(const struct params *p_in)
+{
+	struct params q = *p_in;
+	q.fade_time = 1.0f;
+	char err[512] = "";
+	struct edits *ed = edits_create();
+	struct world *w = world_create(&q, ed, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 96, err, sizeof(err));
+	struct image mid = { 0 }, settled = { 0 };
+	CHECK(w && r, "world/renderer: %s", err);
+	if (w && r) {
+		struct camera c;
+		/* down onto the terrain from above: the view spans every level */
+		float eye[3] = { 3.0f, 27.0f, 5.0f }, at[3] = { 3.0f, 0.0f, 5.01f };
+		camera_look(&c, eye, at, 60.0f, 160.0f / 96.0f, 0.1f, 200.0f);
+		CHECK(world_fill(w, &q, &c, 4.0) == 0, "fill");
+		CHECK(world_draw(w, r, &c, &q, 4.5) == 0 && renderer_read(r, &mid) == 0, "mid-fade frame");
+		CHECK(world_draw(w, r, &c, &q, 14.0) == 0 && renderer_read(r, &settled) == 0, "settled frame");
+	}
+	if (mid.rgba && settled.rgba) {
+		struct image_diff d;
+		CHECK(image_compare(&mid, &settled, 48, &d) == 0, "sizes");
+		int sm = speckles(&mid), ss = speckles(&settled);
+		printf("fade: mid-fade vs settled: mean abs %.3f, %.3f%% over 48; isolated dots %d vs %d\n", d.mean_abs,
+		       100 * d.frac_over, sm, ss);
+		CHECK(sm <= ss + ss / 5 + 10, "dotted pattern mid-fade: %d isolated dots (settled %d)", sm, ss);
+		CHECK(d.mean_abs <= 10.0, "mid-fade frame far from the settled one (mean abs %.2f)", d.mean_abs);
+		if (getenv("ISOTERRA_DEBUG_DIR")) {
+			char path[1024];
+			snprintf(path, sizeof(path), "%s/world_fade_mid.png", getenv("ISOTERRA_DEBUG_DIR"));
+			image_write_png(&mid, path, err, sizeof(err));
+			snprintf(path, sizeof(path), "%s/world_fade_settled.png", getenv("ISOTERRA_DEBUG_DIR"));
+			image_write_png(&settled, path, err, sizeof(err));
+		}
+	}
+	image_free(&mid);
+	image_free(&settled);
+	renderer_destroy(r);
+	world_destroy(w);
+	edits_destroy(ed);
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -270,6 +336,7 @@ int main(void)
 	check_autopilot(&p);
 	check_manual(&p);
 	check_determinism_and_golden(&p);
+	check_fade_no_dots(&p);
 	platform_close(plat);
 	return tc_done("world");
 }

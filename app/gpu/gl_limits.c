@@ -65,7 +65,7 @@ static const struct gl_pass passes[] = {
 	{ "v4l2_convert.comp", "v4l2_convert.comp", NULL, NULL, "#define FMT 0u\n", false,
 	  CS(0, 1, 1, 0, 9), { 64, 1, 1 }, -1, 0 },
 	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", NULL, false,
-	  VF(16, 1, 21), { 0, 0, 0 }, -1, 2 },
+	  VF(17, 1, 20), { 0, 0, 0 }, -1, 2 },
 	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false,
 	  VF(21, 0, 15), { 0, 0, 0 }, -1, 0 },
 	{ "sky.vert + sky.frag", NULL, "sky.vert", "sky.frag", NULL, false,

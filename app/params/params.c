@@ -333,22 +333,24 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 
 /* ---- presets ------------------------------------------------------------ */
 const struct preset presets[] = {
-	{ "default", "GPU Gems style terrain: warped octaves, hard floor", "" },
-	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=18;noise_freq=0.04;octaves=8;warp_amp=2" },
-	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=2.5;terrace_strength=3" },
-	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=2.5;terrace_strength=3;warp_amp=6" },
+	{ "default", "GPU Gems style terrain: warped octaves, hard floor, an open landscape seen from above", "" },
+	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=30;noise_freq=0.03;octaves=8;warp_amp=2;snow_line=6" },
+	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=5;terrace_strength=3;soil=arid;snow_line=60" },
+	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=5;terrace_strength=3;warp_amp=6;soil=volcanic;snow_line=60" },
 	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.05;warp_amp=14;noise_amp=16" },
-	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=1;noise_amp=16;noise_freq=0.06;floor_strength=0" },
-	{ "planet", "a small planet", "shape=planet;planet_radius=12;vol_y=-12;vol_height=1;noise_amp=4;floor_strength=0;warp_amp=1" },
+	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;floor_strength=0" },
+	{ "planet", "a small planet", "shape=planet;planet_radius=12;vol_size=34;vol_y=-12;vol_height=1;noise_amp=4;floor_strength=0;warp_amp=1;cam_dist=1.5;cam_pitch=20" },
 	{ "plains", "height-damped multifractal: smooth lowlands, rough peaks", "fractal=hetero;noise_amp=8" },
 	{ "cells", "Worley F2-F1 cellular terrain", "fractal=worley;noise_amp=14;noise_freq=0.06;octaves=2;gain=0.5;warp_amp=2" },
 	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },
 	{ "fbm", "fractional Brownian motion", "fractal=fbm;hurst=1.0" },
 	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal;noise_amp=18" },
-	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=0;flat_inner=4;flat_outer=8" },
-	{ "torus", "test field: torus", "field=torus;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
-	{ "bumps", "test field: sin(5x)cos(5z)/5", "field=bumps;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
-	{ "ripple", "test field: sin(10(x^2+z^2))/10", "field=ripple;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1" },
+	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=-4;flat_inner=16;flat_outer=26;cam_pitch=50" },
+	{ "diorama", "the default terrain as a closed block with cut walls, orbited from outside",
+	  "closed=true;vol_size=32;vol_height=0.75;vol_y=-1;cam_dist=1.9;cam_pitch=26" },
+	{ "torus", "test field: torus", "field=torus;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
+	{ "bumps", "test field: sin(5x)cos(5z)/5", "field=bumps;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
+	{ "ripple", "test field: sin(10(x^2+z^2))/10", "field=ripple;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
 };
 const size_t preset_count = ARRAY_SIZE(presets);
 

@@ -15,7 +15,7 @@ struct renderer {
 	GLuint fbo, rb_color;
 	GLuint prog, vao, sky, water;
 	bool draw_sky;
-	GLint l_viewproj, l_eye, l_fog, l_fade;
+	GLint l_viewproj, l_eye, l_fog, l_sink;
 	float clear[3];
 	GLuint surface;
 	float scale;  /* the governor's render scale: the frame is drawn at */
@@ -159,13 +159,13 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
 	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
 	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
-	r->l_fade = glGetUniformLocation(r->prog, "u_fade");
+	r->l_sink = glGetUniformLocation(r->prog, "u_sink");
 	gpu_set_param_uniforms(r->prog, p);
 	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(r->l_eye, 1, c->eye);
 	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
 	glUniform1f(r->l_fog, 0.35f / fog_range);
-	glUniform1f(r->l_fade, 1.0f);
+	glUniform1f(r->l_sink, 0.0f);
 	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
 	glActiveTexture(GL_TEXTURE0);
@@ -173,9 +173,9 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	return 0;
 }
 
-void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade)
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink)
 {
-	glUniform1f(r->l_fade, fade);
+	glUniform1f(r->l_sink, sink);
 	glBindBuffer(GL_ARRAY_BUFFER, vbo);
 	glEnableVertexAttribArray(0);
 	glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, (const void *)0);
@@ -200,7 +200,7 @@ void renderer_set_clear(struct renderer *r, float red, float green, float blue)
 
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
 {
-	if (!p->water)
+	if (!p->water || p->shape == SHAPE_PLANET) /* a flat plane would cut through a planet */
 		return;
 	glUseProgram(r->water);
 	gpu_set_param_uniforms(r->water, p);

@@ -21,6 +21,9 @@ void mat4_mul(float out[16], const float a[16], const float b[16]);
 int mat4_invert(float out[16], const float m[16]);
 /* Camera at eye looking at `at` (y up), vertical fov in degrees. */
 void camera_look(struct camera *c, const float eye[3], const float at[3], float fov, float aspect, float zn, float zf);
+/* The same with the given up direction (unit). */
+void camera_look_up(struct camera *c, const float eye[3], const float at[3], const float up[3], float fov, float aspect,
+		    float zn, float zf);
 
 /* The generated surface texture (albedo variation, bump slopes, height). */
 GLuint surface_texture_create(void);
@@ -29,10 +32,11 @@ struct renderer;
 struct renderer *renderer_create(int width, int height, char *err, size_t errlen);
 void renderer_destroy(struct renderer *r);
 /* A frame in parts: begin (clear, program, camera), any number of meshes
- * drawn with their indirect commands (fade < 1 dissolves the mesh with an
- * ordered dither: no sorting, no popping), end. */
+ * drawn with their indirect commands (sink > 0 draws the mesh moved that
+ * many world units along its normals into the rock: a level of detail
+ * fading in or out hides behind the coarser one), end. */
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p);
-void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float fade);
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink);
 int renderer_end(struct renderer *r);
 /* Water plane over the world rectangle x0,z0 - x1,z1 (after the terrain). */
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);

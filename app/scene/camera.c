@@ -17,15 +17,19 @@ void mat4_mul(float out[16], const float a[16], const float b[16])
 	memcpy(out, r, sizeof(r));
 }
 
-static void look_at(float m[16], const float eye[3], const float at[3])
+static void look_at(float m[16], const float eye[3], const float at[3], const float upv[3])
 {
 	float f[3] = { at[0] - eye[0], at[1] - eye[1], at[2] - eye[2] };
 	float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
 	for (int i = 0; i < 3; i++)
 		f[i] /= fl;
-	float up[3] = { 0.0f, 1.0f, 0.0f };
+	float up[3] = { upv[0], upv[1], upv[2] };
 	float s[3] = { f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0] };
 	float sl = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+	if (sl < 1e-6f) { /* looking along up: any side vector */
+		s[0] = 1.0f, s[1] = s[2] = 0.0f;
+		sl = 1.0f;
+	}
 	for (int i = 0; i < 3; i++)
 		s[i] /= sl;
 	float u[3] = { s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0] };
@@ -62,15 +66,23 @@ void camera_orbit(struct camera *c, const struct params *p, const struct grid *g
 	c->eye[2] = center[2] + dist * cosf(pitch) * sinf(yaw);
 	/* aim a little below the centre: terrain sits in the lower half */
 	float at[3] = { center[0], center[1] - 0.16f * size, center[2] };
-	look_at(c->view, c->eye, at);
+	static const float up[3] = { 0.0f, 1.0f, 0.0f };
+	look_at(c->view, c->eye, at, up);
 	perspective(c->proj, p->fov, aspect, 0.01f * size, 8.0f * size + dist);
 	mat4_mul(c->viewproj, c->proj, c->view);
 }
 
 void camera_look(struct camera *c, const float eye[3], const float at[3], float fov, float aspect, float zn, float zf)
 {
+	static const float up[3] = { 0.0f, 1.0f, 0.0f };
+	camera_look_up(c, eye, at, up, fov, aspect, zn, zf);
+}
+
+void camera_look_up(struct camera *c, const float eye[3], const float at[3], const float up[3], float fov, float aspect,
+		    float zn, float zf)
+{
 	memcpy(c->eye, eye, sizeof(c->eye));
-	look_at(c->view, eye, at);
+	look_at(c->view, eye, at, up);
 	perspective(c->proj, fov, aspect, zn, zf);
 	mat4_mul(c->viewproj, c->proj, c->view);
 }

@@ -7,9 +7,10 @@
  * small density bias (eroded by lod_bias of their cells), so where a finer
  * block exists it lies outside the coarse surface and wins the depth test:
  * no cracks between levels, and the coarse level still fills the screen
- * while finer blocks stream in.  A finer block dissolves in over fade_time
- * after it is generated and dissolves out over the last 20% of its level's
- * range (ordered dither), so levels change without popping.
+ * while finer blocks stream in.  A finer block rises out of the rock over
+ * fade_time after it is generated and sinks back over the last 20% of its
+ * level's range (moved along its normals behind the coarser surface, no
+ * dither), so levels change without popping and without dotted seams.
  *
  * Blocks are generated nearest first into a fixed pool of slots (one vertex
  * buffer, one element buffer and one status/indirect buffer, each cut into
@@ -247,11 +248,13 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 		struct block *blk = &w->blocks[w->want[i]];
 		if ((blk->state != B_READY && blk->state != B_PENDING) || blk->slot < 0 || !blk->visible)
 			continue;
-		float fade = 1.0f;
+		float fade = 1.0f, sink = 0.0f;
 		int lod = blk->key[3];
 		if (lod < p->lod_levels - 1) {
-			/* finer levels dissolve in after generation and out near
-			 * the end of their range; the coarser level lies beneath */
+			/* finer levels rise out of the rock after generation and
+			 * sink back near the end of their range; the coarser level
+			 * lies beneath (lod_bias of its cells inside), so a block
+			 * sunk by more than that is hidden behind it */
 			if (p->fade_time > 0)
 				fade = fminf(1.0f, (float)(now - blk->born) / p->fade_time);
 			float range = lod_range(p, lod);
@@ -259,8 +262,10 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 			fade = fminf(fade, fmaxf(0.0f, fminf(1.0f, edge)));
 			if (fade <= 0.0f)
 				continue;
+			float coarse_cell = block_world_size(p, lod + 1) / (float)w->n;
+			sink = (1.0f - fade) * (p->lod_bias + 1.5f) * coarse_cell;
 		}
-		renderer_draw_mesh(r, w->vbo, w->ibo, w->status, w->sstride * blk->slot, fade);
+		renderer_draw_mesh(r, w->vbo, w->ibo, w->status, w->sstride * blk->slot, sink);
 		drawn++;
 	}
 	w->st.drawn = drawn;

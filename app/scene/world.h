@@ -80,6 +80,13 @@ struct autopilot {
 	bool manual;              /* steered by autopilot_steer (camera=manual) */
 	float in_move[3];         /* held input: forward, right, up (-1..1) */
 	float in_turn[2];         /* held input: yaw right, pitch up (-1..1) */
+	float goal[3];            /* heading steered to (unit) */
+	float escape[3];          /* heading out of a dead end (unit) */
+	double escape_until;      /* held until this time */
+	float anchor[3];          /* where it was at anchor_t (progress check) */
+	double anchor_t;
+	unsigned tick;            /* steps since the last plan */
+	bool blocked;             /* the last step could not go straight ahead */
 	const struct params *p;
 	struct noise_set *ns;
 	const struct edits *ed;   /* the terrain edits it avoids (NULL: none) */
@@ -93,7 +100,8 @@ void autopilot_advance(struct autopilot *a, double t);
 /* Manual flight from now on: holds this input (forward, right, up; yaw,
  * pitch; each -1..1) until the next call.  Still never enters rock. */
 void autopilot_steer(struct autopilot *a, const float move[3], const float turn[2]);
-/* Camera looking along the heading (slightly down). */
+/* Camera looking along the heading (slightly down; up is the planet's
+ * radius in planet mode). */
 void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far);
 
 #endif

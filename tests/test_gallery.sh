@@ -1,0 +1,54 @@
+#!/bin/sh
+# isoterra — the gallery (docs/gallery, shown in README.md) is current and
+# every preset shows something of its own: tools/gallery.sh renders every
+# preset again; each fresh picture must match the committed one (within a
+# tolerance for driver rounding) and be referenced by README.md; each
+# preset's picture must differ from the default's (pixel difference), and
+# from the same view with no terrain at all (iso 1000: sky and water only).
+BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
+IMGCMP=${2:-${IMGCMP:-./build/tests/imgcmp}}
+SRC=${ISOTERRA_SRC:-$(dirname "$0")/..}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() {
+	fail=$((fail + 1))
+	echo "FAIL: $*" >&2
+}
+
+sh "$SRC/tools/gallery.sh" "$BIN" "$T/fresh" >/dev/null || bad "tools/gallery.sh failed"
+for f in "$T"/fresh/*.png; do
+	n=$(basename "$f")
+	committed="$SRC/docs/gallery/$n"
+	if [ ! -f "$committed" ]; then
+		bad "docs/gallery/$n is missing (run tools/gallery.sh)"
+		continue
+	fi
+	# current: the committed picture is this build's (mean difference
+	# under 2 of 255, under 2 % of the pixels off by more than 24)
+	"$IMGCMP" "$f" "$committed" --max-mean 2 --max-frac 0.02 >"$T/cmp.txt" 2>&1 && ok ||
+		bad "docs/gallery/$n is not the current render: $(cat "$T/cmp.txt") (run tools/gallery.sh)"
+	grep -q "docs/gallery/$n" "$SRC/README.md" && ok || bad "README.md does not show docs/gallery/$n"
+	# distinct from the default of its scene: over 5 % of the pixels differ
+	case $n in world-*) def=world-default.png ;; *) def=default.png ;; esac
+	if [ "$n" != "$def" ]; then
+		"$IMGCMP" "$f" "$T/fresh/$def" --max-mean 1000 --max-frac 0.05 >/dev/null 2>&1 &&
+			bad "$n hardly differs from $def" || ok
+	fi
+done
+for f in "$SRC"/docs/gallery/*.png; do
+	[ -f "$T/fresh/$(basename "$f")" ] && ok || bad "docs/gallery/$(basename "$f") is no preset's render any more"
+done
+# non-trivial: the terrain covers over 5 % of the picture (the volume
+# scene, the preset's camera; the same view with iso 1000 has no surface)
+"$BIN" --list-presets | awk 'NR > 1 { print $1 }' >"$T/presets.txt"
+while read -r name; do
+	"$BIN" --preset "$name" --size 192x108 --iso 1000 --out "$T/empty.png" 2>"$T/err.txt" || bad "$name: $(cat "$T/err.txt")"
+	"$IMGCMP" "$T/fresh/$name.png" "$T/empty.png" --max-mean 1000 --max-frac 0.05 >/dev/null 2>&1 &&
+		bad "$name: the picture shows almost no terrain" || ok
+done <"$T/presets.txt"
+
+echo "gallery: $pass passed, $fail failed"
+[ $fail -eq 0 ]

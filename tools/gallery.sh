@@ -1,0 +1,31 @@
+#!/bin/sh
+# isoterra — the gallery: every preset rendered small, as the volume scene
+# (the preset's own camera) and, for the terrain presets, as the streaming
+# world's first frame (the autopilot's spawn view), into docs/gallery/.
+#
+#   sh tools/gallery.sh [BIN [OUTDIR]]      (defaults: ./build/isoterra, docs/gallery)
+#
+# Files: NAME.png (volume) and world-NAME.png (world), GALLERY_SIZE pixels
+# (192x108); README.md shows them as a contact sheet (a table, a preset a
+# row).  The `gallery` test renders them again and compares them with the
+# committed ones, so re-run this after any intended visual change.
+set -eu
+BIN=${1:-./build/isoterra}
+OUT=${2:-docs/gallery}
+SIZE=${GALLERY_SIZE:-192x108}
+mkdir -p "$OUT"
+render() { # the program's messages only when it fails
+	"$BIN" "$@" 2>"$OUT/.err.tmp" || { cat "$OUT/.err.tmp" >&2; rm -f "$OUT/.err.tmp"; exit 1; }
+	rm -f "$OUT/.err.tmp"
+}
+"$BIN" --list-presets | awk 'NR > 1 { print $1 }' >"$OUT/.presets.tmp"
+while read -r name; do
+	render --preset "$name" --size "$SIZE" --out "$OUT/$name.png"
+	# a world frame for the terrain presets (not the test fields, not the
+	# diorama: the default's terrain, so the default's world frame)
+	if [ "$name" != diorama ] && ! "$BIN" --list-presets | grep -q "^  $name  *test field"; then
+		render --preset "$name" --scene world --size "$SIZE" --out "$OUT/world-$name.png"
+	fi
+	echo "$name"
+done <"$OUT/.presets.tmp"
+rm -f "$OUT/.presets.tmp"
