@@ -11,5 +11,6 @@
 #include "image.h"
 #include "mesh.h"
 #include "grid.h"
+#include "heap.h"
 
 #endif
