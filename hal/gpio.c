@@ -6,7 +6,9 @@
  * kernel timestamps) feed the decoders in rotary.c.  A chip that cannot be
  * opened, or whose lines cannot be requested, or that disappears (read
  * error, POLLERR, ENODEV from the periodic line-info check) is reported once
- * and retried every retry_s seconds (struct hal_gpio_config). */
+ * per problem (missing, or its lines refused: a chip that comes back with
+ * a line busy says so) and retried every retry_s seconds (struct
+ * hal_gpio_config). */
 #include "hal.h"
 #include "rotary.h"
 
@@ -46,7 +48,8 @@ struct gchip {
 #ifdef HAVE_LIBGPIOD
 	struct hal_gpiod_chip *chip;
 #endif
-	bool up, reported;
+	bool up;
+	enum { CH_FINE, CH_MISSING, CH_LINES } problem; /* the last one reported */
 	uint64_t next_try;
 };
 
@@ -184,10 +187,10 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 	ch->next_try = now + g->retry_ns;
 	ch->chip = chip_lookup(ch->name);
 	if (!ch->chip) {
-		if (!ch->reported)
+		if (ch->problem != CH_MISSING)
 			hal_logf(&g->log, HAL_WARN, "gpio: cannot open gpiochip '%s': %s; controls on it are off, retrying every %g s", ch->name,
 				 strerror(errno), (double)g->retry_ns / 1e9);
-		ch->reported = true;
+		ch->problem = CH_MISSING;
 		return false;
 	}
 	for (int i = 0; i < g->nlines; i++) {
@@ -203,10 +206,10 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 		else if ((l->fd = hal_gpiod_line_fd(l->line)) < 0 || (l->level = hal_gpiod_line_value(l->line)) < 0)
 			fail = strerror(errno);
 		if (fail) {
-			if (!ch->reported)
+			if (ch->problem != CH_LINES)
 				hal_logf(&g->log, HAL_WARN, "gpio: %s: line %d of '%s' (%s): %s; retrying every %g s", line_desc(l, d, sizeof(d)),
 					 l->offset, ch->name, hal_gpiod_chip_label(ch->chip), fail, (double)g->retry_ns / 1e9);
-			ch->reported = true;
+			ch->problem = CH_LINES;
 			chip_down(g, c);
 			return false;
 		}
@@ -232,9 +235,9 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 		}
 	}
 	hal_logf(&g->log, HAL_INFO, "gpio: %s (%s) %s", hal_gpiod_chip_name(ch->chip), hal_gpiod_chip_label(ch->chip),
-		 ch->reported ? "is back" : "ready");
+		 ch->problem != CH_FINE ? "is back" : "ready");
 	ch->up = true;
-	ch->reported = false;
+	ch->problem = CH_FINE;
 	return true;
 }
 
@@ -244,7 +247,7 @@ static void chip_gone(struct hal_gpio *g, int c, const char *why, uint64_t now)
 	hal_logf(&g->log, HAL_WARN, "gpio: gpiochip '%s' is gone (%s); controls on it are off, retrying every %g s", ch->name, why,
 		 (double)g->retry_ns / 1e9);
 	chip_down(g, c);
-	ch->reported = true;
+	ch->problem = CH_MISSING;
 	ch->next_try = now + g->retry_ns;
 }
 

@@ -7,9 +7,19 @@
  * legacy drmModeSetCrtc/drmModePageFlip fallback.  present() waits for the
  * flip event (vsync).  close() puts back the CRTC that was there before
  * (the console, usually).  Structure after kmscube (drm-common, drm-atomic,
- * drm-legacy). */
+ * drm-legacy).
+ *
+ * A display that goes away (a cable pulled) does not stop the program:
+ * once a second present() asks the kernel whether the connector is still
+ * connected (drmModeGetConnectorCurrent: no probe, one ioctl).  Unplugged,
+ * it says so once and frames go on being rendered and counted, not shown
+ * (paced at the mode's refresh rate); a flip that fails or never completes
+ * asks at once.  Plugged back, it modesets again, at the mode the connector
+ * offers now (the preferred one, or --mode); a new size re-creates the
+ * surface and the renderer follows (the display sink's resize). */
 #include "kms.h"
 #include "platform.h"
+#include "clock.h"
 #include "util.h"
 
 #include <errno.h>
@@ -18,6 +28,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <gbm.h>
@@ -27,6 +38,7 @@
 #include "log.h"
 
 #define FLIP_TIMEOUT_MS 5000
+#define CONNECTOR_POLL_MS 1000
 
 struct gbm_props {
 	uint32_t conn_crtc_id;
@@ -45,6 +57,9 @@ struct gbm_state {
 	uint32_t mode_blob;
 	struct gbm_props props;
 	struct platform *p;
+	char want_mode[32];        /* --mode ("" = the preferred one), chosen again on return */
+	bool connected;            /* the connector, as last asked */
+	double next_poll;          /* clock_ms() of the next question */
 };
 
 struct gbm_fb {
@@ -302,6 +317,130 @@ static int modeset(struct gbm_state *g, uint32_t fb)
 	return 0;
 }
 
+/* A new size: the gbm surface and its EGL window surface made again (the
+ * old buffers go with them; the modeset that follows shows a new one). */
+static int remake_surface(struct gbm_state *g)
+{
+	struct platform *p = g->p;
+	int w = g->kms.mode.hdisplay, h = g->kms.mode.vdisplay;
+	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, p->ctx)) {
+		log_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
+		return -1;
+	}
+	if (!eglDestroySurface(p->dpy, p->surface))
+		log_warn("gbm: eglDestroySurface: %s", egl_common_error_name(eglGetError()));
+	p->surface = EGL_NO_SURFACE;
+	if (g->front)
+		gbm_surface_release_buffer(g->surf, g->front);
+	g->front = NULL;
+	gbm_surface_destroy(g->surf);
+	g->surf = gbm_surface_create(g->gbm, (uint32_t)w, (uint32_t)h, GBM_FORMAT_XRGB8888,
+	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+	if (!g->surf) {
+		log_error("gbm: gbm_surface_create %dx%d on %s failed", w, h, g->kms.path);
+		return -1;
+	}
+	PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC create_surface =
+		(PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC)eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT");
+	p->surface = create_surface ? create_surface(p->dpy, p->config, g->surf, NULL) : EGL_NO_SURFACE;
+	if (p->surface == EGL_NO_SURFACE || !eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
+		log_error("gbm: a %dx%d window surface: %s", w, h, egl_common_error_name(eglGetError()));
+		return -1;
+	}
+	p->width = w;
+	p->height = h;
+	return 0;
+}
+
+/* The connector's mode changed while it was away: the atomic mode blob and,
+ * for a new size, the surface follow. */
+static int follow_mode(struct gbm_state *g)
+{
+	if (g->atomic) {
+		if (g->mode_blob && drmModeDestroyPropertyBlob(g->kms.fd, g->mode_blob) != 0)
+			log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+		g->mode_blob = 0;
+		if (drmModeCreatePropertyBlob(g->kms.fd, &g->kms.mode, sizeof(g->kms.mode), &g->mode_blob) != 0) {
+			log_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
+			return -1;
+		}
+	}
+	if (g->kms.mode.hdisplay != g->p->width || g->kms.mode.vdisplay != g->p->height)
+		return remake_surface(g);
+	return 0;
+}
+
+/* Is the connector still there (asked once a second, or at once)?  Gone:
+ * said once, frames go on unshown.  Back, or at another mode: the next
+ * present modesets.  0, or -1 when the surface cannot follow a new size. */
+static int watch_connector(struct gbm_state *g, bool at_once)
+{
+	double t = clock_ms();
+	if (!at_once && t < g->next_poll)
+		return 0;
+	g->next_poll = t + CONNECTOR_POLL_MS;
+	bool changed = false;
+	int st = kms_output_poll(&g->kms, g->want_mode, &changed);
+	if (st < 0) {
+		log_debug("gbm: connector %u on %s: %s", g->kms.conn_id, g->kms.path, strerror(errno));
+		return 0; /* cannot tell: as before */
+	}
+	if (st == 0) {
+		if (g->connected)
+			log_warn("gbm: %s on %s disconnected%s: frames go on, not shown, until it is back",
+			         g->kms.conn_name, g->kms.path, g->want_mode[0] ? " (or no longer offers --mode)" : "");
+		g->connected = false;
+		return 0;
+	}
+	if (g->connected && !changed)
+		return 0;
+	log_info("gbm: %s on %s %s: modesetting %ux%u@%u", g->kms.conn_name, g->kms.path,
+	         g->connected ? "changed its mode" : "connected again", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+	         g->kms.mode.vrefresh);
+	g->connected = true;
+	g->modeset_done = false;
+	return changed ? follow_mode(g) : 0;
+}
+
+/* Unplugged: the frame is dropped, at the pace the display had. */
+static void drop_frame(struct gbm_state *g, struct gbm_bo *bo)
+{
+	gbm_surface_release_buffer(g->surf, bo);
+	unsigned hz = g->kms.mode.vrefresh ? g->kms.mode.vrefresh : 60;
+	struct timespec ts = { 0, (long)(1000000000L / hz) };
+	while (nanosleep(&ts, &ts) != 0 && errno == EINTR)
+		;
+}
+
+/* A page flip of fb: 0 committed (fb is the front now), 1 refused because
+ * the display is gone (the connector unplugged), -1 error.  A flip whose
+ * event never comes counts as committed when the connector is gone. */
+static int flip(struct gbm_state *g, uint32_t fb)
+{
+	g->flip_pending = true;
+	int rc;
+	if (g->atomic)
+		rc = atomic_commit(g, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK);
+	else
+		rc = drmModePageFlip(g->kms.fd, g->kms.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, g);
+	if (rc != 0) {
+		int e = errno;
+		g->flip_pending = false;
+		if (watch_connector(g, true) == 0 && !g->connected)
+			return 1;
+		log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
+		          strerror(e));
+		return -1;
+	}
+	if (wait_flip(g) == 0)
+		return 0;
+	if (watch_connector(g, true) == 0 && !g->connected) {
+		g->flip_pending = false; /* its event may still come */
+		return 0;
+	}
+	return -1;
+}
+
 static int gbm_present(struct platform *p)
 {
 	struct gbm_state *g = p->priv;
@@ -314,32 +453,27 @@ static int gbm_present(struct platform *p)
 		log_error("gbm: gbm_surface_lock_front_buffer failed");
 		return -1;
 	}
+	if (!g->connected) {
+		drop_frame(g, bo);
+		return watch_connector(g, false);
+	}
 	uint32_t fb = bo_fb(g, bo);
 	int rc = fb ? 0 : -1;
 	if (rc == 0 && !g->modeset_done) {
 		rc = modeset(g, fb);
+		if (rc < 0 && watch_connector(g, true) == 0 && !g->connected)
+			rc = 1; /* gone again before it could be shown */
 	} else if (rc == 0) {
-		g->flip_pending = true;
-		if (g->atomic)
-			rc = atomic_commit(g, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK);
-		else
-			rc = drmModePageFlip(g->kms.fd, g->kms.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, g);
-		if (rc != 0) {
-			g->flip_pending = false;
-			log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
-			          strerror(errno));
-		} else {
-			rc = wait_flip(g);
-		}
+		rc = flip(g, fb);
 	}
 	if (rc != 0) {
 		gbm_surface_release_buffer(g->surf, bo);
-		return -1;
+		return rc < 0 ? -1 : 0;
 	}
 	if (g->front)
 		gbm_surface_release_buffer(g->surf, g->front);
 	g->front = bo;
-	return 0;
+	return watch_connector(g, false);
 }
 
 /* Put back the CRTC we found (the console's framebuffer and mode), or turn
@@ -402,6 +536,13 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	g->kms.fd = -1;
 	g->p = p;
 	p->priv = g;
+	g->connected = true;
+	g->next_poll = clock_ms() + CONNECTOR_POLL_MS;
+	if (opt->mode && strlen(opt->mode) >= sizeof(g->want_mode)) {
+		snprintf(err, errlen, "--mode '%.40s...' is not WxH or WxH@Hz", opt->mode);
+		goto fail;
+	}
+	snprintf(g->want_mode, sizeof(g->want_mode), "%s", opt->mode ? opt->mode : "");
 	if (kms_output_open(&g->kms, opt->drm_device, opt->mode, err, errlen) < 0)
 		goto fail;
 	if (!drmIsMaster(g->kms.fd) && drmSetMaster(g->kms.fd) != 0) {

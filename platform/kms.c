@@ -1,7 +1,9 @@
 /* isoterra — KMS output selection: the DRM card (given, or the first with a
  * connected output), its first connected connector, the mode (asked for,
  * or the preferred one) and a CRTC that can drive the connector: the one
- * its encoder uses, else the first its encoders can use.  See kms.h. */
+ * its encoder uses, else the first its encoders can use; later, whether
+ * that connector is still connected and which mode it wants now.  See
+ * kms.h. */
 #include "kms.h"
 
 #include <errno.h>
@@ -205,6 +207,27 @@ static int choose_crtc(struct kms_output *o, drmModeRes *res, drmModeConnector *
 		return -1;
 	}
 	return 0;
+}
+
+int kms_output_poll(struct kms_output *o, const char *mode, bool *changed)
+{
+	*changed = false;
+	drmModeConnector *c = drmModeGetConnectorCurrent(o->fd, o->conn_id);
+	if (!c)
+		return -1;
+	int rc = c->connection == DRM_MODE_CONNECTED && c->count_modes > 0;
+	if (rc) {
+		drmModeModeInfo before = o->mode;
+		char err[256];
+		if (choose_mode(o, c, mode, err, sizeof(err)) < 0) {
+			o->mode = before; /* the mode asked for is gone: as good as unplugged */
+			rc = 0;
+		} else {
+			*changed = memcmp(&before, &o->mode, sizeof(before)) != 0;
+		}
+	}
+	drmModeFreeConnector(c);
+	return rc;
 }
 
 int kms_output_open(struct kms_output *o, const char *device, const char *mode, char *err, size_t errlen)

@@ -27,4 +27,11 @@ bool kms_probe(void);
  * the card could be opened (the caller closes it). */
 int kms_output_open(struct kms_output *o, const char *device, const char *mode, char *err, size_t errlen);
 
+/* The connector's state now, as the kernel last probed it (no new probe:
+ * cheap enough to ask once a second): 1 connected with modes, 0 not (or
+ * the mode asked for is no longer offered), -1 the card cannot say.  When
+ * connected, o->mode is chosen again as kms_output_open does (`mode`, or the
+ * preferred one) and *changed says whether it differs from before. */
+int kms_output_poll(struct kms_output *o, const char *mode, bool *changed);
+
 #endif

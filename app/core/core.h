@@ -13,5 +13,6 @@
 #include "mesh.h"
 #include "grid.h"
 #include "notify.h"
+#include "heap.h"
 
 #endif

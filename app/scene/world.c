@@ -22,6 +22,7 @@
 #include "world_int.h"
 #include "gpu.h"
 #include "clock.h"
+#include "heap.h"
 #include "log.h"
 
 #include <math.h>
@@ -106,6 +107,9 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
+	/* drawing the world churns the driver's memory: keep the process to
+	 * what it uses (heap.c) */
+	heap_policy();
 	w->ed = ed;
 	w->n = p->block_cells;
 	w->slots = p->block_pool;
@@ -224,6 +228,7 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	}
 	if (deterministic)
 		collect_results(w, true);
+	heap_release();
 	return 0;
 }
 

@@ -6,7 +6,9 @@
 # by writing the lines' sysfs "pull"; the app's knob log must show exactly
 # the expected parameter steps.  Then the chip is taken away (live = 0) and
 # brought back, and finally removed (rmdir): the app must keep rendering,
-# report it, and work again when the chip is back.  A crash leaves a core
+# report it, and work again when the chip is back.  Last the chip comes
+# back with one line held by a kernel hog: the app reports the busy line,
+# retries, and is back once the hog is gone.  A crash leaves a core
 # in the results folder, whose backtrace is printed here.
 # The same run takes keys from a virtual evdev keyboard (uinput, made by
 # hal_probe keys): --keyboard evdev drives the same actions, and the

@@ -197,6 +197,26 @@ else
 	bad "the new virtual keyboard is '$(cat $R/keys2.dev)', not $KDEV"
 fi
 exec 3>&-
+# the chip comes back with a line taken (a kernel hog on line 4, the first
+# button): the app says so once, renders on and retries; once the line is
+# free again the chip is back and its knobs work
+mkdir $D $D/bank0 && echo 8 >$D/bank0/num_lines && echo knobs >$D/bank0/label &&
+	mkdir $D/bank0/line4 $D/bank0/line4/hog && echo hog4 >$D/bank0/line4/hog/name &&
+	echo input >$D/bank0/line4/hog/direction && echo 1 >$D/live || die "gpio-sim: cannot create the chip with a hog"
+waitapp "line 4 of 'knobs' .*busy.*retrying" && ok "busy line reported: $(grep -m1 "line 4 of 'knobs'" $R/app.log)" ||
+	bad "busy line not reported: $(tail -2 $R/app.log)"
+nf=$(frames)
+waitframes $((nf + 2)) $WAIT && ok "frames rendered while the line is busy" || bad "no frames while the line is busy"
+[ "$(grep -c "(knobs) is back" $R/app.log)" -eq 1 ] && ok "not back while the line is busy" ||
+	bad "'is back' $(grep -c "(knobs) is back" $R/app.log) times with line 4 busy"
+echo 0 >$D/live && rmdir $D/bank0/line4/hog $D/bank0/line4 && echo 1 >$D/live || die "gpio-sim: cannot drop the hog"
+find_sys
+rest
+end=$(($(up) + WAIT))
+while [ "$(grep -c "(knobs) is back" $R/app.log)" -lt 2 ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
+[ "$(grep -c "(knobs) is back" $R/app.log)" -ge 2 ] && ok "line free: chip back ($CHIP)" ||
+	bad "chip not back once the line was free: $(tail -3 $R/app.log)"
+step "ccw 2 3" "fov 39"
 kill -TERM $APP
 wait $APP
 rc=$?

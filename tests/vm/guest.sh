@@ -90,12 +90,57 @@ t=$(up)
 timeout 180 glmark2-es2-drm --winsys-options drm-device=/dev/dri/card0 -b clear:duration=0.5 >"$R/glmark2.log" 2>&1
 echo $? >"$R/glmark2.rc"
 say "glmark2-es2-drm rc $(cat "$R/glmark2.rc") in $(awk "BEGIN { print $(up) - $t }") s"
-# 5. clear errors: a mode the connector does not offer; then the connector
+# 5. the display unplugged and plugged back (sysfs status) while isoterra
+#    runs: frames go on unshown, then it modesets again; a screendump once
+#    it is back.  hotplug-counts.txt: presented/shown when unplugged, after
+#    frames went on unplugged, when plugged back
+st=$(ls -d /sys/class/drm/card0-*/status | head -1)
+counts() { grep -oE '[0-9]+ presented, [0-9]+ shown' "$R/hotplug.log" | tail -1 | awk '{print $1, $3}'; }
+# wait_count FIELD MIN SECONDS: until the last report's field (1 presented,
+# 2 shown) reaches MIN
+wait_count() {
+	n=0
+	while [ $n -lt $(($3 * 10)) ] && kill -0 $pid 2>/dev/null; do
+		[ "$(counts | awk -v f="$1" '{print $f}')" -ge "$2" ] 2>/dev/null && return 0
+		sleep 0.1
+		n=$((n + 1))
+	done
+	return 1
+}
+t=$(up)
+"$BIN" --platform gbm $ARGS --count 0 --fps-report 0.01 >"$R/hotplug.log" 2>&1 &
+pid=$!
+if wait_line "$R/hotplug.log" ' [2-9] presented|[0-9][0-9]+ presented' 400 $pid; then
+	echo off >"$st"
+	wait_line "$R/hotplug.log" 'disconnected' 600 $pid
+	# the frame that noticed is reported after the line: counts from the next
+	wait_count 1 $(($(counts | cut -d' ' -f1) + 1)) 600
+	c0=$(counts)
+	wait_count 1 $(($(echo "$c0" | cut -d' ' -f1) + 2)) 600
+	c1=$(counts)
+	echo detect >"$st"
+	wait_line "$R/hotplug.log" 'connected again' 600 $pid
+	c2=$(counts)
+	wait_count 2 $(($(echo "$c2" | cut -d' ' -f2) + 2)) 600
+	printf '%s\n%s\n%s\n' "$c0" "$c1" "$c2" >"$R/hotplug-counts.txt"
+	shot back
+	kill -TERM $pid
+	wait $pid
+	echo $? >"$R/hotplug.rc"
+else
+	say "isoterra presented no frames (hotplug)"
+	kill -KILL $pid 2>/dev/null
+	wait $pid
+	echo "$?" >"$R/hotplug.rc"
+fi
+echo detect >"$st"
+say "hotplug run rc $(cat "$R/hotplug.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+
+# 6. clear errors: a mode the connector does not offer; then the connector
 #    forced off (sysfs status): no connected display -> gbm fails with one
 #    line, auto falls back to headless
 "$BIN" --platform gbm --mode 123x45 $(echo "$ARGS" | sed 's/--mode [^ ]*//') >"$R/badmode.log" 2>&1
 echo $? >"$R/badmode.rc"
-st=$(ls -d /sys/class/drm/card0-*/status | head -1)
 echo off >"$st"
 "$BIN" --platform gbm $ARGS >"$R/nodisplay.log" 2>&1
 echo $? >"$R/nodisplay.rc"

@@ -13,6 +13,9 @@
 #   - kmscube and glmark2-es2-drm run in the same guest (sanity peers);
 #     kmscube does not restore the CRTC: after it, with the card still held
 #     open, the console is off -- the negative control of the checks above;
+#   - the connector forced off (sysfs status) while it runs: it says so
+#     once, frames go on unshown; forced back on: it modesets again and the
+#     screendump matches the host render again;
 #   - clear errors: a mode not offered; the connector forced off (sysfs):
 #     "no connected display", and auto falls back to headless.
 # See tests/vm/README.md and ../shared/vm/RECIPE.md.
@@ -77,7 +80,7 @@ qemu-system-x86_64 -machine pc -cpu max -smp 2 -m 1536 -no-reboot \
 QPID=$!
 
 # serve the guest's screendump requests until it powers off
-LIMIT=${ISOTERRA_VM_TIMEOUT:-720}
+LIMIT=${ISOTERRA_VM_TIMEOUT:-900}
 while alive "$QPID"; do
 	for req in "$T"/req-*; do
 		[ -e "$req" ] || continue
@@ -175,6 +178,35 @@ fi
 [ "$(cat "$T/glmark2.rc" 2>/dev/null)" = 0 ] && grep -q "glmark2 Score" "$T/glmark2.log" &&
 	ok "glmark2-es2-drm: $(grep -m1 'glmark2 Score' "$T/glmark2.log" | tr -s ' ')" ||
 	bad "glmark2-es2-drm rc $(cat "$T/glmark2.rc" 2>/dev/null): $(tail -5 "$T/glmark2.log" 2>/dev/null)"
+
+# the display unplugged and plugged back while running
+hl=$T/hotplug.log
+[ "$(cat "$T/hotplug.rc" 2>/dev/null)" = 0 ] && ok "hotplug run: SIGTERM -> exit 0" ||
+	bad "hotplug run exit '$(cat "$T/hotplug.rc" 2>/dev/null)': $(tail -5 "$hl" 2>/dev/null)"
+nd=$(grep -c "gbm: Virtual-1 on /dev/dri/card0 disconnected" "$hl" 2>/dev/null)
+[ "$nd" = 1 ] && ok "unplugged: said once ($(grep -m1 -o 'disconnected.*' "$hl"))" || bad "unplugged: $nd 'disconnected' lines, want 1"
+if [ -s "$T/hotplug-counts.txt" ]; then
+	# presented/shown when unplugged (1), later while unplugged (2), when back (3)
+	set -- $(cat "$T/hotplug-counts.txt")
+	if [ $# = 6 ] && [ "$3" -ge $(($1 + 2)) ] && [ "$4" = "$2" ]; then
+		ok "unplugged: frames go on unshown (presented $1 -> $3, shown $2 -> $4)"
+	else
+		bad "unplugged: presented/shown $* (want presented +2 or more, shown unchanged)"
+	fi
+else
+	bad "unplugged: no frame counts from the guest"
+fi
+grep -q "gbm: Virtual-1 on /dev/dri/card0 connected again: modesetting ${W}x$H@" "$hl" 2>/dev/null &&
+	[ "$(grep -c "(atomic modesetting)" "$hl")" = 2 ] &&
+	ok "plugged back: modeset again ($(grep -m1 -o 'connected again.*' "$hl"))" ||
+	bad "plugged back: no second modeset: $(grep -E 'connected|modesetting' "$hl" 2>/dev/null)"
+if [ -s "$T/back.ppm" ]; then
+	[ -s "$T/ref.png" ] || headless "$T/ref.png" ${W}x$H $(echo "$ARGS" | sed 's/--mode [^ ]*//')
+	compare "KMS scanout after the display came back vs host headless render" "$T/back.ppm" "$T/ref.png" \
+		--threshold 32 --max-mean 2.0 --max-frac 0.01
+else
+	bad "no screendump after the display came back"
+fi
 
 # clear errors (no rendering involved)
 if [ "$(cat "$T/badmode.rc" 2>/dev/null)" != 0 ] && grep -q "mode 123x45 not offered by Virtual-1 on /dev/dri/card0" "$T/badmode.log" &&

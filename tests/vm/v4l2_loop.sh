@@ -13,9 +13,11 @@
 # (vivid's test pattern) must not match.  Also: the capture node given as
 # --v4l2 is refused with one clear message (exit 2), and an output node
 # another program streams to is reported busy while the frames are rendered;
-# the output node disappearing while the app streams (vivid's Disconnect
-# control) is reported, rendering goes on, and the stream resumes when the
-# node is back (a second capture matches again).
+# the output node disappearing
+# while the app streams (vivid's Disconnect control) is reported, rendering
+# goes on, and the stream resumes when the node is back (a second capture
+# matches again); the driver unloaded (rmmod vivid) leaves no node to open
+# (reported once), and the stream resumes after it is loaded again.
 # usage: v4l2_loop.sh ISOTERRA HAL_PROBE BUILD_DIR [sanitize]
 BIN=$1
 PROBE=$2

@@ -109,6 +109,27 @@ waitfor "v4l2: $OUT .*(recovered)" 120 && ok "output resumed: $(grep "(recovered
 sleep 5
 capture $R/cap2.yuv
 [ -s $R/cap2.yuv ] && ok "capture after the reconnection: $(wc -c <$R/cap2.yuv) bytes" || bad "capture after the reconnection failed"
+# the driver unloaded while the app streams, and loaded again: meanwhile
+# the node cannot be opened (reported once), then the app streams again.
+# (vivid's disconnect first makes the app close the node, so the module
+# can go; it re-registers its nodes once the last handle is closed)
+v4l2-ctl -d $CAP --set-ctrl=disconnect=1 || bad "vivid's disconnect control failed"
+end=$(($(up) + 120))
+until rmmod vivid 2>/dev/null || [ "$(up)" -ge $end ]; do sleep 0.1; done
+if lsmod | grep -q '^vivid '; then
+	bad "vivid could not be unloaded: $(tail -2 $R/app.log)"
+else
+	waitfor "v4l2: $OUT: cannot open: No such file or directory; no video output, retrying" 60 &&
+		ok "node gone reported: $(grep -m1 "cannot open: No such file" $R/app.log)" ||
+		bad "missing node not reported: $(tail -3 $R/app.log)"
+	modprobe vivid n_devs=1 node_types=0x101 && v4l2-ctl -d $OUT --set-output=1 || bad "vivid did not come back"
+	end=$(($(up) + 120))
+	while [ "$(grep -c "v4l2: $OUT .*(recovered)" $R/app.log)" -lt 2 ] && [ "$(up)" -lt $end ] &&
+		kill -0 $APP 2>/dev/null; do sleep 0.5; done
+	[ "$(grep -c "v4l2: $OUT .*(recovered)" $R/app.log)" -ge 2 ] &&
+		ok "driver back: streaming again ($(grep "(recovered)" $R/app.log | tail -1))" ||
+		bad "output did not resume after the reload: $(tail -3 $R/app.log)"
+fi
 kill -TERM $APP
 wait $APP
 rc=$?
