@@ -134,6 +134,8 @@ int main(void)
 
 	struct params p;
 	params_defaults(&p);
+	/* the diorama box fills the frame: an edit of the field shows */
+	CHECK(params_apply_preset(&p, "diorama", err, sizeof(err)) == 0, "preset diorama: %s", err);
 	snprintf(p.size, sizeof(p.size), "96x72");
 	p.grid = 24;
 	p.count = FRAMES;
