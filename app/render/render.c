@@ -210,7 +210,8 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
 	glUniform1f(glGetUniformLocation(r->water, "u_fog_density"), 0.35f / fog_range);
 	glEnable(GL_BLEND);
-	glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+	/* the frame stays opaque: a compositor (Wayland) would show the desktop through the water */
+	glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
 	glDepthMask(GL_FALSE);
 	glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 	glDepthMask(GL_TRUE);
