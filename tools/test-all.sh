@@ -36,11 +36,12 @@ run_suite() { # name builddir meson-args...
 # is missing: tools/deps.sh installs them all
 export ISOTERRA_REQUIRE_DEVICE_TESTS=1
 status=0
-# Tests that boot a kernel under QEMU (meson suite "vm") run once, against the
-# release build; the sanitizer build runs everything else.
+# Tests that boot a kernel under QEMU (meson suite "vm") and the gallery's
+# pictures run once, against the release build; the sanitizer build runs
+# everything else.
 TEST_ARGS=""
 run_suite "release (-Werror)" build-ci -Dwerror=true -Dbuildtype=debugoptimized || status=1
-TEST_ARGS="--no-suite vm"
+TEST_ARGS="--no-suite vm --no-suite gallery"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
