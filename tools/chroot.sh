@@ -103,6 +103,10 @@ d13_mount() {
 	mount -t proc proc "$r/proc" && D13_MOUNTS="$r/proc $D13_MOUNTS"
 	mount --bind /sys "$r/sys" && D13_MOUNTS="$r/sys $D13_MOUNTS"
 	mount --bind /dev "$r/dev" && D13_MOUNTS="$r/dev $D13_MOUNTS"
+	# pseudo-terminals (a test drives the progress bar through script(1))
+	if [ -d /dev/pts ]; then
+		mount --bind /dev/pts "$r/dev/pts" && D13_MOUNTS="$r/dev/pts $D13_MOUNTS"
+	fi
 	mount --bind "$D13/apt-archives" "$r/var/cache/apt/archives" && D13_MOUNTS="$r/var/cache/apt/archives $D13_MOUNTS"
 	[ -r /etc/resolv.conf ] && cat /etc/resolv.conf >"$r/etc/resolv.conf" 2>/dev/null
 	[ -e "$r/proc/self" ] && [ -e "$r/dev/null" ] || { echo "$0: mounting /proc, /dev in $r failed" >&2; return 1; }

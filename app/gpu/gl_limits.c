@@ -74,7 +74,7 @@ static const struct gl_pass passes[] = {
 	  VF(6, 1, 89), { 0, 0, 0 }, -1, 0 },
 	/* the governor's upscale (app/render/upscale.c) */
 	{ "upscale.vert + upscale.frag", NULL, "upscale.vert", "upscale.frag", NULL, false,
-	  VF(0, 1, 4), { 0, 0, 0 }, -1, 0 },
+	  VF(2, 1, 4), { 0, 0, 0 }, -1, 0 },
 	/* the tests' own passes */
 	{ "hp_test.comp", "hp_test.comp", NULL, NULL, NULL, true,
 	  CS(5, 0, 0, 0, 22), { 64, 1, 1 }, BIND_TEST_OUT, 0 },
