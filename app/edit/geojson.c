@@ -251,7 +251,9 @@ static long count_positions(const char *text, size_t len)
 			size_t j = i + 1;
 			while (j < len && text[j] != '"')
 				j += text[j] == '\\' ? 2 : 1;
-			after_key = j - i - 1 == 11 && !memcmp(text + i + 1, "coordinates", 11);
+			if (j > len) /* an escape at the very end */
+				j = len;
+			after_key = j < len && j - i - 1 == 11 && !memcmp(text + i + 1, "coordinates", 11);
 			i = j;
 		} else if (c == '[' || c == '{') {
 			if (after_key && c == '[' && coords_depth < 0)
