@@ -30,10 +30,12 @@ set -u
 # pixels along silhouettes and the iso-surface's knife edges.  imgcmp's
 # tolerance: mean |difference| <= MAX_MEAN (0..255 per channel), at most
 # MAX_FRAC of the pixels over THRESHOLD.
-# Measured on Debian 13 (Mesa 25.0.7, LLVM 19): mean 0.13, largest 4, none
-# over 16.
+# Measured on Debian 13 (Mesa 25.0.7, LLVM 19): the diorama frame mean
+# 0.13, largest 4; the open landscape (water waves over much of the frame,
+# whose normals come from noise: small differences everywhere on the water)
+# mean 0.68, largest 7; none over 16 in either.
 THRESHOLD=16
-MAX_MEAN=0.5
+MAX_MEAN=1.0
 MAX_FRAC=0.002
 SIZE=160x120
 GRID=32
