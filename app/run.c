@@ -202,7 +202,9 @@ static int check_outputs(const struct params *p, char *err, size_t errlen)
 	if (cli_parse_out(p->out, &kind, err, errlen) < 0)
 		return 2;
 	int last = p->count > 0 ? p->count - 1 : INT_MAX;
-	if (strcmp(p->out, "-") && cli_check_dest("out", p->out, kind == CLI_OUT_PNG_SEQUENCE ? last : 0, err, errlen) < 0)
+	/* a display run until closed (--count 0) writes no single PNG */
+	bool writes_out = strcmp(p->out, "-") && !(p->count == 0 && kind == CLI_OUT_PNG);
+	if (writes_out && cli_check_dest("out", p->out, kind == CLI_OUT_PNG_SEQUENCE ? last : 0, err, errlen) < 0)
 		return 1;
 	if (p->export_mesh[0] && cli_check_dest("export_mesh", p->export_mesh, 0, err, errlen) < 0)
 		return 1;
