@@ -139,10 +139,12 @@ say "hotplug run rc $(cat "$R/hotplug.rc") in $(awk "BEGIN { print $(up) - $t }"
 # 6. clear errors: a mode the connector does not offer; then the connector
 #    forced off (sysfs status): no connected display -> gbm fails with one
 #    line, auto falls back to headless
-"$BIN" --platform gbm --mode 123x45 $(echo "$ARGS" | sed 's/--mode [^ ]*//') >"$R/badmode.log" 2>&1
+# (--out in the results folder: the working folder is read-only, and the
+# outputs are checked before the platform)
+"$BIN" --platform gbm --mode 123x45 $(echo "$ARGS" | sed 's/--mode [^ ]*//') --out "$R/badmode.png" >"$R/badmode.log" 2>&1
 echo $? >"$R/badmode.rc"
 echo off >"$st"
-"$BIN" --platform gbm $ARGS >"$R/nodisplay.log" 2>&1
+"$BIN" --platform gbm $ARGS --out "$R/nodisplay.png" >"$R/nodisplay.log" 2>&1
 echo $? >"$R/nodisplay.rc"
 # (--count 0 makes a headless pick fail before any rendering, naming it)
 "$BIN" --platform auto $ARGS --count 0 >"$R/auto-off.log" 2>&1
