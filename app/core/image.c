@@ -174,19 +174,28 @@ static png_structp png_reader(struct png_ctx *ctx, png_infop *info)
 	return png;
 }
 
+/* The file opened and checked, and a reader on it (png_reader), or NULL
+ * with err and the file closed. */
+static png_structp png_begin(struct png_ctx *ctx, const char *path, png_infop *info, char *err, size_t errlen)
+{
+	if (png_open(ctx, path, err, errlen) < 0)
+		return NULL;
+	png_structp png = png_reader(ctx, info);
+	if (!png) {
+		snprintf(err, errlen, "out of memory reading '%s'", path);
+		fclose(ctx->f);
+	}
+	return png;
+}
+
 int image_read_png_size(const char *path, int *w, int *h, char *err, size_t errlen)
 {
 	*w = *h = 0;
 	struct png_ctx ctx;
-	if (png_open(&ctx, path, err, errlen) < 0)
-		return -1;
 	png_infop info;
-	png_structp png = png_reader(&ctx, &info);
-	if (!png) {
-		snprintf(err, errlen, "out of memory reading '%s'", path);
-		fclose(ctx.f);
+	png_structp png = png_begin(&ctx, path, &info, err, errlen);
+	if (!png)
 		return -1;
-	}
 	if (setjmp(png_jmpbuf(png))) {
 		snprintf(err, errlen, "cannot read PNG '%s': %s", path, ctx.msg);
 		png_destroy_read_struct(&png, &info, NULL);
@@ -206,15 +215,10 @@ int image_read_png(struct image *img, const char *path, char *err, size_t errlen
 	img->width = img->height = 0;
 	img->rgba = NULL;
 	struct png_ctx ctx;
-	if (png_open(&ctx, path, err, errlen) < 0)
-		return -1;
 	png_infop info;
-	png_structp png = png_reader(&ctx, &info);
-	if (!png) {
-		snprintf(err, errlen, "out of memory reading '%s'", path);
-		fclose(ctx.f);
+	png_structp png = png_begin(&ctx, path, &info, err, errlen);
+	if (!png)
 		return -1;
-	}
 	uint8_t *volatile pixels = NULL;
 	png_bytep *volatile rows = NULL;
 	if (setjmp(png_jmpbuf(png))) {
@@ -270,15 +274,10 @@ int image_read_png_gray16(const char *path, uint16_t **out, int *w_out, int *h_o
 	*out = NULL;
 	*w_out = *h_out = 0;
 	struct png_ctx ctx;
-	if (png_open(&ctx, path, err, errlen) < 0)
-		return -1;
 	png_infop info;
-	png_structp png = png_reader(&ctx, &info);
-	if (!png) {
-		snprintf(err, errlen, "out of memory reading '%s'", path);
-		fclose(ctx.f);
+	png_structp png = png_begin(&ctx, path, &info, err, errlen);
+	if (!png)
 		return -1;
-	}
 	uint8_t *volatile raw = NULL;
 	uint16_t *volatile samples = NULL;
 	png_bytep *volatile rows = NULL;
