@@ -27,6 +27,35 @@ static inline int fixture_density(struct pipeline *pl, const struct params *p)
 	return fixture_report(pipeline_density(pl, p, err, sizeof(err)), "pipeline_density", err);
 }
 
+/* The terrain's extraction on grid g: its own edit state, the terrain
+ * field and a pipeline.  0, or -1 with err (nothing left open). */
+struct fixture_terrain {
+	struct edits *ed;
+	struct terrain *tr;
+	struct pipeline *pl;
+};
+static inline int fixture_terrain_open(struct fixture_terrain *ft, const struct grid *g, const struct params *p,
+				       char *err, size_t errlen)
+{
+	ft->ed = edits_create();
+	ft->tr = ft->ed ? terrain_create(ft->ed) : NULL;
+	ft->pl = ft->tr ? pipeline_create(g, p, terrain_field(ft->tr), err, errlen) : NULL;
+	if (!ft->pl) {
+		if (!ft->tr)
+			snprintf(err, errlen, "out of memory");
+		terrain_destroy(ft->tr);
+		edits_destroy(ft->ed);
+		return -1;
+	}
+	return 0;
+}
+static inline void fixture_terrain_close(struct fixture_terrain *ft)
+{
+	pipeline_destroy(ft->pl);
+	terrain_destroy(ft->tr);
+	edits_destroy(ft->ed);
+}
+
 static struct platform *fixture_open(void)
 {
 	char err[512];

@@ -26,17 +26,13 @@ static int extract(struct mesh *m)
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
-	struct edits *ed = edits_create();
-	struct terrain *tr = terrain_create(ed);
-	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
-	int rc = -1;
-	if (pl && fixture_run(pl, &p) == 0 && pipeline_read_mesh(pl, m) == 0)
-		rc = 0;
-	if (!pl)
+	struct fixture_terrain ft;
+	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0) {
 		fprintf(stderr, "pipeline_create: %s\n", err);
-	pipeline_destroy(pl);
-	terrain_destroy(tr);
-	edits_destroy(ed);
+		return -1;
+	}
+	int rc = fixture_run(ft.pl, &p) == 0 && pipeline_read_mesh(ft.pl, m) == 0 ? 0 : -1;
+	fixture_terrain_close(&ft);
 	return rc;
 }
 

@@ -48,14 +48,14 @@ int main(void)
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
-	struct edits *ed = edits_create();
-	struct terrain *tr = terrain_create(ed);
-	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
-	struct renderer *r = renderer_create(W, H, err, sizeof(err));
-	if (!pl || !r || fixture_run(pl, &p) < 0) {
+	struct fixture_terrain ft;
+	struct renderer *r = NULL;
+	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 || !(r = renderer_create(W, H, err, sizeof(err))) ||
+	    fixture_run(ft.pl, &p) < 0) {
 		fprintf(stderr, "setup: %s\n", err);
 		return 1;
 	}
+	struct pipeline *pl = ft.pl;
 	struct pipeline_draw d;
 	pipeline_draw_info(pl, &d);
 	struct image full = { 0 }, half = { 0 }, again = { 0 };
@@ -88,9 +88,7 @@ int main(void)
 	free(half.rgba);
 	free(again.rgba);
 	renderer_destroy(r);
-	pipeline_destroy(pl);
-	terrain_destroy(tr);
-	edits_destroy(ed);
+	fixture_terrain_close(&ft);
 	platform_close(plat);
 	return tc_done("render_scale");
 }
