@@ -7,7 +7,7 @@
 . "$(dirname "$0")/lib.sh"
 need weston weston-screenshooter
 scratch # $T; kills $APID and $SERVER_PID on exit
-ARGS="--grid 24 --cam-spin 0 --seed 7 --fps 1000" # --fps 1000: the clock (water, sky) all but stands still, so any frame on screen matches the reference
+ARGS="--grid 24 --cam-spin 0 --seed 7 --fps 1000 --water-octaves 0" # a still picture, so any frame on screen matches the reference: --fps 1000 all but stops the clock, and a flat mirror has no waves to move (a fast machine shows frame 300 or later, 0.3 s on, where moving waves differ)
 OUT_W=320
 OUT_H=240
 
@@ -42,7 +42,11 @@ if wait_frames "$T/app1.log" 4 60 "$APID"; then
 	shot=$(ls "$T"/shot/*.png 2>/dev/null | head -1)
 	if [ -n "$shot" ]; then
 		headless "$T/ref.png" ${OUT_W}x$OUT_H $ARGS &&
-			compare "weston screenshot (fullscreen ${OUT_W}x$OUT_H) vs headless" "$shot" "$T/ref.png"
+			compare "weston screenshot (fullscreen ${OUT_W}x$OUT_H) vs headless" "$shot" "$T/ref.png" --max-mean 3
+		# --max-mean 3: Weston's grab of its output is not always bit-exact; on
+		# one CI host every pixel was off by up to 4 levels (mean 1.1) with no
+		# pixel over 24, while a wrong frame, size or channel order is off by
+		# tens of levels over much of the picture (frac_over(24) stays 0.5 %)
 	else
 		bad "weston-screenshooter wrote no PNG: $(cat "$T/shot.log")"
 	fi
