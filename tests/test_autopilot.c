@@ -10,6 +10,7 @@
 #include "tcheck.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define SAMPLE 0.1                    /* seconds between judged samples */
@@ -83,12 +84,24 @@ int main(int argc, char **argv)
 	static const int seeds[] = { 10, 1, 77, 12345 };
 	static const float speeds[] = { 3.0f, 12.0f, 40.0f };
 	int flights = 0, bad = 0;
+	size_t nseeds = sizeof(seeds) / sizeof(seeds[0]);
+	const char *only = NULL; /* one preset only (debugging) */
+	for (int a = 1; a < argc; a++) {
+		if (!strcmp(argv[a], "--seeds") && a + 1 < argc) { /* the first N seeds (sanitizer builds) */
+			int k = atoi(argv[++a]);
+			CHECK(k >= 1 && (size_t)k <= nseeds, "--seeds %s: want 1..%zu", argv[a], nseeds);
+			if (k >= 1 && (size_t)k <= nseeds)
+				nseeds = (size_t)k;
+		} else {
+			only = argv[a];
+		}
+	}
 	for (size_t pi = 0; pi < preset_count; pi++) {
 		if (strstr(presets[pi].settings, "field=")) /* the test fields are no terrain */
 			continue;
-		if (argc > 1 && strcmp(argv[1], presets[pi].name)) /* one preset only (debugging) */
+		if (only && strcmp(only, presets[pi].name))
 			continue;
-		for (size_t si = 0; si < sizeof(seeds) / sizeof(seeds[0]); si++)
+		for (size_t si = 0; si < nseeds; si++)
 			for (size_t vi = 0; vi < sizeof(speeds) / sizeof(speeds[0]); vi++) {
 				struct params p;
 				preset_params(pi, &p);

@@ -30,18 +30,37 @@ TMPDIR=${FUZZ_TMPDIR:-/dev/shm}
 export TMPDIR
 runs=-runs=-1
 [ -n "${FUZZ_RUNS:-}" ] && runs="-runs=$FUZZ_RUNS"
-pass=0
-fail=0
-for n in $names; do
+# FUZZ_JOBS harnesses at a time (default: the online CPUs): each is one
+# process, so on 2 cores two 60 s runs take 60 s of wall time, not 120
+jobs=${FUZZ_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+case $jobs in ''|*[!0-9]*|0) jobs=1 ;; esac
+fuzz_one() { # name: runs one harness; its exit status goes to $B/fuzz-NAME.rc
+	n=$1
 	mkdir -p "$B/corpus/$n"
-	log="$B/fuzz-$n.log"
 	regress=""
 	[ -d "tests/fuzz/regress/$n" ] && regress="tests/fuzz/regress/$n"
 	# shellcheck disable=SC2086 # $regress: nothing or one folder
 	"$B/tests/fuzz/fuzz_$n" "$runs" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1536 \
 		-print_final_stats=1 -dict="tests/fuzz/$n.dict" -artifact_prefix="$B/crash-$n-" \
-		"$B/corpus/$n" "tests/fuzz/corpus/$n" $regress >"$log" 2>&1
-	rc=$?
+		"$B/corpus/$n" "tests/fuzz/corpus/$n" $regress >"$B/fuzz-$n.log" 2>&1
+	echo $? >"$B/fuzz-$n.rc"
+}
+running=0
+for n in $names; do
+	rm -f "$B/fuzz-$n.rc"
+	fuzz_one "$n" &
+	running=$((running + 1))
+	if [ $running -ge "$jobs" ]; then
+		wait
+		running=0
+	fi
+done
+wait
+pass=0
+fail=0
+for n in $names; do
+	log="$B/fuzz-$n.log"
+	rc=$(cat "$B/fuzz-$n.rc" 2>/dev/null || echo 1)
 	execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
 	t=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)
 	rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
