@@ -4,7 +4,7 @@
 layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "mc_status.glsl"
-struct Vertex { vec4 pos; vec4 nrm; };
+#include "vertex.glsl"
 layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };
 
 void main()
@@ -27,7 +27,7 @@ void main()
 			ivec4 eo = mc_edge_owner[mc_tri[cs * 15 + int(r) * 3 + k]];
 			vec4 p, nr;
 			edge_vertex(c + eo.xyz, eo.w, p, nr);
-			verts[3u * t + uint(k)] = Vertex(p, nr);
+			verts[3u * t + uint(k)] = Vertex(p.xyz, pack_normal_ao(nr.xyz, 1.0));
 		}
 	}
 }

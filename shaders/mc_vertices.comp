@@ -9,7 +9,7 @@ layout(local_size_x = 64) in;
 #ifdef WITH_AO
 #include "ao.glsl" // reads the field: compiled as part of the field's program (FIELD_PASS_VERTICES)
 #endif
-struct Vertex { vec4 pos; vec4 nrm; }; // nrm.w = ambient visibility
+#include "vertex.glsl"
 layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };
 
 void main()
@@ -37,6 +37,5 @@ void main()
 #else
 	n.w = 1.0;
 #endif
-	verts[v].pos = p;
-	verts[v].nrm = n;
+	verts[v] = Vertex(p.xyz, pack_normal_ao(n.xyz, n.w));
 }

@@ -3,6 +3,7 @@
  * buffers).  Read-back is for tests, export and end-of-run reports; never in
  * the frame loop. */
 #include "extract_int.h"
+#include "vertex.h"
 #include "gpu.h"
 #include "abi.h"
 
@@ -66,7 +67,7 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 	uint32_t nt = st.triangles;
 	if (mesh_alloc(m, nv, nt) < 0)
 		return -1;
-	float *vb = malloc((size_t)VERTEX_BYTES * (nv ? nv : 1));
+	uint32_t *vb = malloc((size_t)VERTEX_BYTES * (nv ? nv : 1));
 	if (!vb) {
 		mesh_free(m);
 		return -1;
@@ -78,10 +79,7 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 		for (uint32_t i = 0; i < 3 * nt; i++)
 			m->idx[i] = i;
 	for (uint32_t i = 0; rc == 0 && i < nv; i++)
-		for (int a = 0; a < 3; a++) {
-			m->pos[3 * i + a] = vb[8 * i + a];
-			m->nrm[3 * i + a] = vb[8 * i + 4 + a];
-		}
+		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)i, m->nrm + 3 * (size_t)i, NULL);
 	free(vb);
 	if (rc < 0)
 		mesh_free(m);

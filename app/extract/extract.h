@@ -9,5 +9,6 @@
 #include "field.h"
 #include "pipeline.h"
 #include "mc.h"
+#include "vertex.h"
 
 #endif

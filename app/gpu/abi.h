@@ -58,6 +58,6 @@
 #define ST_BYTES (ST_WORDS * 4)
 
 /* ---- vertex format -------------------------------------------------------- */
-#define VERTEX_BYTES 32      /* vec4 position (w: AO), vec4 normal */
+#define VERTEX_BYTES 16      /* vec3 position, uint normal (octahedral 12+12 bits) + AO (8 bits): shaders/vertex.glsl */
 
 #endif

@@ -178,9 +178,9 @@ void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indir
 	glUniform1f(r->l_sink, sink);
 	glBindBuffer(GL_ARRAY_BUFFER, vbo);
 	glEnableVertexAttribArray(0);
-	glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, (const void *)0);
+	glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, VERTEX_BYTES, (const void *)0);
 	glEnableVertexAttribArray(1);
-	glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 32, (const void *)16);
+	glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, VERTEX_BYTES, (const void *)12); /* vertex.glsl */
 	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect);
 	if (ibo) {
 		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);

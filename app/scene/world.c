@@ -20,6 +20,7 @@
  * a 16-byte copy of its status: empty blocks are remembered, get no slot
  * and are never generated again. */
 #include "world_int.h"
+#include "extract.h"
 #include "gpu.h"
 #include "clock.h"
 #include "heap.h"
@@ -366,16 +367,13 @@ static int export_counts(const struct world *w, const struct block *b, uint32_t 
 
 /* Block b's mesh appended to m at vertex nv, triangle nt. */
 static int export_append(const struct world *w, const struct block *b, struct mesh *m, uint32_t nv, uint32_t nt,
-			 uint32_t verts, uint32_t tris, float *vb)
+			 uint32_t verts, uint32_t tris, uint32_t *vb)
 {
 	if (gpu_read_buffer(w->vbo, w->vstride * b->slot, (GLsizeiptr)verts * VERTEX_BYTES, vb) < 0 ||
 	    gpu_read_buffer(w->ibo, w->istride * b->slot, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0)
 		return -1;
 	for (uint32_t i = 0; i < verts; i++)
-		for (int a = 0; a < 3; a++) {
-			m->pos[3 * (size_t)(nv + i) + a] = vb[8 * (size_t)i + a];
-			m->nrm[3 * (size_t)(nv + i) + a] = vb[8 * (size_t)i + 4 + a];
-		}
+		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)(nv + i), m->nrm + 3 * (size_t)(nv + i), NULL);
 	for (size_t k = 3 * (size_t)nt; k < 3 * (size_t)(nt + tris); k++) {
 		if (m->idx[k] >= verts)
 			return -1;
@@ -399,7 +397,7 @@ int world_read_mesh(struct world *w, struct mesh *m)
 	}
 	if (nv > UINT32_MAX || nt > UINT32_MAX / 3 || mesh_alloc(m, (uint32_t)nv, (uint32_t)nt) < 0)
 		return -1;
-	float *vb = malloc((size_t)VERTEX_BYTES * (w->vcap ? w->vcap : 1));
+	uint32_t *vb = malloc((size_t)VERTEX_BYTES * (w->vcap ? w->vcap : 1));
 	int rc = vb ? 0 : -1;
 	uint32_t at_v = 0, at_t = 0;
 	for (uint32_t i = 0; i < w->cap && rc == 0; i++) {
