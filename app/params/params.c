@@ -335,9 +335,9 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 const struct preset presets[] = {
 	{ "default", "GPU Gems style terrain: warped octaves, hard floor, an open landscape seen from above", "" },
 	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=30;noise_freq=0.03;octaves=8;warp_amp=2;snow_line=6" },
-	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=5;terrace_strength=3;soil=arid;snow_line=60" },
-	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=5;terrace_strength=3;warp_amp=6;soil=volcanic;snow_line=60" },
-	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.05;warp_amp=14;noise_amp=16" },
+	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=3;terrace_strength=4;warp_amp=2;soil=arid;snow_line=60;cam_dist=1.1;cam_pitch=28" },
+	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=3;terrace_strength=4;warp_amp=6;soil=volcanic;snow_line=60;cam_dist=1.1;cam_pitch=28" },
+	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;cam_dist=1;cam_pitch=15" },
 	{ "caves", "endless caves (no ground plane), seen from inside a chamber along a tunnel",
 	  "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;vol_size=170;vol_height=0.6;floor_strength=0;water=false;snow_line=1000;ambient=0.4;"
 	  "ao_strength=0.6;fov=65;max_triangles=700000;max_vertices=500000" },
