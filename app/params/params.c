@@ -337,7 +337,7 @@ const struct preset presets[] = {
 	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=30;noise_freq=0.03;octaves=8;warp_amp=2;snow_line=6" },
 	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=3;terrace_strength=4;warp_amp=2;soil=arid;snow_line=60;cam_dist=1.1;cam_pitch=28" },
 	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=3;terrace_strength=4;warp_amp=6;soil=volcanic;snow_line=60;cam_dist=1.1;cam_pitch=28" },
-	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;cam_dist=1;cam_pitch=15" },
+	{ "alien", "strong domain warp: arches, hooks and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;snow_line=16;cam_dist=1;cam_pitch=15" },
 	{ "caves", "endless caves (no ground plane), seen from inside a chamber along a tunnel",
 	  "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;vol_size=170;vol_height=0.6;floor_strength=0;water=false;snow_line=1000;ambient=0.4;"
 	  "ao_strength=0.6;fov=65;max_triangles=700000;max_vertices=500000" },
