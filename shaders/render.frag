@@ -78,18 +78,27 @@ void main()
 	float tex = t1.r * w.x + t2.r * w.y + t3.r * w.z;
 	float hgt = t1.a * w.x + t2.a * w.y + t3.a * w.z;
 
+	// "up" and altitude: +y and y, on a planet away from its centre and the
+	// height over planet_radius (grass, snow and strata follow the sphere)
+	float up_n = n0.y, alt = v_pos.y;
+	if (u_shape == SHAPE_PLANET) {
+		vec3 cv = v_pos + vec3(0.0, u_planet_radius, 0.0);
+		up_n = dot(n0, normalize(cv));
+		alt = length(cv) - u_planet_radius;
+	}
+
 	// albedo: soil table along slow variation, strata bands by altitude
 	float slow = texture(u_surface, v_pos.xz * 0.011).a;
-	float band = 0.5 + 0.5 * sin(v_pos.y * 1.7 + slow * 6.0 + n0.y * 0.8);
+	float band = 0.5 + 0.5 * sin(alt * 1.7 + slow * 6.0 + up_n * 0.8);
 	vec3 rock = soil_color(slow * 0.8 + band * 0.25);
 	rock *= mix(1.0, 0.72 + 0.5 * band * band, u_strata);
 	rock *= 0.75 + 0.5 * tex;
 	if (u_marble_color > 0.0)
 		rock = marble_color(rock, v_pos);
 	vec3 grass = mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
-	float flat_ground = smoothstep(0.62, 0.86, n0.y + (hgt - 0.5) * 0.3);
+	float flat_ground = smoothstep(0.62, 0.86, up_n + (hgt - 0.5) * 0.3);
 	vec3 albedo = mix(rock, grass, flat_ground);
-	float snow = smoothstep(u_snow_line - 1.0, u_snow_line + 1.0, v_pos.y + hgt * 2.0) * smoothstep(0.5, 0.8, n0.y);
+	float snow = smoothstep(u_snow_line - 1.0, u_snow_line + 1.0, alt + hgt * 2.0) * smoothstep(0.5, 0.8, up_n);
 	albedo = mix(albedo, vec3(0.88, 0.90, 0.93), snow);
 	albedo = srgb_to_linear(albedo);
 

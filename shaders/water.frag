@@ -5,8 +5,12 @@
 // the one before, turned by its own angle and moving along it at the
 // deep-water phase speed of its wavelength (sqrt(g / k)), so the long swell
 // moves faster than the ripples.
+// On a planet's sea sphere the waves of the plane's xz are laid on the
+// sphere's tangent plane (x and z projected onto it).
 in vec3 v_pos;
 uniform vec3 u_eye;
+uniform float u_water_sphere; // sphere radius; 0: the plane
+uniform vec3 u_water_centre;
 uniform float u_fog_density;
 out vec4 frag;
 #include "shade.glsl"
@@ -60,7 +64,14 @@ vec2 wave_slope(vec2 xz, float t)
 void main()
 {
 	vec2 sl = wave_slope(v_pos.xz, u_time);
-	vec3 n = normalize(vec3(-sl.x, 1.0, -sl.y));
+	vec3 n;
+	if (u_water_sphere > 0.0) {
+		vec3 up = normalize(v_pos - u_water_centre);
+		vec3 ex = vec3(1.0, 0.0, 0.0) - up * up.x, ez = vec3(0.0, 0.0, 1.0) - up * up.z;
+		n = normalize(up - sl.x * ex - sl.y * ez);
+	} else {
+		n = normalize(vec3(-sl.x, 1.0, -sl.y));
+	}
 	vec3 v = normalize(u_eye - v_pos);
 	float f = 0.02 + 0.98 * pow(1.0 - max(dot(n, v), 0.0), 5.0);
 	vec3 r = reflect(-v, n);
@@ -69,5 +80,7 @@ void main()
 	vec3 col = mix(deep, sky, f);
 	col += vec3(1.0, 0.9, 0.7) * pow(max(dot(r, sun_dir()), 0.0), 200.0) * u_sun * 2.0;
 	col = apply_fog(col, v_pos, u_eye, u_fog_density);
-	frag = vec4(linear_to_srgb(col), mix(0.72, 0.95, f));
+	// a planet's sea: deeper (more opaque) than a lake seen from above
+	float a0 = u_water_sphere > 0.0 ? 0.86 : 0.72;
+	frag = vec4(linear_to_srgb(col), mix(a0, 0.95, f));
 }

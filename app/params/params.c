@@ -335,11 +335,16 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 const struct preset presets[] = {
 	{ "default", "GPU Gems style terrain: warped octaves, hard floor, an open landscape seen from above", "" },
 	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=30;noise_freq=0.03;octaves=8;warp_amp=2;snow_line=6" },
-	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=5;terrace_strength=3;soil=arid;snow_line=60" },
-	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=5;terrace_strength=3;warp_amp=6;soil=volcanic;snow_line=60" },
-	{ "alien", "strong low-frequency warp: arches and tunnels", "warp_freq=0.05;warp_amp=14;noise_amp=16" },
-	{ "caves", "endless caves (no ground plane)", "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;floor_strength=0" },
-	{ "planet", "a small planet", "shape=planet;planet_radius=12;vol_size=34;vol_y=-12;vol_height=1;noise_amp=4;floor_strength=0;warp_amp=1;cam_dist=1.5;cam_pitch=20" },
+	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=3;terrace_strength=4;warp_amp=2;soil=arid;snow_line=60;cam_dist=1.1;cam_pitch=28" },
+	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=3;terrace_strength=4;warp_amp=6;soil=volcanic;snow_line=60;cam_dist=1.1;cam_pitch=28" },
+	{ "alien", "strong domain warp: arches, hooks and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;snow_line=16;cam_dist=1;cam_pitch=15" },
+	{ "caves", "endless caves (no ground plane), seen from inside a chamber along a tunnel",
+	  "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;vol_size=170;vol_height=0.6;floor_strength=0;water=false;snow_line=1000;ambient=0.4;"
+	  "ao_strength=0.6;fov=65;max_triangles=700000;max_vertices=500000" },
+	{ "planet", "a small planet with a round sea, framed whole (the world scene orbits high above it)",
+	  "shape=planet;planet_radius=12;vol_size=34;vol_y=-12;vol_height=1;noise_amp=3.5;noise_freq=0.12;gain=0.38;"
+	  "floor_strength=0;warp_amp=0.5;water_level=-1.1;water_wave=0.3;snow_line=2.2;cam_dist=1.5;cam_pitch=20;"
+	  "fly_height=22" },
 	{ "plains", "height-damped multifractal: smooth lowlands, rough peaks", "fractal=hetero;noise_amp=8" },
 	{ "cells", "Worley F2-F1 cellular terrain", "fractal=worley;noise_amp=14;noise_freq=0.06;octaves=2;gain=0.5;warp_amp=2" },
 	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },

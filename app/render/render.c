@@ -198,11 +198,20 @@ void renderer_set_clear(struct renderer *r, float red, float green, float blue)
 	r->clear[2] = blue;
 }
 
+/* water.vert's sphere: 96 x 48 quads of two triangles */
+#define WATER_SPHERE_VERTICES (96 * 48 * 6)
+
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
 {
-	if (!p->water || p->shape == SHAPE_PLANET) /* a flat plane would cut through a planet */
+	/* a planet's sea is a sphere water_level above planet_radius (a flat
+	 * plane would cut through the planet); water.vert makes it */
+	bool sphere = p->shape == SHAPE_PLANET;
+	float radius = p->planet_radius + p->water_level;
+	if (!p->water || (sphere && radius <= 0.0f))
 		return;
 	glUseProgram(r->water);
+	glUniform1f(glGetUniformLocation(r->water, "u_water_sphere"), sphere ? radius : 0.0f);
+	glUniform3f(glGetUniformLocation(r->water, "u_water_centre"), 0.0f, -p->planet_radius, 0.0f);
 	gpu_set_param_uniforms(r->water, p);
 	glUniformMatrix4fv(glGetUniformLocation(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
 	glUniform3fv(glGetUniformLocation(r->water, "u_eye"), 1, c->eye);
@@ -213,7 +222,15 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	/* the frame stays opaque: a compositor (Wayland) would show the desktop through the water */
 	glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
 	glDepthMask(GL_FALSE);
-	glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+	if (sphere) { /* the near half only: the far half lies behind it */
+		glEnable(GL_CULL_FACE);
+		glCullFace(GL_BACK);
+		glFrontFace(GL_CCW);
+		glDrawArrays(GL_TRIANGLES, 0, WATER_SPHERE_VERTICES);
+		glDisable(GL_CULL_FACE);
+	} else {
+		glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+	}
 	glDepthMask(GL_TRUE);
 	glDisable(GL_BLEND);
 	glUseProgram(r->prog);
@@ -262,7 +279,9 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	struct grid g;
 	grid_from_params(&g, p);
 	float rect[4] = { g.origin[0], g.origin[2], g.origin[0] + g.cell * (float)g.nx, g.origin[2] + g.cell * (float)g.nz };
-	if (p->field == FIELD_TERRAIN && p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)
+	if (p->field == FIELD_TERRAIN &&
+	    (p->shape == SHAPE_PLANET ||
+	     (p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)))
 		renderer_water(r, c, p, rect);
 	return renderer_end(r);
 }

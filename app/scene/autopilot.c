@@ -451,8 +451,14 @@ void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, fl
 	if (a->p->shape == SHAPE_PLANET) {
 		float cv[3] = { a->pos[0], a->pos[1] + a->p->planet_radius, a->pos[2] };
 		float dist = sqrtf(dot3(cv, cv));
-		if (dist > a->p->planet_radius)
-			down = tanf(fmaxf(acosf(a->p->planet_radius / dist) - 0.17f, 0.15f));
+		if (dist > a->p->planet_radius) {
+			/* high above a small planet (1.6 to 2.4 radii from its centre)
+			 * the view turns down to its centre: the whole planet in frame */
+			float th = fmaxf(acosf(a->p->planet_radius / dist) - 0.17f, 0.15f);
+			float s = fminf(fmaxf((dist / a->p->planet_radius - 1.6f) / 0.8f, 0.0f), 1.0f);
+			th += (1.52f - th) * s * s * (3.0f - 2.0f * s);
+			down = tanf(th);
+		}
 	}
 	float at[3];
 	for (int k = 0; k < 3; k++)

@@ -64,8 +64,10 @@ void camera_orbit(struct camera *c, const struct params *p, const struct grid *g
 	c->eye[0] = center[0] + dist * cosf(pitch) * cosf(yaw);
 	c->eye[1] = center[1] + dist * sinf(pitch);
 	c->eye[2] = center[2] + dist * cosf(pitch) * sinf(yaw);
-	/* aim a little below the centre: terrain sits in the lower half */
-	float at[3] = { center[0], center[1] - 0.16f * size, center[2] };
+	/* aim a little below the centre: terrain sits in the lower half (a
+	 * planet: at its centre, the whole sphere in the middle of the frame) */
+	float below = p->shape == SHAPE_PLANET ? 0.0f : 0.16f * size;
+	float at[3] = { center[0], center[1] - below, center[2] };
 	static const float up[3] = { 0.0f, 1.0f, 0.0f };
 	look_at(c->view, c->eye, at, up);
 	perspective(c->proj, p->fov, aspect, 0.01f * size, 8.0f * size + dist);

@@ -7,9 +7,13 @@
 #include "edits.h"
 #include "terrain.h"
 #include "clock.h"
+#include "density_ref.h"
+#include "noise.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 struct volume_scene {
 	struct scene base;
@@ -18,7 +22,66 @@ struct volume_scene {
 	struct terrain *tr;    /* the field the pipeline extracts */
 	struct pipeline *pl;
 	float t0; /* p->time at the start: time advances from there */
+	bool inside; /* caves: the camera stands in a chamber, not outside the box */
+	float eye[3], look[3]; /* ... there, looking along the longest tunnel */
 };
+
+/* Air along the ray from `from` in direction d (unit), to the first rock
+ * or len, in steps of st. */
+static float free_run(const struct params *p, const struct noise_set *ns, const struct edits *ed, const float from[3],
+		      const float d[3], float len, float st)
+{
+	float t = st;
+	for (; t < len; t += st)
+		if (density_ref(p, ns, ed, from[0] + d[0] * t, from[1] + d[1] * t, from[2] + d[2] * t) > p->iso)
+			break;
+	return t;
+}
+
+/* Endless caves seen from inside: the most open point of a lattice over the
+ * middle of the box (the most negative density: the field is about a
+ * distance, so the widest chamber), looking level along the one of
+ * 32 with the longest run of air (a tunnel).  false: no air anywhere. */
+static bool cave_view(struct volume_scene *vs, const struct params *p)
+{
+	struct noise_set *ns = malloc(sizeof(*ns));
+	if (!ns)
+		return false;
+	noise_set_init(ns, p->seed);
+	const struct grid *g = &vs->g;
+	float ext[3] = { g->cell * (float)g->nx, g->cell * (float)g->ny, g->cell * (float)g->nz }, best = p->iso;
+	bool found = false;
+	for (int i = 0; i < 12; i++)
+		for (int j = 0; j < 6; j++)
+			for (int k = 0; k < 12; k++) {
+				float q[3] = { g->origin[0] + ext[0] * (0.25f + 0.5f * (float)i / 11.0f),
+					       g->origin[1] + ext[1] * (0.3f + 0.4f * (float)j / 5.0f),
+					       g->origin[2] + ext[2] * (0.25f + 0.5f * (float)k / 11.0f) };
+				float d = density_ref(p, ns, vs->ed, q[0], q[1], q[2]);
+				if (d < best)
+					best = d, found = true, memcpy(vs->eye, q, sizeof(q));
+			}
+	float far = 0.0f;
+	for (int a = 0; a < 32 && found; a++) {
+		float ang = (float)a * (6.2831853f / 32.0f);
+		float d[3] = { cosf(ang), 0.0f, sinf(ang) };
+		/* to the box's side at most: a tunnel that leaves the box ends in
+		 * sky, so one that ends in rock inside it counts three times more */
+		float len = 1e30f;
+		for (int k = 0; k < 3; k++)
+			if (fabsf(d[k]) > 1e-6f) {
+				float lo = (g->origin[k] - vs->eye[k]) / d[k], hi = (g->origin[k] + ext[k] - vs->eye[k]) / d[k];
+				len = fminf(len, fmaxf(lo, hi));
+			}
+		float run = free_run(p, ns, vs->ed, vs->eye, d, len, 0.5f * g->cell);
+		if (run >= len)
+			run *= 0.33f;
+		if (run > far)
+			far = run, memcpy(vs->look, d, sizeof(d));
+	}
+	free(ns);
+	return found;
+}
 
 /* A grid of another size (a knob turned --grid or vol_height): the
  * pipeline made again for it, its buffers sized for the new grid.  On
@@ -55,7 +118,15 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 	struct pipeline_draw d;
 	struct camera cam;
 	pipeline_draw_info(vs->pl, &d);
-	camera_orbit(&cam, p, &vs->g, t, (float)fr->w / (float)fr->h);
+	if (vs->inside) { /* in the chamber, turning slowly (cam_spin) */
+		float a = p->cam_spin * t * (float)M_PI / 180.0f, c = cosf(a), sn = sinf(a);
+		float at[3] = { vs->eye[0] + vs->look[0] * c - vs->look[2] * sn, vs->eye[1] + vs->look[1],
+				vs->eye[2] + vs->look[0] * sn + vs->look[2] * c };
+		float size = vs->g.cell * (float)vs->g.nx;
+		camera_look(&cam, vs->eye, at, p->fov, (float)fr->w / (float)fr->h, 0.002f * size, 2.0f * size);
+	} else {
+		camera_orbit(&cam, p, &vs->g, t, (float)fr->w / (float)fr->h);
+	}
 	if (renderer_draw(fr->r, &d, &cam, p) < 0)
 		return -1;
 	if (fr->timing) {
@@ -135,5 +206,7 @@ struct scene *scene_volume_create(const struct params *p, char *err, size_t errl
 		volume_destroy(&vs->base);
 		return NULL;
 	}
+	if (p->field == FIELD_TERRAIN && p->shape == SHAPE_CAVES && p->camera != CAMERA_MANUAL)
+		vs->inside = cave_view(vs, p);
 	return &vs->base;
 }
