@@ -1,0 +1,58 @@
+// isoterra — the streaming world's coarse pre-pass (the extraction engine's
+// side; pipeline_bound in app/extract/pipeline.c): GPU Gems 3 ch.1 skips
+// blocks with no surface, learnt before their density is paid for.  One
+// work group per candidate block: the field's bound (density_bound, the
+// field's program) over BOUND_SUB^3 sub-boxes of the block's box, reduced
+// to the block's range; the verdict is 1 (all air) or 2 (all rock) only
+// when the whole range lies on one side of the iso value, else 0 (may have
+// a surface: generate it).  Compiled with FIELD_PASS_BOUND into the field's
+// program.
+//
+// Input (BIND_AUX_A), two vec4 a block: (box low corner, octaves kept at
+// the centres), (box high corner, density bias); output (BIND_AUX_B): a
+// uint verdict a block.
+
+vec2 density_bound(vec3 c, vec3 e, int keep); // the field's
+
+layout(std430, binding = BIND_AUX_A) restrict readonly buffer BoundIn { vec4 bound_in[]; };
+layout(std430, binding = BIND_AUX_B) restrict writeonly buffer BoundOut { uint bound_out[]; };
+uniform uint u_bound_count;
+
+#define BOUND_SUB 8
+shared float s_lo[64];
+shared float s_hi[64];
+
+void main()
+{
+	uint b = gl_WorkGroupID.x, l = gl_LocalInvocationID.x;
+	if (b >= u_bound_count)
+		return;
+	vec4 lo = bound_in[2u * b], hi = bound_in[2u * b + 1u];
+	int keep = int(lo.w);
+	vec3 e = (hi.xyz - lo.xyz) * (0.5 / float(BOUND_SUB));
+	float mn = 3.0e38, mx = -3.0e38;
+	for (uint k = l; k < uint(BOUND_SUB * BOUND_SUB * BOUND_SUB); k += 64u) {
+		uvec3 s = uvec3(k % uint(BOUND_SUB), (k / uint(BOUND_SUB)) % uint(BOUND_SUB),
+				k / uint(BOUND_SUB * BOUND_SUB));
+		vec3 c = lo.xyz + (2.0 * vec3(s) + 1.0) * e;
+		vec2 r = density_bound(c, e, keep);
+		mn = min(mn, r.x);
+		mx = max(mx, r.y);
+	}
+	s_lo[l] = mn;
+	s_hi[l] = mx;
+	memoryBarrierShared();
+	barrier();
+	for (uint h = 32u; h > 0u; h >>= 1u) {
+		if (l < h) {
+			s_lo[l] = min(s_lo[l], s_lo[l + h]);
+			s_hi[l] = max(s_hi[l], s_hi[l + h]);
+		}
+		memoryBarrierShared();
+		barrier();
+	}
+	if (l == 0u) {
+		float dlo = s_lo[0] - hi.w, dhi = s_hi[0] - hi.w;
+		bound_out[b] = dhi < u_iso ? 1u : dlo > u_iso ? 2u : 0u;
+	}
+}
