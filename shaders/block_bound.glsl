@@ -18,7 +18,7 @@ layout(std430, binding = BIND_AUX_A) restrict readonly buffer BoundIn { vec4 bou
 layout(std430, binding = BIND_AUX_B) restrict writeonly buffer BoundOut { uint bound_out[]; };
 uniform uint u_bound_count;
 
-#define BOUND_SUB 8
+#define BOUND_SUB 24
 shared float s_lo[64];
 shared float s_hi[64];
 
