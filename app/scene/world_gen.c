@@ -323,9 +323,10 @@ static void probe_box(const struct world *w, const struct params *p, const int k
 	box[7] = k[3] > 0 ? p->lod_bias * cell : 0.0f;
 }
 
-/* Sends up to `batches` pre-pass batches of wanted blocks whose verdict is
- * unknown, in generation order; returns the blocks sent, -1 on error. */
-static int probe_wanted(struct world *w, const struct params *p, int batches)
+/* Sends up to `batches` pre-pass batches of at most `limit` wanted blocks
+ * whose verdict is unknown, in generation order; returns the blocks sent,
+ * -1 on error. */
+static int probe_wanted(struct world *w, const struct params *p, int batches, int limit)
 {
 	int n = w->nwant, passes = p->lod_levels * 2, sent = 0, k = 0;
 	for (int i = 0; i < PROBE_RING && batches > 0; i++) {
@@ -333,7 +334,7 @@ static int probe_wanted(struct world *w, const struct params *p, int batches)
 		if (pb->n)
 			continue;
 		float box[PROBE_BATCH][8];
-		for (; k < n * passes && pb->n < PROBE_BATCH; k++) {
+		for (; k < n * passes && pb->n < PROBE_BATCH && pb->n < limit; k++) {
 			int pass = k / n, lod = p->lod_levels - 1 - pass % p->lod_levels;
 			struct block *blk = &w->blocks[w->want[k % n]];
 			if (blk->state != B_FREE || blk->probe != PROBE_UNKNOWN || blk->key[3] != lod ||
@@ -454,16 +455,17 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 	collect_probes(w, deterministic);
 	if (deterministic && w->probe_on) { /* every wanted block's verdict, now */
 		int sent;
-		while ((sent = probe_wanted(w, p, PROBE_RING)) > 0)
+		while ((sent = probe_wanted(w, p, PROBE_RING, PROBE_BATCH)) > 0)
 			collect_probes(w, true);
 		if (sent < 0)
 			return -1;
 	}
 	int made = 0, steps = 0, k = 0;
-	bool urgent_block = false;
+	bool urgent_block = false, exhausted = false;
 	for (;;) {
 		if (w->gen_block >= 0) { /* the block under way: its next stage */
-			if (budgeted && w->credit_ms <= 0.0 && !(urgent_block && steps == 0))
+			/* a hole on screen: up to half a block a frame whatever the credit */
+			if (budgeted && w->credit_ms <= 0.0 && !(urgent_block && steps < PIPE_STAGES / 2))
 				break;
 			double tb = clock_ms();
 			int rc = run_stage(w, now);
@@ -479,8 +481,10 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 			break;
 		bool regen = false, urgent = false;
 		int b = next_wanted(w, p, &k, &regen, &urgent);
-		if (b < 0)
+		if (b < 0) {
+			exhausted = true; /* nothing the pre-pass has cleared is left */
 			break;
+		}
 		struct block *blk = &w->blocks[b];
 		/* a visible coarsest block missing: one per frame whatever the credit */
 		urgent = urgent && made == 0;
@@ -507,11 +511,13 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 			return -1;
 		made++;
 	}
-	/* the pre-pass for the next frames: one batch a frame (its cost is
-	 * charged to the budget like a stage's) */
-	if (!deterministic && w->probe_on) {
+	/* the pre-pass for the next frames: a small batch a frame while the
+	 * budget has credit left, or when generation waits for it (its cost is
+	 * charged like a stage's: a block's bound costs a few % of its
+	 * generation) */
+	if (!deterministic && w->probe_on && (!budgeted || w->credit_ms > 0.0 || (exhausted && w->gen_block < 0))) {
 		double tb = clock_ms();
-		if (probe_wanted(w, p, 1) < 0)
+		if (probe_wanted(w, p, 1, PROBE_LIVE) < 0)
 			return -1;
 		if (budgeted) {
 			glFlush();

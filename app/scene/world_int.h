@@ -39,6 +39,7 @@ struct block {
 enum { PROBE_UNKNOWN = 0, PROBE_ASKED, PROBE_SURFACE };
 #define PROBE_BATCH 128 /* candidate blocks per pre-pass dispatch */
 #define PROBE_RING 4    /* pre-pass batches in flight */
+#define PROBE_LIVE 8    /* candidate blocks a live frame sends */
 struct probe_batch {
 	GLuint in, out;      /* candidate boxes (2 vec4 each), verdicts (uint each) */
 	GLsync fence;
