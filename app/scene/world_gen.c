@@ -324,9 +324,10 @@ static void probe_box(const struct world *w, const struct params *p, const int k
 }
 
 /* Sends up to `batches` pre-pass batches of at most `limit` wanted blocks
- * whose verdict is unknown, in generation order; returns the blocks sent,
- * -1 on error. */
-static int probe_wanted(struct world *w, const struct params *p, int batches, int limit)
+ * whose verdict is unknown, in generation order (live: not the visible
+ * coarsest blocks, which are generated without waiting for it); returns
+ * the blocks sent, -1 on error. */
+static int probe_wanted(struct world *w, const struct params *p, int batches, int limit, bool live)
 {
 	int n = w->nwant, passes = p->lod_levels * 2, sent = 0, k = 0;
 	for (int i = 0; i < PROBE_RING && batches > 0; i++) {
@@ -339,6 +340,8 @@ static int probe_wanted(struct world *w, const struct params *p, int batches, in
 			struct block *blk = &w->blocks[w->want[k % n]];
 			if (blk->state != B_FREE || blk->probe != PROBE_UNKNOWN || blk->key[3] != lod ||
 			    blk->visible != (pass < p->lod_levels))
+				continue;
+			if (live && blk->visible && lod == p->lod_levels - 1)
 				continue;
 			probe_box(w, p, blk->key, box[pb->n]);
 			memcpy(pb->key[pb->n++], blk->key, sizeof(blk->key));
@@ -414,7 +417,7 @@ int finish_staged(struct world *w, double now)
  * coarsest level's visible blocks, then the finer levels', then the
  * prefetched ones; nearest first within each), with its regen flag; -1
  * when none. */
-static int next_wanted(struct world *w, const struct params *p, int *k, bool *regen, bool *urgent)
+static int next_wanted(struct world *w, const struct params *p, bool live, int *k, bool *regen, bool *urgent)
 {
 	int n = w->nwant, passes = p->lod_levels * 2;
 	for (; *k < n * passes; (*k)++) {
@@ -428,11 +431,11 @@ static int next_wanted(struct world *w, const struct params *p, int *k, bool *re
 			continue;
 		if (*regen && blk->readback >= 0)
 			continue; /* its previous result is still in flight */
-		if (!*regen && w->probe_on && blk->probe != PROBE_SURFACE)
-			continue; /* the pre-pass has not said yet */
 		/* a hole on screen (a visible coarsest block missing) is worse
-		 * than a slow frame */
+		 * than a slow frame: live, it does not wait for the pre-pass */
 		*urgent = !*regen && vis && lod == p->lod_levels - 1;
+		if (!*regen && w->probe_on && blk->probe != PROBE_SURFACE && !(*urgent && live))
+			continue; /* the pre-pass has not said yet */
 		(*k)++;
 		return b;
 	}
@@ -455,17 +458,17 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 	collect_probes(w, deterministic);
 	if (deterministic && w->probe_on) { /* every wanted block's verdict, now */
 		int sent;
-		while ((sent = probe_wanted(w, p, PROBE_RING, PROBE_BATCH)) > 0)
+		while ((sent = probe_wanted(w, p, PROBE_RING, PROBE_BATCH, false)) > 0)
 			collect_probes(w, true);
 		if (sent < 0)
 			return -1;
 	}
 	int made = 0, steps = 0, k = 0;
-	bool urgent_block = false, exhausted = false;
+	bool exhausted = false;
 	for (;;) {
 		if (w->gen_block >= 0) { /* the block under way: its next stage */
 			/* a hole on screen: up to half a block a frame whatever the credit */
-			if (budgeted && w->credit_ms <= 0.0 && !(urgent_block && steps < PIPE_STAGES / 2))
+			if (budgeted && w->credit_ms <= 0.0 && !(w->gen_urgent && steps < PIPE_STAGES / 2))
 				break;
 			double tb = clock_ms();
 			int rc = run_stage(w, now);
@@ -480,7 +483,7 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 		if (made >= p->gen_per_frame)
 			break;
 		bool regen = false, urgent = false;
-		int b = next_wanted(w, p, &k, &regen, &urgent);
+		int b = next_wanted(w, p, budgeted, &k, &regen, &urgent);
 		if (b < 0) {
 			exhausted = true; /* nothing the pre-pass has cleared is left */
 			break;
@@ -501,7 +504,7 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 			w->gen_block = b;
 			memcpy(w->gen_key, blk->key, sizeof(w->gen_key));
 			w->gen_stage = PIPE_DENSITY_LO;
-			urgent_block = urgent;
+			w->gen_urgent = urgent;
 			continue;
 		}
 		int slot = regen ? blk->slot : take_slot(w, blk->dist);
@@ -517,7 +520,7 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 	 * generation) */
 	if (!deterministic && w->probe_on && (!budgeted || w->credit_ms > 0.0 || (exhausted && w->gen_block < 0))) {
 		double tb = clock_ms();
-		if (probe_wanted(w, p, 1, PROBE_LIVE) < 0)
+		if (probe_wanted(w, p, 1, PROBE_LIVE, budgeted) < 0)
 			return -1;
 		if (budgeted) {
 			glFlush();

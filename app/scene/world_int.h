@@ -97,6 +97,7 @@ struct world {
 	int gen_block;       /* the block whose stages are under way, -1 none */
 	int gen_key[4];      /* its key (indices move with a rehash) */
 	int gen_stage;       /* its next stage (enum pipeline_stage) */
+	bool gen_urgent;     /* it fills a hole on screen (a visible coarsest block) */
 	struct params gen_q; /* the parameters its stages run with */
 };
 
