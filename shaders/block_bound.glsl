@@ -19,8 +19,25 @@ layout(std430, binding = BIND_AUX_B) restrict writeonly buffer BoundOut { uint b
 uniform uint u_bound_count;
 
 #define BOUND_SUB 24
-shared float s_lo[64];
-shared float s_hi[64];
+shared float s_red[64]; // the reductions (256 bytes, as the density pass's s_inside)
+
+// the work group's minimum (sign 1) or maximum (sign -1) of v
+float group_reduce(float v, float sign)
+{
+	uint l = gl_LocalInvocationID.x;
+	s_red[l] = v * sign;
+	memoryBarrierShared();
+	barrier();
+	for (uint h = 32u; h > 0u; h >>= 1u) {
+		if (l < h)
+			s_red[l] = min(s_red[l], s_red[l + h]);
+		memoryBarrierShared();
+		barrier();
+	}
+	float r = s_red[0] * sign;
+	barrier(); // every lane has read it before the next reduction writes
+	return r;
+}
 
 void main()
 {
@@ -39,20 +56,10 @@ void main()
 		mn = min(mn, r.x);
 		mx = max(mx, r.y);
 	}
-	s_lo[l] = mn;
-	s_hi[l] = mx;
-	memoryBarrierShared();
-	barrier();
-	for (uint h = 32u; h > 0u; h >>= 1u) {
-		if (l < h) {
-			s_lo[l] = min(s_lo[l], s_lo[l + h]);
-			s_hi[l] = max(s_hi[l], s_hi[l + h]);
-		}
-		memoryBarrierShared();
-		barrier();
-	}
+	mn = group_reduce(mn, 1.0);
+	mx = group_reduce(mx, -1.0);
 	if (l == 0u) {
-		float dlo = s_lo[0] - hi.w, dhi = s_hi[0] - hi.w;
+		float dlo = mn - hi.w, dhi = mx - hi.w;
 		bound_out[b] = dhi < u_iso ? 1u : dlo > u_iso ? 2u : 0u;
 	}
 }
