@@ -238,6 +238,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 {
 	int marked = 0;
+	w->gen_block = -1; /* a block under way may have read the field before the edit: drop it */
 	for (uint32_t i = 0; i < w->cap; i++) {
 		struct block *blk = &w->blocks[i];
 		if (blk->key[3] < 0 || blk->state == B_FREE)
