@@ -5,8 +5,12 @@
  *     baseline of the ratio, off (the chapter's GeForce 8800: 260 blocks/s);
  *  2. fly-through frame times (p50 / p99, ms) of the autopilot at 640x480
  *     and 1280x720 with live streaming under the per-frame budget;
- *  3. peak resident memory.
- * usage: bench_world [--quick] [--platform NAME] */
+ *  3. peak resident memory;
+ *  4. the world's own rate: a fresh world filling the autopilot's first
+ *     view, blocks settled per second (generated, or proven empty by the
+ *     coarse pre-pass without being generated), wall and CPU time.
+ * usage: bench_world [--quick] [--no-program] [--fill-only] [--platform NAME]
+ * (--fill-only: measure 4 alone, three times) */
 #include "app.h"
 #include "bench.h"
 #include "world.h"
@@ -66,6 +70,39 @@ static double blocks_per_second(const struct params *p, int nb, uint32_t *tris)
 	return done / (t / 1e3);
 }
 
+/* A fresh world fills the autopilot's first view (world_fill: every wanted
+ * block generated or known empty): blocks settled per second. */
+static void fill_rate(const struct params *p_in)
+{
+	char err[512];
+	struct params p = *p_in;
+	struct edits *ed = edits_create();
+	struct world *wd = world_create(&p, ed, err, sizeof(err));
+	struct autopilot ap;
+	if (!wd || autopilot_init(&ap, &p, ed) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		world_destroy(wd);
+		edits_destroy(ed);
+		return;
+	}
+	struct camera c;
+	autopilot_camera(&ap, &c, p.fov, 640.0f / 480.0f, p.view_distance * 1.2f);
+	double t0 = clock_ms(), c0 = bench_cpu_ms();
+	world_fill(wd, &p, &c, 0.0);
+	glFinish();
+	double t = clock_ms() - t0, cpu = bench_cpu_ms() - c0;
+	struct world_stats st;
+	world_get_stats(wd, &st);
+	unsigned long long skipped = st.prepass_empty, settled = st.generated + skipped;
+	printf("  fill the first view: %llu blocks settled (%llu generated, %llu of them empty; %llu skipped by the "
+	       "pre-pass of %llu bounded) in %.0f ms wall, %.0f ms CPU: %.1f blocks/s settled, %.1f generated/s\n",
+	       settled, (unsigned long long)st.generated, (unsigned long long)st.empty_found, skipped,
+	       (unsigned long long)st.prepass_probed, t, cpu, settled / (t / 1e3), st.generated / (t / 1e3));
+	autopilot_free(&ap);
+	world_destroy(wd);
+	edits_destroy(ed);
+}
+
 /* p50 of one fly-through (ms), -1 if it could not run */
 static double flythrough(const struct params *p_in, int w, int h, int frames, bool governed)
 {
@@ -92,7 +129,7 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
 	double *ft = malloc(sizeof(double) * (size_t)frames);
 	bool trace = getenv("BENCH_TRACE") != NULL; /* per-frame lines on stderr */
-	double start = clock_ms();
+	double start = clock_ms(), cpu0 = bench_cpu_ms();
 	for (int f = 0; f < frames; f++) {
 		double t0 = clock_ms();
 		double t = (t0 - start) / 1e3;
@@ -121,13 +158,14 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 				(unsigned long long)s2.generated);
 		}
 	}
+	double cpu_frame = (bench_cpu_ms() - cpu0) / frames;
 	qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
 	struct world_stats st;
 	world_get_stats(wd, &st);
 	printf("  %-10s %4dx%-4d %4d frames  p50 %7.1f ms (%5.1f fps)  p95 %7.1f  p99 %7.1f  max %7.1f ms  drawn %d, "
-	       "generated %llu",
+	       "generated %llu, CPU %.1f ms a frame",
 	       governed ? "governed" : "full", w, h, frames, ft[frames / 2], 1e3 / ft[frames / 2], ft[frames * 95 / 100],
-	       ft[frames * 99 / 100], ft[frames - 1], st.drawn, (unsigned long long)st.generated);
+	       ft[frames * 99 / 100], ft[frames - 1], st.drawn, (unsigned long long)st.generated, cpu_frame);
 	if (governed)
 		printf("  (held: render scale %.2f, view x%.2f on average; level %d at the end)", governor_mean_scale(&gov),
 		       governor_mean_view(&gov), q.level);
@@ -215,14 +253,18 @@ static void program_runs(int n)
 int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
-	int quick = 0;
+	int quick = 0, program = 1, fill_only = 0;
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--quick"))
 			quick = 1;
+		else if (!strcmp(argv[i], "--no-program"))
+			program = 0;
+		else if (!strcmp(argv[i], "--fill-only"))
+			fill_only = 1;
 		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
 			plat_name = argv[++i];
 		else {
-			fprintf(stderr, "usage: %s [--quick] [--platform NAME]\n", argv[0]);
+			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--platform NAME]\n", argv[0]);
 			return 2;
 		}
 	}
@@ -232,6 +274,13 @@ int main(int argc, char **argv)
 	struct params p;
 	params_defaults(&p);
 	p.scene = 1;
+	if (fill_only) {
+		printf("\nthe streaming world (default field, %d^3-cell blocks, %d levels):\n", p.block_cells, p.lod_levels);
+		for (int i = 0; i < 3; i++)
+			fill_rate(&p);
+		platform_close(plat);
+		return 0;
+	}
 	int nb = quick ? 32 : 128;
 	uint32_t tris;
 	printf("\nblocks per second (%d^3 cells, %d octaves, %d blocks around the ground):\n", p.block_cells, p.octaves,
@@ -243,6 +292,9 @@ int main(int argc, char **argv)
 	printf("  without AO  %7.1f blocks/s  ratio 1.000\n", base);
 	printf("  with AO     %7.1f blocks/s  ratio %.3f  (%d rays x (%d + %d) steps; GeForce 8800 in the chapter: 260)\n",
 	       ao, ao / base, p.ao_rays, p.ao_short_steps, p.ao_long_steps);
+
+	printf("\nthe streaming world (default field, %d^3-cell blocks, %d levels):\n", p.block_cells, p.lod_levels);
+	fill_rate(&p);
 
 	printf("\nautopilot fly-through, live streaming (budget %.0f ms/frame), full quality and under the frame-time\n"
 	       "governor (target %.0f fps), frame times in ms:\n",
@@ -260,6 +312,7 @@ int main(int argc, char **argv)
 	getrusage(RUSAGE_SELF, &ru);
 	printf("\npeak RSS of this benchmark process: %.1f MB\n", ru.ru_maxrss / 1024.0);
 	platform_close(plat);
-	program_runs(quick ? 1 : 5);
+	if (program)
+		program_runs(quick ? 1 : 5);
 	return 0;
 }

@@ -8,6 +8,8 @@
 layout(local_size_x = 64) in; // 64 samples of one z slab (see sign bits below)
 #elif defined(FIELD_PASS_VERTICES)
 layout(local_size_x = 64) in; // mc_vertices.comp's
+#elif defined(FIELD_PASS_BOUND)
+layout(local_size_x = 64) in; // block_bound.glsl: one candidate block a group
 #endif
 
 uniform ivec3 u_cells;   // cells per axis
@@ -46,6 +48,7 @@ layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float
 layout(std430, binding = BIND_SIGNS) restrict writeonly buffer SignOut { uint sign_out[]; };
 uniform float u_density_bias; // subtracted (coarse LOD blocks erode a little)
 uniform uint u_sign_words;    // the sign buffer's capacity in words
+uniform int u_z0;             // first z slab of this dispatch (a block's density over two frames)
 shared uint s_inside[64];
 
 // Density grid sample of slab index i (x + dim.x * y): y by a float
@@ -69,7 +72,7 @@ void main()
 {
 	ivec3 dim = dens_dims();
 	int i = int(gl_WorkGroupID.x * 64u + gl_LocalInvocationID.x);
-	ivec3 id = ivec3(slab_xy(i, dim.x), int(gl_WorkGroupID.y));
+	ivec3 id = ivec3(slab_xy(i, dim.x), int(gl_WorkGroupID.y) + u_z0);
 	bool inside = false;
 	if (i < dim.x * dim.y) {
 		vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
@@ -101,6 +104,8 @@ void main()
 			sign_out[wi] = w;
 	}
 }
+#elif defined(FIELD_PASS_BOUND)
+#include "block_bound.glsl"
 #else // every other pass reads the densities, or their sign bits
 #ifdef PASS_READS_SIGNS
 layout(std430, binding = BIND_SIGNS) restrict readonly buffer Signs { uint signs[]; };

@@ -32,6 +32,8 @@ need(r["gl"]["renderer"] and r["gl"]["version"].startswith("OpenGL ES"), "gl %s"
 need(r["machine"]["cores"] >= 1 and len(r["machine"]["load_average"]) == 3, "machine %s" % r["machine"])
 if scene == "world":
     need(r["blocks_generated"] > 0 and r["blocks_drawn"] > 0, "world blocks %s" % r)
+    need(0 < r["blocks_skipped"] <= r["blocks_probed"], "world pre-pass: %s skipped of %s bounded" %
+         (r["blocks_skipped"], r["blocks_probed"]))
 else:
     need(r["triangles"] > 0, "volume triangles %s" % r["triangles"])
 print("\n".join(bad) if bad else "ok")

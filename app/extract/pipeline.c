@@ -408,7 +408,9 @@ static void bind_all(const struct pipeline *pl)
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, pl->b_status);
 }
 
-int pipeline_density(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+/* The density pass over z slabs z0 .. z1-1 of the density grid (its
+ * margin included: 0 .. nz + 2 margin + 1). */
+static int density_slabs(struct pipeline *pl, const struct params *p, int z0, int z1, char *err, size_t errlen)
 {
 	err[0] = 0;
 	pl->p_density = density_program(pl, p, err, errlen);
@@ -422,12 +424,19 @@ int pipeline_density(struct pipeline *pl, const struct params *p, char *err, siz
 	glUseProgram(pl->p_density);
 	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
 	glProgramUniform1ui(pl->p_density, glGetUniformLocation(pl->p_density, "u_sign_words"), pl->sign_words);
+	glProgramUniform1i(pl->p_density, glGetUniformLocation(pl->p_density, "u_z0"), z0);
 	/* one z slab of 64-sample groups per row of groups (common.glsl) */
 	int m2 = 1 + 2 * grid_margin(&pl->g);
-	glDispatchCompute(div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64), (GLuint)(pl->g.nz + m2), 1);
+	if (z1 > z0)
+		glDispatchCompute(div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64), (GLuint)(z1 - z0), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");
+}
+
+int pipeline_density(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	return density_slabs(pl, p, 0, pl->g.nz + 1 + 2 * grid_margin(&pl->g), err, errlen);
 }
 
 /* mc_setup.comp: the totals clamped to the capacities of the output (the
@@ -481,7 +490,8 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 	return 0;
 }
 
-static int run_hp(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+/* Classification and the HistoPyramid (the pipeline's own buffers only). */
+static void pyramid_passes(struct pipeline *pl, const struct params *p)
 {
 	double t = clock_ms();
 	set_common(pl, pl->p_classify, p);
@@ -495,12 +505,77 @@ static int run_hp(struct pipeline *pl, const struct params *p, char *err, size_t
 	hp_dispatch_1d(l2, pl->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_CLASSIFY, &t);
-
 	hp_build(&pl->hp, 3, pl->p_reduce, pl->p_downsweep, pl->b_hp, pl->max_groups);
+	mark(pl, PASS_REDUCE, &t);
+}
+
+/* The indirect commands, vertices and indices into the output (the target
+ * slot or the pipeline's own buffers). */
+static int output_stage(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	double t = clock_ms();
 	GLintptr status_off;
 	GLuint status = setup_pass(pl, p, &status_off);
 	mark(pl, PASS_REDUCE, &t);
 	return output_passes(pl, p, status, status_off, &t, err, errlen);
+}
+
+static int run_hp(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	pyramid_passes(pl, p);
+	return output_stage(pl, p, err, errlen);
+}
+
+/* The last barrier of a run: the outputs are drawn, read and copied. */
+static void end_run(void)
+{
+	glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+			GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+	glUseProgram(0);
+}
+
+int pipeline_run_stage(struct pipeline *pl, const struct params *p, enum pipeline_stage stage, char *err,
+		       size_t errlen)
+{
+	err[0] = 0;
+	int zs = pl->g.nz + 1 + 2 * grid_margin(&pl->g), rc = 0;
+	switch (stage) {
+	case PIPE_DENSITY_LO: return density_slabs(pl, p, 0, zs / 2, err, errlen);
+	case PIPE_DENSITY_HI: return density_slabs(pl, p, zs / 2, zs, err, errlen);
+	case PIPE_PYRAMID:
+		bind_all(pl); /* a frame's drawing came in between */
+		pyramid_passes(pl, p);
+		glUseProgram(0);
+		return gpu_check("pyramid passes");
+	default:
+		bind_all(pl);
+		rc = output_stage(pl, p, err, errlen);
+		pl->last_mode = COMPACTION_HP;
+		end_run();
+		return rc < 0 ? -1 : gpu_check("output passes");
+	}
+}
+
+int pipeline_bound(struct pipeline *pl, const struct params *p, GLuint in, GLuint out, uint32_t count, char *err,
+		   size_t errlen)
+{
+	err[0] = 0;
+	if (!count)
+		return 0;
+	GLuint prog = variant_program(pl, pl->field->program, "#define FIELD_PASS_BOUND 1\n", p, true, err, errlen);
+	if (!prog)
+		return -1;
+	set_common(pl, prog, p);
+	if (bind_field(pl, prog, p, err, errlen) < 0)
+		return -1;
+	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, in, 0, (GLsizeiptr)count * 32);
+	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, out, 0, (GLsizeiptr)count * 4);
+	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_bound_count"), count);
+	glUseProgram(prog);
+	glDispatchCompute(count, 1, 1);
+	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+	glUseProgram(0);
+	return gpu_check("coarse pre-pass");
 }
 
 static int run_append(struct pipeline *pl, const struct params *p, bool nocompact, char *err, size_t errlen)
@@ -549,9 +624,7 @@ int pipeline_run(struct pipeline *pl, const struct params *p, char *err, size_t 
 	default: rc = run_hp(pl, p, err, errlen); break;
 	}
 	pl->last_mode = p->compaction;
-	glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
-			GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-	glUseProgram(0);
+	end_run();
 	if (rc < 0)
 		return -1;
 	return gpu_check("extraction passes");

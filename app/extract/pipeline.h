@@ -86,6 +86,25 @@ int pipeline_density(struct pipeline *pl, const struct params *p, char *err, siz
 /* Runs density + extraction with the compaction method in p->compaction
  * (HistoPyramid always with a target).  0, or -1 with err as above. */
 int pipeline_run(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+/* The same run in four stages (a world block's generation spread over
+ * frames, pipeline_run's HistoPyramid path in order): the density of the
+ * lower and the upper half of the z slabs, classification + HistoPyramid,
+ * and the output (indirect commands, vertices, indices: only this stage
+ * writes the target).  The grid, target and parameters must stay the same
+ * from the first stage to the last, and no other run may come in between;
+ * a frame's drawing may.  0, or -1 with err as above. */
+enum pipeline_stage { PIPE_DENSITY_LO, PIPE_DENSITY_HI, PIPE_PYRAMID, PIPE_OUTPUT, PIPE_STAGES };
+int pipeline_run_stage(struct pipeline *pl, const struct params *p, enum pipeline_stage stage, char *err,
+		       size_t errlen);
+/* The streaming world's coarse pre-pass (shaders/block_bound.glsl): for
+ * count candidate boxes in buffer in (two vec4 each: low corner + the
+ * octaves evaluated, high corner + the density bias), a verdict each into
+ * out (uint: 0 may hold a surface, 1 all air, 2 all rock), from the
+ * field's conservative bound (density_bound() in its program; the terrain:
+ * shaders/density_bound.glsl).  Asynchronous: fence it to read out.  0,
+ * or -1 with err. */
+int pipeline_bound(struct pipeline *pl, const struct params *p, GLuint in, GLuint out, uint32_t count, char *err,
+		   size_t errlen);
 /* Draw state for the renderer: vertex buffer (vec4 position, vec4 normal per
  * vertex, 32 bytes), element buffer (uint32, may be 0 when not indexed) and
  * the indirect command buffer (DrawElementsIndirectCommand at offset 0, or

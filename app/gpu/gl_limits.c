@@ -35,7 +35,11 @@ static const struct gl_pass passes[] = {
 	 * pass, and the vertex pass with ambient occlusion (its rays sample
 	 * the field: + curves, noise) */
 	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n#define HAS_CONTROL_MAP 1\n", false,
-	  CS(6, 5, 0, 1, 89), { 64, 1, 1 }, BIND_SIGNS, 0 },
+	  CS(6, 5, 0, 1, 90), { 64, 1, 1 }, BIND_SIGNS, 0 },
+	/* the streaming world's coarse pre-pass (shaders/block_bound.glsl):
+	 * the candidate boxes and verdicts (12, 13), the field's resources */
+	{ "density.comp (FIELD_PASS_BOUND)", "density.comp", NULL, NULL, "#define FIELD_PASS_BOUND 1\n#define HAS_CONTROL_MAP 1\n",
+	  false, CS(6, 4, 0, 1, 90), { 64, 1, 1 }, BIND_AUX_B, 0 },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 11), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false,
@@ -116,7 +120,8 @@ static const struct limit_def defs[] = {
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, 128), N_LOCAL, 0, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1, 128), N_LOCAL, 1, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 2, 64), N_LOCAL, 2, 0, NULL },
-	/* the one 'shared' variable: the density pass's uint s_inside[64]
+	/* the 'shared' variables, 256 bytes in each program: the density pass's
+	 * uint s_inside[64], the world pre-pass's float s_red[64]
 	 * (tests/test_gl_limits.c checks there is no other) */
 	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 64 * 4, "common.glsl s_inside (sign bits)" },
 	{ LIM(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_COMPUTE, 0, NULL },

@@ -37,6 +37,9 @@ struct scene_counts {
 	unsigned long long blocks_generated; /* the world's (0 for the volume) */
 	unsigned long long blocks_evicted;
 	int blocks_drawn;
+	/* the world's coarse pre-pass: blocks it bounded, and those it proved
+	 * all air or all rock (skipped: never generated) */
+	unsigned long long blocks_probed, blocks_skipped;
 };
 
 struct scene;

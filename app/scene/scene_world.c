@@ -121,8 +121,11 @@ static int world_report(struct scene *s, const struct params *p, char *line, siz
 	if (ws->governed)
 		snprintf(gov, sizeof(gov), "; governor held render scale %.2f, view distance x%.2f on average",
 			 governor_mean_scale(&ws->gov), governor_mean_view(&ws->gov));
-	snprintf(line, len, "world: %llu blocks generated (%llu empty, never regenerated), %d drawn, %llu evicted%s%s",
-		 (unsigned long long)st.generated, (unsigned long long)st.empty_found, st.drawn,
+	snprintf(line, len,
+		 "world: %llu blocks generated (%llu empty, never regenerated), %llu skipped by the pre-pass (of %llu "
+		 "bounded), %d drawn, %llu evicted%s%s",
+		 (unsigned long long)st.generated, (unsigned long long)st.empty_found,
+		 (unsigned long long)st.prepass_empty, (unsigned long long)st.prepass_probed, st.drawn,
 		 (unsigned long long)st.evicted, st.overflowed ? ", some blocks over capacity (raise --block-tris)" : "",
 		 gov);
 	return 0;
@@ -133,7 +136,8 @@ static int world_counts(struct scene *s, struct scene_counts *c)
 	struct world_stats st;
 	world_get_stats(((struct world_scene *)s)->w, &st);
 	*c = (struct scene_counts){ .blocks_generated = st.generated, .blocks_evicted = st.evicted,
-				    .blocks_drawn = st.drawn };
+				    .blocks_drawn = st.drawn, .blocks_probed = st.prepass_probed,
+				    .blocks_skipped = st.prepass_empty };
 	return 0;
 }
 

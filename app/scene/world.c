@@ -130,7 +130,7 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 		w->blocks[i].key[3] = -1;
 	for (int i = 0; i < w->slots; i++)
 		w->slot_block[i] = -1;
-	if (create_pipeline(w, p, err, errlen) < 0 || create_pool(w, err, errlen) < 0) {
+	if (create_pipeline(w, p, err, errlen) < 0 || create_pool(w, err, errlen) < 0 || probes_create(w) < 0) {
 		world_destroy(w);
 		return NULL;
 	}
@@ -143,6 +143,7 @@ void world_destroy(struct world *w)
 {
 	if (!w)
 		return;
+	probes_destroy(w);
 	pipeline_destroy(w->pl);
 	terrain_destroy(w->terrain);
 	if (w->vbo)
@@ -180,55 +181,9 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	collect_results(w, false);
 	if (plan_blocks(w, p, c) < 0)
 		return -1;
-	int made = 0;
-	bool budgeted = !deterministic && p->gen_budget_ms > 0;
-	/* The budget is a credit: each frame adds gen_budget_ms (banked up to
-	 * one frame's worth), each block spends what it really took.  A block
-	 * that costs more than a frame's budget (a 32^3 block with AO on a
-	 * software rasteriser) is then generated every few frames instead of
-	 * in every frame, and the frame rate holds. */
-	if (budgeted)
-		w->credit_ms = fmin(w->credit_ms + p->gen_budget_ms, p->gen_budget_ms);
-	/* Order: coverage first, then detail.  The coarsest level alone covers
-	 * the whole view (finer blocks lie over it), so its missing blocks come
-	 * first, then the next finer level's; visible blocks before prefetched
-	 * ones; nearest first within each (want[] is sorted by distance). */
-	int n = w->nwant, passes = p->lod_levels * 2;
-	for (int k = 0; k < n * passes && made < p->gen_per_frame; k++) {
-		int pass = k / n, lod = p->lod_levels - 1 - pass % p->lod_levels;
-		bool vis = pass < p->lod_levels;
-		int b = w->want[k % n];
-		struct block *blk = &w->blocks[b];
-		/* a block edited under (stale) is generated again into its own slot */
-		bool regen = blk->stale && blk->slot >= 0 && (blk->state == B_READY || blk->state == B_PENDING);
-		if ((blk->state != B_FREE && !regen) || blk->key[3] != lod || blk->visible != vis)
-			continue;
-		if (regen && blk->readback >= 0)
-			continue; /* its previous result is still in flight */
-		/* a hole on screen (a visible coarsest block missing) is worse
-		 * than a slow frame: one such block per frame whatever the credit */
-		bool urgent = !regen && vis && lod == p->lod_levels - 1 && made == 0;
-		if (budgeted && w->credit_ms <= 0.0 && !urgent)
-			break;
-		if (free_readback(w) < 0) {
-			collect_results(w, true);
-			if (free_readback(w) < 0)
-				break;
-		}
-		int slot = regen ? blk->slot : take_slot(w, blk->dist);
-		if (slot < 0)
-			break; /* pool full of nearer blocks */
-		double tb = clock_ms();
-		if (generate_block(w, p, b, slot, now) < 0)
-			return -1;
-		made++;
-		if (budgeted) {
-			glFlush();
-			w->credit_ms = fmax(w->credit_ms - (clock_ms() - tb), -4.0 * p->gen_budget_ms);
-		}
-	}
-	if (deterministic)
-		collect_results(w, true);
+	/* the pre-pass and the generation, staged over frames (world_gen.c) */
+	if (generate_wanted(w, p, now, deterministic) < 0)
+		return -1;
 	heap_release();
 	return 0;
 }
@@ -284,6 +239,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 {
 	int marked = 0;
+	w->gen_block = -1; /* a block under way may have read the field before the edit: drop it */
 	for (uint32_t i = 0; i < w->cap; i++) {
 		struct block *blk = &w->blocks[i];
 		if (blk->key[3] < 0 || blk->state == B_FREE)
@@ -298,6 +254,7 @@ int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 			pad += (float)p->ao_long_steps * p->ao_long_step;
 		if (hi[0] + pad < xz[0] || lo[0] - pad > xz[2] || hi[2] + pad < xz[1] || lo[2] - pad > xz[3])
 			continue;
+		blk->probe = PROBE_UNKNOWN; /* the pre-pass's verdict too */
 		if (blk->state == B_EMPTY) {
 			blk->state = B_FREE; /* may not be empty any more */
 		} else if (blk->slot >= 0) {
@@ -334,6 +291,8 @@ int world_block_mesh(struct world *w, const struct params *p, int lod, const int
 {
 	struct grid g;
 	int k[4] = { idx[0], idx[1], idx[2], lod };
+	if (finish_staged(w, 0.0) < 0) /* a block under way uses the pipeline */
+		return -1;
 	block_grid(w, p, k, &g);
 	pipeline_set_grid(w->pl, &g, 0.0f);
 	pipeline_set_target(w->pl, NULL);

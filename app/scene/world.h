@@ -22,6 +22,10 @@ struct world_stats {
 	uint64_t evicted;         /* slots taken back from a farther block */
 	uint64_t overflowed;      /* blocks that hit the slot capacity */
 	uint64_t invalidated;     /* blocks marked for regeneration by terrain edits */
+	/* the coarse pre-pass (world_gen.c): blocks it bounded, and those it
+	 * proved all air or all rock (never generated, known empty) */
+	uint64_t prepass_probed;
+	uint64_t prepass_empty;
 	int ready, pending, empty_known, drawn, wanted;
 };
 
@@ -59,6 +63,13 @@ int world_block_generations(const struct world *w, int lod, const int idx[3], in
 /* Test hooks: generate one block (lod, index) into a scratch slot and read
  * its mesh back (positions/normals; indices local). 0/-1. */
 int world_block_mesh(struct world *w, const struct params *p, int lod, const int idx[3], struct mesh *m);
+
+/* Test hooks of the coarse pre-pass: its verdicts for n blocks (x, y, z,
+ * lod), 0 may hold a surface, 1 all air, 2 all rock; whether it runs for
+ * p (the field has a bound); the octaves level lod's blocks are made with.
+ * 0/-1. */
+int world_prepass(struct world *w, const struct params *p, const int (*keys)[4], int n, int *verdict);
+int world_block_octaves(const struct world *w, const struct params *p, int lod);
 
 /* The surface the world shows, as one mesh (--export-mesh): every block the
  * pool holds a mesh for (generated, not known to be empty), each at its own

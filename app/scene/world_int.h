@@ -29,6 +29,22 @@ struct block {
 	int readback;        /* index in the readback ring, or -1 */
 	bool stale;          /* terrain edited under it: regenerate in place */
 	int generations;     /* times generated (tests) */
+	/* ---- cheaper blocks (world_gen.c): the coarse pre-pass's verdict ---- */
+	uint8_t probe;       /* PROBE_*: unknown, asked (in flight), may have a surface */
+};
+
+/* The coarse pre-pass (world_gen.c): a block is generated only once a
+ * pre-pass has said it may hold a surface; blocks it proves all air or all
+ * rock become B_EMPTY without ever being generated. */
+enum { PROBE_UNKNOWN = 0, PROBE_ASKED, PROBE_SURFACE };
+#define PROBE_BATCH 128 /* candidate blocks per pre-pass dispatch */
+#define PROBE_RING 4    /* pre-pass batches in flight */
+#define PROBE_LIVE 8    /* candidate blocks a live frame sends */
+struct probe_batch {
+	GLuint in, out;      /* candidate boxes (2 vec4 each), verdicts (uint each) */
+	GLsync fence;
+	int n;               /* 0: free */
+	int key[PROBE_BATCH][4]; /* the blocks' keys (indices move with a rehash) */
 };
 
 struct readback {
@@ -74,6 +90,15 @@ struct world {
 	int *want;
 	struct want_key *want_sort; /* want_cap of them: sorting want[] */
 	int nwant, want_cap;
+	/* ---- cheaper blocks (world_gen.c): the coarse pre-pass and a block's
+	 * generation spread over frames ---- */
+	bool probe_on;       /* the field has a bound (density_bound_supported) */
+	struct probe_batch probes[PROBE_RING];
+	int gen_block;       /* the block whose stages are under way, -1 none */
+	int gen_key[4];      /* its key (indices move with a rehash) */
+	int gen_stage;       /* its next stage (enum pipeline_stage) */
+	bool gen_urgent;     /* it fills a hole on screen (a visible coarsest block) */
+	struct params gen_q; /* the parameters its stages run with */
 };
 
 /* ---- world_plan.c -------------------------------------------------------- */
@@ -104,5 +129,20 @@ void collect_results(struct world *w, bool wait);
 int free_readback(struct world *w);
 /* Generates block b into slot and asks for its result.  0/-1. */
 int generate_block(struct world *w, const struct params *p, int b, int slot, double now);
+/* Octaves of level lod's blocks: those below the level's erosion left out
+ * (world_gen.c, lod_octaves), and the governor's far_drop at the coarsest. */
+int block_octaves(const struct world *w, const struct params *p, int lod);
+/* The pre-pass's buffers (world_create) and their release.  0/-1. */
+int probes_create(struct world *w);
+void probes_destroy(struct world *w);
+/* Reads the verdicts of finished pre-pass batches (waiting with wait). */
+void collect_probes(struct world *w, bool wait);
+/* This frame's generation (world_update): pre-pass the wanted blocks whose
+ * verdict is unknown, and generate those that may hold a surface, coverage
+ * first, under the budget, a live block's stages spread over frames.  0/-1. */
+int generate_wanted(struct world *w, const struct params *p, double now, bool deterministic);
+/* Runs the stages left of a block under way (before another run of the
+ * pipeline).  0/-1. */
+int finish_staged(struct world *w, double now);
 
 #endif

@@ -34,6 +34,7 @@ int find_block(struct world *w, const int k[4], bool create)
 			b->readback = -1;
 			b->stale = false;
 			b->generations = 0;
+			b->probe = PROBE_UNKNOWN;
 			w->count++;
 			return (int)i;
 		}
