@@ -29,27 +29,14 @@ uint case_of(uint j, uint r00, uint r10, uint r01, uint r11)
 void piece(ivec3 c, uint n, uint p, inout uvec4 w)
 {
 	uint len = n + 1u;
-	// The raw sign bits first: a piece whose corners all agree is skipped
-	// without the debris filter's 20 runs, and the filter cannot change it
-	// (every corner has an x neighbour in its own run, len >= 2, on the same
-	// side: neither a lone inside sample nor a bubble)
-	uint r00 = sign_run(sign_bit_index(c), len);
-	uint r10 = sign_run(sign_bit_index(c + ivec3(0, 1, 0)), len);
-	uint r01 = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), len);
-	uint r11 = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), len);
+	uint r00 = inside_run(c, len); // sign bits less one-sample islands (common.glsl)
+	uint r10 = inside_run(c + ivec3(0, 1, 0), len);
+	uint r01 = inside_run(c + ivec3(0, 0, 1), len);
+	uint r11 = inside_run(c + ivec3(0, 1, 1), len);
 	uint any4 = r00 | r10 | r01 | r11, all4 = r00 & r10 & r01 & r11;
 	uint mixed = ((any4 | (any4 >> 1)) & ~(all4 & (all4 >> 1))) & ((1u << n) - 1u);
 	if (mixed == 0u)
 		return; // every corner of the piece inside, or every one outside
-	r00 = inside_run(c, len); // sign bits less one-sample islands (common.glsl)
-	r10 = inside_run(c + ivec3(0, 1, 0), len);
-	r01 = inside_run(c + ivec3(0, 0, 1), len);
-	r11 = inside_run(c + ivec3(0, 1, 1), len);
-	any4 = r00 | r10 | r01 | r11;
-	all4 = r00 & r10 & r01 & r11;
-	mixed = ((any4 | (any4 >> 1)) & ~(all4 & (all4 >> 1))) & ((1u << n) - 1u);
-	if (mixed == 0u)
-		return; // the piece's only surface was debris
 	uint ex = r00 ^ (r00 >> 1), ey = r00 ^ r10, ez = r00 ^ r01; // owned edges cross
 	bool yz_tris = c.y < u_cells.y && c.z < u_cells.z;
 	do {
