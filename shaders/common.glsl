@@ -125,28 +125,6 @@ uint sign_bit_index(ivec3 c)
 	c += u_margin;
 	return uint(c.z) * sign_slab_bits() + uint(c.x + d.x * c.y);
 }
-// Debris filter: an inside sample none of whose six neighbours is inside
-// counts as outside (such a one-sample island would be a floating speck of
-// eight triangles), and an outside sample all of whose six are inside
-// counts as inside (a bubble in the rock, never seen); a neighbour beyond
-// the grid's samples counts as outside.  The filtered bits of len (1..30)
-// corners from c on along x, bit 0 = corner c.  Mirrored in
-// app/extract/mc_ref.c (inside()).
-uint inside_run(ivec3 c, uint len)
-{
-	ivec3 hi = dens_dims() - u_margin; // one past the last sample, per axis
-	uint row = uint(min(int(len) + 2, hi.x - c.x + 1)); // c.x - 1 .. the row's end
-	uint w = sign_run(sign_bit_index(c - ivec3(1, 0, 0)), row);
-	uint m = (1u << len) - 1u;
-	uint mid = (w >> 1) & m;
-	uint ym = c.y > -u_margin ? sign_run(sign_bit_index(c - ivec3(0, 1, 0)), len) : 0u;
-	uint yp = c.y + 1 < hi.y ? sign_run(sign_bit_index(c + ivec3(0, 1, 0)), len) : 0u;
-	uint zm = c.z > -u_margin ? sign_run(sign_bit_index(c - ivec3(0, 0, 1)), len) : 0u;
-	uint zp = c.z + 1 < hi.z ? sign_run(sign_bit_index(c + ivec3(0, 0, 1)), len) : 0u;
-	uint any6 = (w | (w >> 2) | ym | yp | zm | zp) & m;
-	uint all6 = w & (w >> 2) & ym & yp & zm & zp & m;
-	return (mid & any6) | (~mid & all6);
-}
 #else
 layout(std430, binding = BIND_DENSITY) restrict readonly buffer Dens { float dens[]; };
 // density at corner c (each component -1 .. n+1)
@@ -174,36 +152,21 @@ layout(std430, binding = BIND_MC_TABLES) restrict readonly buffer McTables {
 };
 
 #ifdef PASS_READS_SIGNS
-// The case byte of cell c from its corners' filtered sign bits (corner order of
+// The case byte of cell c from its corners' sign bits (corner order of
 // mc_tables.c: 000 010 110 100 001 011 111 101, xyz).
 int cell_case(ivec3 c)
 {
-	uint a = inside_run(c, 2u), b = inside_run(c + ivec3(0, 1, 0), 2u);
-	uint e = inside_run(c + ivec3(0, 0, 1), 2u), f = inside_run(c + ivec3(0, 1, 1), 2u);
+	uint a = sign_run(sign_bit_index(c), 2u), b = sign_run(sign_bit_index(c + ivec3(0, 1, 0)), 2u);
+	uint e = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), 2u), f = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), 2u);
 	return int((a & 1u) | ((b & 1u) << 1) | ((b & 2u) << 1) | ((a & 2u) << 2) | ((e & 1u) << 4) | ((f & 1u) << 5) |
 		   ((f & 2u) << 5) | ((e & 2u) << 6));
 }
 #else
-// Corner c inside, less one-sample islands and bubbles (as inside_run)
-int inside_at(ivec3 c)
-{
-	ivec3 lo = ivec3(-u_margin), hi = dens_dims() - u_margin;
-	int count = 0;
-	for (int a = 0; a < 3; a++)
-		for (int s = -1; s <= 1; s += 2) {
-			ivec3 q = c;
-			q[a] += s;
-			if (q[a] >= lo[a] && q[a] < hi[a] && D(q) > u_iso)
-				count++;
-		}
-	return (D(c) > u_iso ? count > 0 : count == 6) ? 1 : 0;
-}
-
 int cell_case(ivec3 c)
 {
 	int cs = 0;
 	for (int n = 0; n < 8; n++)
-		cs |= inside_at(c + mc_corner[n].xyz) << n;
+		cs |= int(D(c + mc_corner[n].xyz) > u_iso) << n;
 	return cs;
 }
 

@@ -29,10 +29,10 @@ uint case_of(uint j, uint r00, uint r10, uint r01, uint r11)
 void piece(ivec3 c, uint n, uint p, inout uvec4 w)
 {
 	uint len = n + 1u;
-	uint r00 = inside_run(c, len); // sign bits less one-sample islands (common.glsl)
-	uint r10 = inside_run(c + ivec3(0, 1, 0), len);
-	uint r01 = inside_run(c + ivec3(0, 0, 1), len);
-	uint r11 = inside_run(c + ivec3(0, 1, 1), len);
+	uint r00 = sign_run(sign_bit_index(c), len);
+	uint r10 = sign_run(sign_bit_index(c + ivec3(0, 1, 0)), len);
+	uint r01 = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), len);
+	uint r11 = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), len);
 	uint any4 = r00 | r10 | r01 | r11, all4 = r00 & r10 & r01 & r11;
 	uint mixed = ((any4 | (any4 >> 1)) & ~(all4 & (all4 >> 1))) & ((1u << n) - 1u);
 	if (mixed == 0u)
