@@ -11,7 +11,9 @@
  *
  * A display that goes away (a cable pulled) does not stop the program:
  * once a second present() asks the kernel whether the connector is still
- * connected (drmModeGetConnectorCurrent: no probe, one ioctl).  Unplugged,
+ * connected (drmModeGetConnectorCurrent: no probe, one ioctl; a probe
+ * when the kernel sent a hotplug event or the connector is back: kms.c,
+ * hotplug.c).  Unplugged,
  * it says so once and frames go on being rendered and counted, not shown
  * (paced at the mode's refresh rate); a flip that fails or never completes
  * asks at once.  Plugged back, it modesets again, at the mode the connector
@@ -515,8 +517,7 @@ static void gbm_close(struct platform *p)
 		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
 	if (g->saved)
 		drmModeFreeCrtc(g->saved);
-	if (g->kms.fd >= 0)
-		close(g->kms.fd);
+	kms_output_close(&g->kms);
 	free(g);
 	p->priv = NULL;
 }

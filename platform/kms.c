@@ -212,7 +212,14 @@ static int choose_crtc(struct kms_output *o, drmModeRes *res, drmModeConnector *
 int kms_output_poll(struct kms_output *o, const char *mode, bool *changed)
 {
 	*changed = false;
-	drmModeConnector *c = drmModeGetConnectorCurrent(o->fd, o->conn_id);
+	/* an event (a monitor swapped, a new preferred mode): probe again */
+	bool probe = hotplug_pending(o->hotplug);
+	drmModeConnector *c = probe ? drmModeGetConnector(o->fd, o->conn_id) : drmModeGetConnectorCurrent(o->fd, o->conn_id);
+	if (c && !probe && !o->connected && c->connection == DRM_MODE_CONNECTED) {
+		/* back from unplugged: its modes may be another monitor's */
+		drmModeFreeConnector(c);
+		c = drmModeGetConnector(o->fd, o->conn_id);
+	}
 	if (!c)
 		return -1;
 	int rc = c->connection == DRM_MODE_CONNECTED && c->count_modes > 0;
@@ -227,7 +234,17 @@ int kms_output_poll(struct kms_output *o, const char *mode, bool *changed)
 		}
 	}
 	drmModeFreeConnector(c);
+	o->connected = rc == 1;
 	return rc;
+}
+
+void kms_output_close(struct kms_output *o)
+{
+	hotplug_close(o->hotplug);
+	o->hotplug = NULL;
+	if (o->fd >= 0)
+		close(o->fd);
+	o->fd = -1;
 }
 
 int kms_output_open(struct kms_output *o, const char *device, const char *mode, char *err, size_t errlen)
@@ -248,6 +265,8 @@ int kms_output_open(struct kms_output *o, const char *device, const char *mode, 
 	         conn->connector_type_id);
 	if (choose_mode(o, conn, mode, err, errlen) < 0 || choose_crtc(o, res, conn, err, errlen) < 0)
 		goto out;
+	o->connected = true;
+	o->hotplug = hotplug_open(o->fd);
 	rc = 0;
 out:
 	drmModeFreeConnector(conn);

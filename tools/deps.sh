@@ -19,6 +19,8 @@ $SUDO apt-get install -y -q --no-install-recommends \
 # systemd's notifications for the kiosk unit (Type=notify, the watchdog;
 # optional: the build works without libsystemd and sends none)
 $SUDO apt-get install -y -q --no-install-recommends libsystemd-dev
+# the kernel's display hotplug events for the gbm backend (optional: libudev)
+$SUDO apt-get install -y -q --no-install-recommends libudev-dev
 # the libFuzzer harnesses of tests/fuzz/ (tools/fuzz.sh): Debian's clang,
 # and its compiler-rt (libFuzzer, the sanitizers; only recommended by clang)
 $SUDO apt-get install -y -q --no-install-recommends clang libclang-rt-dev

@@ -151,4 +151,35 @@ echo $? >"$R/nodisplay.rc"
 echo $? >"$R/auto-off.rc"
 echo detect >"$st"
 say "connector $st: $(cat "$st") again"
+
+# 7. a new preferred mode while isoterra runs (another monitor, or one that
+#    asks for another size: the host resizes QEMU's display over VNC, the
+#    kernel sends a hotplug event): it modesets the new mode and renders at
+#    its size; a screendump then.  Last: the connector keeps the new mode.
+NOMODE=$(echo "$ARGS" | sed 's/--mode [^ ]*//')
+t=$(up)
+"$BIN" --platform gbm $NOMODE --count 0 --fps-report 0.01 >"$R/resize.log" 2>&1 &
+pid=$!
+if wait_line "$R/resize.log" ' [2-9] presented|[0-9][0-9]+ presented' 400 $pid; then
+	shot "resize-${RW}x$RH"
+	if wait_line "$R/resize.log" "changed its mode: modesetting ${RW}x$RH" 600 $pid; then
+		c=$(grep -oE '[0-9]+ presented, [0-9]+ shown' "$R/resize.log" | tail -1 | awk '{print $3}')
+		n=0
+		while [ $n -lt 6000 ] && kill -0 $pid 2>/dev/null &&
+			[ "$(grep -oE '[0-9]+ presented, [0-9]+ shown' "$R/resize.log" | tail -1 | awk '{print $3}')" -lt $((c + 2)) ]; do
+			sleep 0.1
+			n=$((n + 1))
+		done
+		shot resized
+	fi
+	kill -TERM $pid
+	wait $pid
+	echo $? >"$R/resize.rc"
+else
+	say "isoterra presented no frames (resize)"
+	kill -KILL $pid 2>/dev/null
+	wait $pid
+	echo "$?" >"$R/resize.rc"
+fi
+say "resize run rc $(cat "$R/resize.rc") in $(awk "BEGIN { print $(up) - $t }") s; modes now: $(cat /sys/class/drm/card0-*/modes 2>/dev/null | head -3 | tr '\n' ' ')"
 : >"$R/done"

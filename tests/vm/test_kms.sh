@@ -17,7 +17,11 @@
 #     once, frames go on unshown; forced back on: it modesets again and the
 #     screendump matches the host render again;
 #   - clear errors: a mode not offered; the connector forced off (sysfs):
-#     "no connected display", and auto falls back to headless.
+#     "no connected display", and auto falls back to headless;
+#   - a new preferred mode while it runs (QEMU's display resized through
+#     its VNC server, tests/vm/vnc_resize.py; the kernel sends a hotplug
+#     event): it modesets the new mode, renders at its size, and the
+#     screendump matches the host render at that size.
 # See tests/vm/README.md and ../shared/vm/RECIPE.md.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/../display/lib.sh"
@@ -56,9 +60,14 @@ fi
 W=320
 H=240
 ARGS="--grid 16 --cam-spin 0 --seed 7 --mode ${W}x$H"
+# the size the display asks for later (a new preferred mode)
+RW=400
+RH=300
 cat >"$T/config.sh" <<CONF
 BIN='$BIN'
 ARGS='$ARGS'
+RW=$RW
+RH=$RH
 CONF
 # Mesa's shader cache for the guest, kept between runs (the guest's CPU
 # differs from the host's, so it has its own cache)
@@ -70,7 +79,7 @@ echo "kernel $REL, initramfs $INITRD, results in $T, shader cache ${CACHE:-none}
 
 qemu-system-x86_64 -machine pc -cpu max -smp 2 -m 1536 -no-reboot \
 	-display none -vga none -serial "file:$T/serial.log" \
-	-monitor "unix:$T/mon.sock,server,nowait" \
+	-monitor "unix:$T/mon.sock,server,nowait" -vnc "unix:$T/vnc.sock" \
 	-device virtio-gpu-pci,xres=$W,yres=$H \
 	-virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
 	-virtfs "local,path=$T,mount_tag=res,security_model=none,multidevs=remap" $CACHE_ARGS \
@@ -86,10 +95,20 @@ while alive "$QPID"; do
 		[ -e "$req" ] || continue
 		name=${req##*/req-}
 		[ -e "$T/ack-$name" ] && continue
-		python3 "$here/hmp.py" "$T/mon.sock" "screendump $T/$name.ppm" >"$T/hmp-$name.log" 2>&1 ||
-			echo "screendump $name: $(cat "$T/hmp-$name.log")" >&2
+		case $name in
+		resize-*) # resize-WxH: the display asks for another size (VNC)
+			size=${name#resize-}
+			python3 "$here/vnc_resize.py" "$T/vnc.sock" "${size%x*}" "${size#*x}" >"$T/vnc.log" 2>&1
+			echo $? >"$T/vnc.rc"
+			echo "display resized to $size at $(($(date +%s) - t0)) s: $(tail -1 "$T/vnc.log")"
+			;;
+		*)
+			python3 "$here/hmp.py" "$T/mon.sock" "screendump $T/$name.ppm" >"$T/hmp-$name.log" 2>&1 ||
+				echo "screendump $name: $(cat "$T/hmp-$name.log")" >&2
+			echo "screendump $name at $(($(date +%s) - t0)) s"
+			;;
+		esac
 		: >"$T/ack-$name"
-		echo "screendump $name at $(($(date +%s) - t0)) s"
 	done
 	if [ $(($(date +%s) - t0)) -gt "$LIMIT" ]; then
 		bad "VM still running after $LIMIT s; killed. serial: $(tail -5 "$T/serial.log")"
@@ -227,6 +246,22 @@ if [ "$(cat "$T/auto-off.rc" 2>/dev/null)" != 0 ] &&
 	ok "connector off: auto -> headless ($(grep -oE "not '[a-z]+'" "$T/auto-off.log"))"
 else
 	bad "connector off: auto: rc $(cat "$T/auto-off.rc" 2>/dev/null): $(cat "$T/auto-off.log" 2>/dev/null)"
+fi
+# a new preferred mode while running
+rl=$T/resize.log
+[ "$(cat "$T/vnc.rc" 2>/dev/null)" = 0 ] && ok "display asks for ${RW}x$RH: $(tail -1 "$T/vnc.log")" ||
+	bad "display resize over VNC: rc $(cat "$T/vnc.rc" 2>/dev/null): $(cat "$T/vnc.log" 2>/dev/null)"
+grep -q "gbm: Virtual-1 on /dev/dri/card0 changed its mode: modesetting ${RW}x$RH@" "$rl" 2>/dev/null &&
+	ok "new preferred mode: modeset again ($(grep -m1 -o 'changed its mode.*' "$rl"))" ||
+	bad "new preferred mode: no modeset to ${RW}x$RH: $(grep -E 'connected|mode|error' "$rl" 2>/dev/null | tail -5)"
+[ "$(cat "$T/resize.rc" 2>/dev/null)" = 0 ] && ok "resize run: SIGTERM -> exit 0" ||
+	bad "resize run exit '$(cat "$T/resize.rc" 2>/dev/null)': $(tail -5 "$rl" 2>/dev/null)"
+if [ -s "$T/resized.ppm" ]; then
+	headless "$T/ref-resized.png" ${RW}x$RH $(echo "$ARGS" | sed 's/--mode [^ ]*//') &&
+		compare "KMS scanout at the new mode ${RW}x$RH vs host headless render" "$T/resized.ppm" "$T/ref-resized.png" \
+			--threshold 32 --max-mean 2.0 --max-frac 0.01
+else
+	bad "no screendump at the new mode"
 fi
 echo "kms vm test: $(($(date +%s) - t0)) s"
 echo "$pass passed, $fail failed"
