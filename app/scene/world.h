@@ -22,6 +22,10 @@ struct world_stats {
 	uint64_t evicted;         /* slots taken back from a farther block */
 	uint64_t overflowed;      /* blocks that hit the slot capacity */
 	uint64_t invalidated;     /* blocks marked for regeneration by terrain edits */
+	uint64_t arena_grown;     /* times the block arena was re-made larger */
+	long long arena_bytes;    /* the block arena's capacity (bytes) */
+	long long arena_used;     /* of it, the meshes of the blocks in it */
+	long long arena_max;      /* what it may grow to: block_pool worst-case blocks */
 	int ready, pending, empty_known, drawn, wanted;
 };
 
@@ -55,6 +59,19 @@ int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 /* Test hook: how many times block (lod, idx) was generated, its state
  * (0 unknown/free, 1 pending, 2 ready, 3 empty) in *state; -1 if unknown. */
 int world_block_generations(const struct world *w, int lod, const int idx[3], int *state);
+
+/* Test hook: 0 when the block memory is consistent — every staging slot's
+ * canary intact (nothing wrote past a slot's capacity), every mesh in the
+ * arena inside it and apart from the others, the bytes in use their sum —
+ * else the number of faults found (each logged); -1 on read failure. */
+int world_check_pool(struct world *w);
+/* Test hook: the arena of worlds created from now on starts at bytes
+ * (0: the default), so that tests see it grow. */
+void world_test_arena_start(long long bytes);
+/* Test hook: packs the arena's meshes at its start (what a growth does,
+ * into a new buffer of the same size); the number of meshes that moved, or
+ * -1. */
+int world_test_compact(struct world *w);
 
 /* Test hooks: generate one block (lod, index) into a scratch slot and read
  * its mesh back (positions/normals; indices local). 0/-1. */

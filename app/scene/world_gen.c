@@ -11,8 +11,10 @@
 static void free_slot(struct world *w, int b)
 {
 	struct block *blk = &w->blocks[b];
-	if (blk->slot >= 0)
+	if (blk->slot >= 0) {
 		w->slot_block[blk->slot] = -1;
+		pool_release(w, blk->slot);
+	}
 	blk->slot = -1;
 }
 
@@ -76,6 +78,10 @@ void collect_results(struct world *w, bool wait)
 			blk->state = B_EMPTY;
 			free_slot(w, (int)(blk - w->blocks));
 			w->st.empty_found++;
+		} else if (!m || pool_settle(w, blk->slot, v[ST_TRIS_WRITTEN - RB_FIRST], v[ST_VERTS_WRITTEN - RB_FIRST]) < 0) {
+			log_error("world: a block's mesh could not be kept: it will be generated again");
+			blk->state = B_FREE;
+			free_slot(w, (int)(blk - w->blocks));
 		} else {
 			blk->state = B_READY;
 		}
@@ -123,12 +129,13 @@ int generate_block(struct world *w, const struct params *p, int b, int slot, dou
 	block_grid(w, p, blk->key, &g);
 	float bias = blk->key[3] > 0 ? p->lod_bias * g.cell : 0.0f;
 	pipeline_set_grid(w->pl, &g, bias);
-	struct pipeline_target t = {
-		.vbo = w->vbo, .ibo = w->ibo, .status = w->status,
-		.vbo_offset = w->vstride * slot, .ibo_offset = w->istride * slot, .status_offset = w->sstride * slot,
-		.vert_cap = w->vcap, .tri_cap = w->tcap,
-		.first_index = (uint32_t)(w->istride * slot / 4), .base_vertex = (uint32_t)(w->vstride * slot / VERTEX_BYTES),
-	};
+	int stage = pool_free_stage(w);
+	if (stage < 0) {
+		log_error("world: no staging slot free for a block");
+		return -1;
+	}
+	struct pipeline_target t;
+	pool_target(w, slot, stage, &t);
 	pipeline_set_target(w->pl, &t);
 	w->cur_lod = blk->key[3];
 	if (block_extract(w, p) < 0)
@@ -153,7 +160,13 @@ int generate_block(struct world *w, const struct params *p, int b, int slot, dou
 		w->rb[r].block = b;
 		blk->readback = r;
 	} else {
-		blk->state = B_READY; /* no room to ask: keep it, it may be empty */
+		/* no room to ask: learn its counts now, keep it even if empty */
+		uint32_t v[2];
+		_Static_assert(ST_VERTS_WRITTEN == ST_TRIS_WRITTEN + 1, "written counters are adjacent");
+		if (gpu_read_buffer(w->status, w->sstride * slot + ST_TRIS_WRITTEN * 4, sizeof(v), v) < 0 ||
+		    pool_settle(w, slot, v[0], v[1]) < 0)
+			return -1;
+		blk->state = B_READY;
 	}
 	return gpu_check("block generation");
 }
