@@ -116,6 +116,9 @@ void world_destroy(struct world *w)
 {
 	if (!w)
 		return;
+	log_debug("world: at most %llu triangles drawn in a frame; block arena %lld KB (%lld KB of meshes, grown %llu times)",
+		  (unsigned long long)w->st.drawn_tris_max, (long long)(w->arena_cap >> 10), (long long)(w->arena_used >> 10),
+		  (unsigned long long)w->st.arena_grown);
 	pipeline_destroy(w->pl);
 	terrain_destroy(w->terrain);
 	pool_destroy(w);
@@ -243,6 +246,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 		return -1;
 	renderer_begin(r, c, p);
 	int drawn = 0;
+	uint64_t tris = 0;
 	/* want[] is sorted nearest first: front to back */
 	for (int i = 0; i < w->nwant; i++) {
 		struct block *blk = &w->blocks[w->want[i]];
@@ -270,8 +274,12 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 		pool_mesh_at(w, blk->slot, &vbo, &voff, &ibo, &ioff);
 		renderer_draw_mesh(r, vbo, ibo, w->status, w->sstride * blk->slot, sink);
 		drawn++;
+		tris += w->mem[blk->slot].stage >= 0 ? w->tcap : w->mem[blk->slot].tris;
 	}
 	w->st.drawn = drawn;
+	w->st.drawn_tris = tris;
+	if (tris > w->st.drawn_tris_max)
+		w->st.drawn_tris_max = tris;
 	float rect[4] = { c->eye[0] - p->view_distance, c->eye[2] - p->view_distance, c->eye[0] + p->view_distance,
 			  c->eye[2] + p->view_distance };
 	renderer_water(r, c, p, rect);

@@ -26,6 +26,8 @@ struct world_stats {
 	long long arena_bytes;    /* the block arena's capacity (bytes) */
 	long long arena_used;     /* of it, the meshes of the blocks in it */
 	long long arena_max;      /* what it may grow to: block_pool worst-case blocks */
+	uint64_t drawn_tris;      /* triangles the last frame drew (a staged block counts its capacity) */
+	uint64_t drawn_tris_max;  /* the most any frame drew */
 	int ready, pending, empty_known, drawn, wanted;
 };
 

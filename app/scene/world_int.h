@@ -41,7 +41,7 @@ struct readback {
 /* staging slots: a block is generated into one (worst-case capacity) and
  * moved into the arena, at its real size, once its counts are read back
  * (world_pool.c) */
-#define WORLD_STAGES 16
+#define WORLD_STAGES 8
 #define STAGE_GUARD 256u       /* canary bytes after a staging slot's capacity */
 #define STAGE_GUARD_WORD 0x5eb1a7e5u
 /* a generated block's counters, copied out of its status block for the
