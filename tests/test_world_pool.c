@@ -5,7 +5,8 @@
  * one that did not; the arena holds exactly the exported triangles and
  * vertices (plus alignment) and a fraction of the worst case; evictions and
  * blocks over capacity (--block-tris 256) keep every staging canary intact
- * and every mesh inside the arena, apart from the others. */
+ * and every mesh inside the arena, apart from the others; the table of
+ * known blocks stays bounded over a long flight. */
 #include "app.h"
 #include "world.h"
 #include "tcheck.h"
@@ -151,6 +152,78 @@ static void check_over_capacity(const struct params *p_in)
 	run_free(&c);
 }
 
+/* A flight that sees a new area every frame (the autopilot 20 s further
+ * each time) makes every block it sees known.  Remembered for ever, the
+ * table only grows; forgotten after 5 frames unwanted, it holds at most the
+ * last frames' blocks and those with a slot. */
+struct table_run {
+	uint32_t max_known, cap, max_wanted;
+	uint64_t forgotten;
+	int faults;
+};
+
+static int fly(const struct params *p, uint32_t age, struct table_run *out)
+{
+	char err[512] = "";
+	memset(out, 0, sizeof(*out));
+	struct edits *ed = edits_create();
+	struct world *w = world_create(p, ed, err, sizeof(err));
+	struct autopilot ap;
+	int rc = -1;
+	world_test_table_age(age);
+	if (w && autopilot_init(&ap, p, ed) == 0) {
+		rc = 0;
+		for (int f = 0; f < 40 && rc == 0; f++) {
+			struct camera c;
+			double t = 4.0 + 20.0 * f;
+			autopilot_advance(&ap, t);
+			autopilot_camera(&ap, &c, p->fov, 160.0f / 96.0f, p->view_distance * 1.2f);
+			rc = world_update(w, p, &c, t, true);
+			struct world_stats st;
+			world_get_stats(w, &st);
+			if (st.blocks_known > out->max_known)
+				out->max_known = st.blocks_known;
+			if ((uint32_t)st.wanted > out->max_wanted)
+				out->max_wanted = (uint32_t)st.wanted;
+			out->cap = st.table_cap;
+			out->forgotten = st.forgotten;
+		}
+		out->faults = world_check_pool(w);
+		autopilot_free(&ap);
+	}
+	world_test_table_age(0);
+	if (rc < 0 && err[0])
+		fprintf(stderr, "%s\n", err);
+	world_destroy(w);
+	edits_destroy(ed);
+	return rc;
+}
+
+static void check_table_bounded(const struct params *p_in)
+{
+	struct params q = *p_in;
+	q.gen_per_frame = 1; /* planning is what is tested: few blocks made */
+	struct table_run all, pruned;
+	CHECK(fly(&q, 100000, &all) == 0, "flight remembering every block");
+	CHECK(fly(&q, 5, &pruned) == 0, "flight forgetting blocks after 5 frames");
+	printf("block table over 40 new areas: remembered %u blocks (table of %u), forgetting after 5 frames at most %u "
+	       "(table of %u, %llu forgotten); at most %u wanted a frame\n",
+	       all.max_known, all.cap, pruned.max_known, pruned.cap, (unsigned long long)pruned.forgotten,
+	       pruned.max_wanted);
+	CHECK(all.cap > 4096, "the flight did not outgrow the first table (%u blocks known)", all.max_known);
+	/* pruned once over half full, keeping the blocks wanted in the last 5
+	 * frames and those with a slot (fewer than half the first table's 4096
+	 * here): never more than half of it plus one frame's new blocks */
+	uint32_t kept = 5 * pruned.max_wanted + (uint32_t)q.block_pool;
+	CHECK(kept < 2048, "the test's premise: %u blocks kept fit half the first table", kept);
+	CHECK(pruned.max_known <= 2048 + pruned.max_wanted && pruned.cap == 4096,
+	      "%u blocks known in a table of %u: more than half of the first table and a frame", pruned.max_known,
+	      pruned.cap);
+	CHECK(pruned.cap < all.cap && pruned.forgotten > 0, "the table was not bounded: %u entries (%u remembering all)",
+	      pruned.cap, all.cap);
+	CHECK(all.faults == 0 && pruned.faults == 0, "pool faults %d, %d", all.faults, pruned.faults);
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -158,6 +231,7 @@ int main(void)
 	pool_world(&p);
 	check_sized_to_need(&p);
 	check_over_capacity(&p);
+	check_table_bounded(&p);
 	platform_close(plat);
 	return tc_done("world_pool");
 }

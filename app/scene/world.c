@@ -116,9 +116,11 @@ void world_destroy(struct world *w)
 {
 	if (!w)
 		return;
-	log_debug("world: at most %llu triangles drawn in a frame; block arena %lld KB (%lld KB of meshes, grown %llu times)",
+	log_debug("world: at most %llu triangles drawn in a frame; block arena %lld KB (%lld KB of meshes, grown %llu times); "
+		  "block table %u of %u entries (%zu bytes each), %llu forgotten",
 		  (unsigned long long)w->st.drawn_tris_max, (long long)(w->arena_cap >> 10), (long long)(w->arena_used >> 10),
-		  (unsigned long long)w->st.arena_grown);
+		  (unsigned long long)w->st.arena_grown, w->count, w->cap, sizeof(struct block),
+		  (unsigned long long)w->st.forgotten);
 	pipeline_destroy(w->pl);
 	terrain_destroy(w->terrain);
 	pool_destroy(w);
@@ -138,6 +140,13 @@ void world_destroy(struct world *w)
 	free(w);
 }
 
+static uint32_t table_age;
+
+void world_test_table_age(uint32_t frames)
+{
+	table_age = frames;
+}
+
 int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic)
 {
 	w->frame++;
@@ -152,7 +161,9 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	if (edits_take_changes(w->ed, xz))
 		world_invalidate(w, p, xz);
 	collect_results(w, false);
-	if (plan_blocks(w, p, c) < 0)
+	/* the table remembers every block ever wanted (empty ones so as not to
+	 * generate them again): bounded by forgetting those long unwanted */
+	if (prune_blocks(w, table_age ? table_age : BLOCK_MEMORY_FRAMES) < 0 || plan_blocks(w, p, c) < 0)
 		return -1;
 	int made = 0;
 	bool budgeted = !deterministic && p->gen_budget_ms > 0;
@@ -338,6 +349,8 @@ void world_get_stats(const struct world *w, struct world_stats *st)
 		st->empty_known += w->blocks[i].state == B_EMPTY;
 	}
 	st->wanted = w->nwant;
+	st->blocks_known = w->count;
+	st->table_cap = w->cap;
 	st->arena_bytes = (long long)w->arena_cap;
 	st->arena_used = (long long)w->arena_used;
 	st->arena_max = (long long)w->arena_max;

@@ -23,6 +23,8 @@ struct world_stats {
 	uint64_t overflowed;      /* blocks that hit the slot capacity */
 	uint64_t invalidated;     /* blocks marked for regeneration by terrain edits */
 	uint64_t arena_grown;     /* times the block arena was re-made larger */
+	uint64_t forgotten;       /* blocks dropped from the table, not wanted for long */
+	uint32_t blocks_known, table_cap; /* the block table: entries, capacity */
 	long long arena_bytes;    /* the block arena's capacity (bytes) */
 	long long arena_used;     /* of it, the meshes of the blocks in it */
 	long long arena_max;      /* what it may grow to: block_pool worst-case blocks */
@@ -70,6 +72,9 @@ int world_check_pool(struct world *w);
 /* Test hook: the arena of worlds created from now on starts at bytes
  * (0: the default), so that tests see it grow. */
 void world_test_arena_start(long long bytes);
+/* Test hook: blocks not wanted for this many frames are forgotten (0: the
+ * default, BLOCK_MEMORY_FRAMES). */
+void world_test_table_age(uint32_t frames);
 /* Test hook: packs the arena's meshes at its start (what a growth does,
  * into a new buffer of the same size); the number of meshes that moved, or
  * -1. */

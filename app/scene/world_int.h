@@ -109,6 +109,14 @@ float block_world_size(const struct params *p, int lod);
 void block_aabb(const struct params *p, const int k[4], float lo[3], float hi[3]);
 /* Range of a level: lod_distance of its blocks, the coarsest to view_distance. */
 float lod_range(const struct params *p, int lod);
+/* Once the table is over half full: the blocks that hold no slot, no
+ * result in flight and were not wanted in the last `age` frames are
+ * forgotten (an empty one would be generated again if wanted), the table
+ * doubled only while the rest would fill more than half of it.  Indices
+ * move: call it before plan_blocks.  0/-1. */
+int prune_blocks(struct world *w, uint32_t age);
+/* Frames a block nobody wants stays known (docs/RELIABILITY.md, "Memory") */
+#define BLOCK_MEMORY_FRAMES 1000
 /* The blocks this camera wants into want[], nearest first.  0/-1. */
 int plan_blocks(struct world *w, const struct params *p, const struct camera *c);
 
