@@ -12,9 +12,9 @@
  * level's range (moved along its normals behind the coarser surface, no
  * dither), so levels change without popping and without dotted seams.
  *
- * Blocks are generated nearest first into a fixed pool of slots (one vertex
- * buffer, one element buffer and one status/indirect buffer, each cut into
- * block_pool slots); when the pool is full the farthest block that is not
+ * Blocks are generated nearest first into a pool of block_pool slots (a
+ * status/indirect block each; the meshes in an arena at their real sizes,
+ * world_pool.c); when the pool is full the farthest block that is not
  * wanted, or is farther than the one asked for, gives its slot up.  Whether
  * a block turned out empty is learnt a few frames later through a fence and
  * a 16-byte copy of its status: empty blocks are remembered, get no slot
@@ -31,16 +31,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Slot strides: whole vertices / indices, every offset a multiple of
- * GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT. */
+/* Staging slot strides: whole vertices / indices, every offset a multiple
+ * of GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT. */
 static void plan_strides(struct world *w)
 {
 	GLint align = 16;
 	glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
 	if (align < 16)
 		align = 16;
-	w->vstride = (GLintptr)w->vcap * VERTEX_BYTES;
-	w->istride = (GLintptr)w->tcap * 12;
+	/* a canary after every staging slot (world_check_pool) */
+	w->vstride = (GLintptr)w->vcap * VERTEX_BYTES + STAGE_GUARD;
+	w->istride = (GLintptr)w->tcap * 12 + STAGE_GUARD;
 	w->sstride = ST_BYTES;
 	w->vstride = (w->vstride + align - 1) / align * align;
 	w->istride = (w->istride + align - 1) / align * align;
@@ -72,35 +73,6 @@ static int create_pipeline(struct world *w, const struct params *p, char *err, s
 	return w->pl ? 0 : -1;
 }
 
-/* The pool: one vertex, element and status buffer of `slots` slots each,
- * and the readback ring. */
-static int create_pool(struct world *w, char *err, size_t errlen)
-{
-	glGenBuffers(1, &w->vbo);
-	glGenBuffers(1, &w->ibo);
-	glGenBuffers(1, &w->status);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, w->vbo);
-	glBufferData(GL_SHADER_STORAGE_BUFFER, w->vstride * w->slots, NULL, GL_DYNAMIC_DRAW);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, w->ibo);
-	glBufferData(GL_SHADER_STORAGE_BUFFER, w->istride * w->slots, NULL, GL_DYNAMIC_DRAW);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, w->status);
-	glBufferData(GL_SHADER_STORAGE_BUFFER, w->sstride * w->slots, NULL, GL_DYNAMIC_DRAW);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	for (int i = 0; i < READBACKS; i++) {
-		glGenBuffers(1, &w->rb[i].buf);
-		glBindBuffer(GL_COPY_WRITE_BUFFER, w->rb[i].buf);
-		glBufferData(GL_COPY_WRITE_BUFFER, RB_BYTES, NULL, GL_STREAM_READ);
-		w->rb[i].block = -1;
-	}
-	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-	if (gpu_check("block pool") < 0) {
-		snprintf(err, errlen, "cannot allocate the block pool (%d slots of %u triangles: %lld MB); lower --block-pool",
-			 w->slots, w->tcap, (long long)((w->vstride + w->istride) * w->slots >> 20));
-		return -1;
-	}
-	return 0;
-}
-
 struct world *world_create(const struct params *p, struct edits *ed, char *err, size_t errlen)
 {
 	struct world *w = calloc(1, sizeof(*w));
@@ -130,12 +102,14 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 		w->blocks[i].key[3] = -1;
 	for (int i = 0; i < w->slots; i++)
 		w->slot_block[i] = -1;
-	if (create_pipeline(w, p, err, errlen) < 0 || create_pool(w, err, errlen) < 0 || probes_create(w) < 0) {
+	if (create_pipeline(w, p, err, errlen) < 0 || pool_create(w, err, errlen) < 0 || probes_create(w) < 0) {
 		world_destroy(w);
 		return NULL;
 	}
-	log_debug("world: %d slots x (%u vertices, %u triangles) = %lld MB", w->slots, w->vcap, w->tcap,
-		  (long long)((w->vstride + w->istride + w->sstride) * w->slots >> 20));
+	log_debug("world: %d slots; %d staging slots x (%u vertices, %u triangles) = %lld KB; block arena %lld KB "
+		  "to start, at most %lld MB",
+		  w->slots, WORLD_STAGES, w->vcap, w->tcap, (long long)((w->vstride + w->istride) * WORLD_STAGES >> 10),
+		  (long long)(w->arena_cap >> 10), (long long)(w->arena_max >> 20));
 	return w;
 }
 
@@ -144,14 +118,17 @@ void world_destroy(struct world *w)
 	if (!w)
 		return;
 	probes_destroy(w);
+	log_debug("world: at most %llu triangles drawn in a frame; block arena %lld KB (%lld KB of meshes, grown %llu times); "
+		  "block table %u of %u entries (%zu bytes each), %llu forgotten",
+		  (unsigned long long)w->st.drawn_tris_max, (long long)(w->arena_cap >> 10), (long long)(w->arena_used >> 10),
+		  (unsigned long long)w->st.arena_grown, w->count, w->cap, sizeof(struct block),
+		  (unsigned long long)w->st.forgotten);
 	pipeline_destroy(w->pl);
 	terrain_destroy(w->terrain);
-	if (w->vbo)
-		glDeleteBuffers(1, &w->vbo);
-	if (w->ibo)
-		glDeleteBuffers(1, &w->ibo);
-	if (w->status)
-		glDeleteBuffers(1, &w->status);
+	pool_destroy(w);
+	for (int i = 0; i < FRAMES_IN_FLIGHT; i++)
+		if (w->frame_fence[i])
+			glDeleteSync(w->frame_fence[i]);
 	for (int i = 0; i < READBACKS; i++) {
 		if (w->rb[i].fence)
 			glDeleteSync(w->rb[i].fence);
@@ -163,6 +140,13 @@ void world_destroy(struct world *w)
 	free(w->want);
 	free(w->want_sort);
 	free(w);
+}
+
+static uint32_t table_age;
+
+void world_test_table_age(uint32_t frames)
+{
+	table_age = frames;
 }
 
 int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic)
@@ -179,7 +163,9 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	if (edits_take_changes(w->ed, xz))
 		world_invalidate(w, p, xz);
 	collect_results(w, false);
-	if (plan_blocks(w, p, c) < 0)
+	/* the table remembers every block ever wanted (empty ones so as not to
+	 * generate them again): bounded by forgetting those long unwanted */
+	if (prune_blocks(w, table_age ? table_age : BLOCK_MEMORY_FRAMES) < 0 || plan_blocks(w, p, c) < 0)
 		return -1;
 	/* the pre-pass and the generation, staged over frames (world_gen.c) */
 	if (generate_wanted(w, p, now, deterministic) < 0)
@@ -200,10 +186,34 @@ int world_fill(struct world *w, const struct params *p, const struct camera *c, 
 	return 0;
 }
 
+/* Waits until the frame FRAMES_IN_FLIGHT before this one is rasterized.
+ * Nothing else bounds what the driver holds: llvmpipe bins a frame's
+ * triangles on this thread and queues the scene for its rasterizer
+ * threads, and without a page flip or a read-back to wait for, a thread
+ * that bins faster than they rasterize queues up to 64 scenes (each up to
+ * 36 MB) — the world's live growth (docs/RELIABILITY.md, "Memory"). */
+static int frame_throttle(struct world *w)
+{
+	GLsync *f = &w->frame_fence[w->draws % FRAMES_IN_FLIGHT];
+	if (!*f)
+		return 0;
+	GLenum st = glClientWaitSync(*f, GL_SYNC_FLUSH_COMMANDS_BIT, 10ull * 1000 * 1000 * 1000);
+	glDeleteSync(*f);
+	*f = 0;
+	if (st != GL_ALREADY_SIGNALED && st != GL_CONDITION_SATISFIED) {
+		log_error("world: the frame %d frames back did not finish in 10 s (wait status 0x%x)", FRAMES_IN_FLIGHT, st);
+		return -1;
+	}
+	return 0;
+}
+
 int world_draw(struct world *w, struct renderer *r, const struct camera *c, const struct params *p, double now)
 {
+	if (frame_throttle(w) < 0)
+		return -1;
 	renderer_begin(r, c, p);
 	int drawn = 0;
+	uint64_t tris = 0;
 	/* want[] is sorted nearest first: front to back */
 	for (int i = 0; i < w->nwant; i++) {
 		struct block *blk = &w->blocks[w->want[i]];
@@ -226,14 +236,26 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 			float coarse_cell = block_world_size(p, lod + 1) / (float)w->n;
 			sink = (1.0f - fade) * (p->lod_bias + 1.5f) * coarse_cell;
 		}
-		renderer_draw_mesh(r, w->vbo, w->ibo, w->status, w->sstride * blk->slot, sink);
+		GLuint vbo, ibo;
+		GLintptr voff, ioff;
+		pool_mesh_at(w, blk->slot, &vbo, &voff, &ibo, &ioff);
+		renderer_draw_mesh(r, vbo, ibo, w->status, w->sstride * blk->slot, sink);
 		drawn++;
+		tris += w->mem[blk->slot].stage >= 0 ? w->tcap : w->mem[blk->slot].tris;
 	}
 	w->st.drawn = drawn;
+	w->st.drawn_tris = tris;
+	if (tris > w->st.drawn_tris_max)
+		w->st.drawn_tris_max = tris;
 	float rect[4] = { c->eye[0] - p->view_distance, c->eye[2] - p->view_distance, c->eye[0] + p->view_distance,
 			  c->eye[2] + p->view_distance };
 	renderer_water(r, c, p, rect);
-	return renderer_end(r);
+	int rc = renderer_end(r);
+	w->frame_fence[w->draws % FRAMES_IN_FLIGHT] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+	if (!w->frame_fence[w->draws % FRAMES_IN_FLIGHT])
+		rc = gpu_check("frame fence") < 0 ? -1 : rc;
+	w->draws++;
+	return rc;
 }
 
 int world_invalidate(struct world *w, const struct params *p, const float xz[4])
@@ -285,6 +307,11 @@ void world_get_stats(const struct world *w, struct world_stats *st)
 		st->empty_known += w->blocks[i].state == B_EMPTY;
 	}
 	st->wanted = w->nwant;
+	st->blocks_known = w->count;
+	st->table_cap = w->cap;
+	st->arena_bytes = (long long)w->arena_cap;
+	st->arena_used = (long long)w->arena_used;
+	st->arena_max = (long long)w->arena_max;
 }
 
 int world_block_mesh(struct world *w, const struct params *p, int lod, const int idx[3], struct mesh *m)
@@ -328,8 +355,11 @@ static int export_counts(const struct world *w, const struct block *b, uint32_t 
 static int export_append(const struct world *w, const struct block *b, struct mesh *m, uint32_t nv, uint32_t nt,
 			 uint32_t verts, uint32_t tris, uint32_t *vb)
 {
-	if (gpu_read_buffer(w->vbo, w->vstride * b->slot, (GLsizeiptr)verts * VERTEX_BYTES, vb) < 0 ||
-	    gpu_read_buffer(w->ibo, w->istride * b->slot, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0)
+	GLuint vbo, ibo;
+	GLintptr voff, ioff;
+	pool_mesh_at(w, b->slot, &vbo, &voff, &ibo, &ioff);
+	if ((verts && gpu_read_buffer(vbo, voff, (GLsizeiptr)verts * VERTEX_BYTES, vb) < 0) ||
+	    (tris && gpu_read_buffer(ibo, ioff, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0))
 		return -1;
 	for (uint32_t i = 0; i < verts; i++)
 		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)(nv + i), m->nrm + 3 * (size_t)(nv + i), NULL);

@@ -26,6 +26,14 @@ struct world_stats {
 	 * proved all air or all rock (never generated, known empty) */
 	uint64_t prepass_probed;
 	uint64_t prepass_empty;
+	uint64_t arena_grown;     /* times the block arena was re-made larger */
+	uint64_t forgotten;       /* blocks dropped from the table, not wanted for long */
+	uint32_t blocks_known, table_cap; /* the block table: entries, capacity */
+	long long arena_bytes;    /* the block arena's capacity (bytes) */
+	long long arena_used;     /* of it, the meshes of the blocks in it */
+	long long arena_max;      /* what it may grow to: block_pool worst-case blocks */
+	uint64_t drawn_tris;      /* triangles the last frame drew (a staged block counts its capacity) */
+	uint64_t drawn_tris_max;  /* the most any frame drew */
 	int ready, pending, empty_known, drawn, wanted;
 };
 
@@ -59,6 +67,22 @@ int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 /* Test hook: how many times block (lod, idx) was generated, its state
  * (0 unknown/free, 1 pending, 2 ready, 3 empty) in *state; -1 if unknown. */
 int world_block_generations(const struct world *w, int lod, const int idx[3], int *state);
+
+/* Test hook: 0 when the block memory is consistent — every staging slot's
+ * canary intact (nothing wrote past a slot's capacity), every mesh in the
+ * arena inside it and apart from the others, the bytes in use their sum —
+ * else the number of faults found (each logged); -1 on read failure. */
+int world_check_pool(struct world *w);
+/* Test hook: the arena of worlds created from now on starts at bytes
+ * (0: the default), so that tests see it grow. */
+void world_test_arena_start(long long bytes);
+/* Test hook: blocks not wanted for this many frames are forgotten (0: the
+ * default, BLOCK_MEMORY_FRAMES). */
+void world_test_table_age(uint32_t frames);
+/* Test hook: packs the arena's meshes at its start (what a growth does,
+ * into a new buffer of the same size); the number of meshes that moved, or
+ * -1. */
+int world_test_compact(struct world *w);
 
 /* Test hooks: generate one block (lod, index) into a scratch slot and read
  * its mesh back (positions/normals; indices local). 0/-1. */

@@ -28,8 +28,10 @@
 static void free_slot(struct world *w, int b)
 {
 	struct block *blk = &w->blocks[b];
-	if (blk->slot >= 0)
+	if (blk->slot >= 0) {
 		w->slot_block[blk->slot] = -1;
+		pool_release(w, blk->slot);
+	}
 	blk->slot = -1;
 }
 
@@ -93,6 +95,10 @@ void collect_results(struct world *w, bool wait)
 			blk->state = B_EMPTY;
 			free_slot(w, (int)(blk - w->blocks));
 			w->st.empty_found++;
+		} else if (!m || pool_settle(w, blk->slot, v[ST_TRIS_WRITTEN - RB_FIRST], v[ST_VERTS_WRITTEN - RB_FIRST]) < 0) {
+			log_error("world: a block's mesh could not be kept: it will be generated again");
+			blk->state = B_FREE;
+			free_slot(w, (int)(blk - w->blocks));
 		} else {
 			blk->state = B_READY;
 		}
@@ -184,16 +190,19 @@ static void block_begin(struct world *w, const struct params *p, int b)
 	w->cur_lod = blk->key[3];
 }
 
-/* The pipeline's output into slot. */
-static void block_target(struct world *w, int slot)
+/* The pipeline's output into slot, through a free staging slot (the
+ * caller made sure there is one). */
+static int block_target(struct world *w, int slot)
 {
-	struct pipeline_target t = {
-		.vbo = w->vbo, .ibo = w->ibo, .status = w->status,
-		.vbo_offset = w->vstride * slot, .ibo_offset = w->istride * slot, .status_offset = w->sstride * slot,
-		.vert_cap = w->vcap, .tri_cap = w->tcap,
-		.first_index = (uint32_t)(w->istride * slot / 4), .base_vertex = (uint32_t)(w->vstride * slot / VERTEX_BYTES),
-	};
+	int stage = pool_free_stage(w);
+	if (stage < 0) {
+		log_error("world: no staging slot free for a block");
+		return -1;
+	}
+	struct pipeline_target t;
+	pool_target(w, slot, stage, &t);
 	pipeline_set_target(w->pl, &t);
+	return 0;
 }
 
 /* Block b written into slot: its bookkeeping and the request for its
@@ -221,7 +230,13 @@ static int block_done(struct world *w, int b, int slot, double now)
 		w->rb[r].block = b;
 		blk->readback = r;
 	} else {
-		blk->state = B_READY; /* no room to ask: keep it, it may be empty */
+		/* no room to ask: learn its counts now, keep it even if empty */
+		uint32_t v[2];
+		_Static_assert(ST_VERTS_WRITTEN == ST_TRIS_WRITTEN + 1, "written counters are adjacent");
+		if (gpu_read_buffer(w->status, w->sstride * slot + ST_TRIS_WRITTEN * 4, sizeof(v), v) < 0 ||
+		    pool_settle(w, slot, v[0], v[1]) < 0)
+			return -1;
+		blk->state = B_READY;
 	}
 	return gpu_check("block generation");
 }
@@ -229,8 +244,7 @@ static int block_done(struct world *w, int b, int slot, double now)
 int generate_block(struct world *w, const struct params *p, int b, int slot, double now)
 {
 	block_begin(w, p, b);
-	block_target(w, slot);
-	if (block_extract(w, p) < 0)
+	if (block_target(w, slot) < 0 || block_extract(w, p) < 0)
 		return -1;
 	return block_done(w, b, slot, now);
 }
@@ -384,14 +398,17 @@ static int run_stage(struct world *w, double now)
 	}
 	int slot = -1;
 	if (w->gen_stage == PIPE_OUTPUT) {
-		if (free_readback(w) < 0)
+		if (free_readback(w) < 0 || pool_free_stage(w) < 0)
 			collect_results(w, false);
-		slot = regen ? blk->slot : take_slot(w, blk->dist);
-		if (slot < 0) { /* pool full of nearer blocks */
+		if (pool_free_stage(w) < 0)
+			collect_results(w, true); /* every staging slot awaits its counts: the oldest are done by now */
+		slot = pool_free_stage(w) < 0 ? -1 : regen ? blk->slot : take_slot(w, blk->dist);
+		if (slot < 0) { /* pool full of nearer blocks (or no staging slot) */
 			w->gen_block = -1;
 			return 0;
 		}
-		block_target(w, slot);
+		if (block_target(w, slot) < 0)
+			return -1;
 	}
 	char err[512];
 	if (pipeline_run_stage(w->pl, &w->gen_q, (enum pipeline_stage)w->gen_stage, err, sizeof(err)) < 0) {
@@ -493,9 +510,9 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 		urgent = urgent && made == 0;
 		if (budgeted && w->credit_ms <= 0.0 && !urgent)
 			break;
-		if (free_readback(w) < 0) {
+		if (free_readback(w) < 0 || pool_free_stage(w) < 0) {
 			collect_results(w, true);
-			if (free_readback(w) < 0)
+			if (free_readback(w) < 0 || pool_free_stage(w) < 0)
 				break;
 		}
 		if (budgeted) { /* live: staged, from the next turn of the loop */

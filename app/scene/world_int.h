@@ -54,12 +54,30 @@ struct readback {
 };
 
 #define READBACKS 64
+/* staging slots: a block is generated into one (worst-case capacity) and
+ * moved into the arena, at its real size, once its counts are read back
+ * (world_pool.c) */
+#define WORLD_STAGES 8
+#define STAGE_GUARD 256u       /* canary bytes after a staging slot's capacity */
+#define STAGE_GUARD_WORD 0x5eb1a7e5u
 /* a generated block's counters, copied out of its status block for the
  * fence-guarded read-back: triangles/vertices needed ... overflow flag */
 #define RB_FIRST ST_TRIS_NEEDED
 #define RB_WORDS (ST_OVERFLOW - ST_TRIS_NEEDED + 1)
 #define RB_BYTES (RB_WORDS * 4)
+/* Frames the driver may hold at once: drawing a frame first waits until
+ * the one FRAMES_IN_FLIGHT before it is done (llvmpipe queues up to 64
+ * binned scenes of up to 36 MB each; docs/RELIABILITY.md, "Memory") */
+#define FRAMES_IN_FLIGHT 2
 #define AO_MARGIN 6      /* extra density samples around a block: short AO rays */
+
+/* A slot's mesh: in staging slot `stage` (>= 0) until its counts are known,
+ * then `bytes` of the arena at `off` (its vertices, then its indices). */
+struct slot_mem {
+	GLintptr off, bytes;
+	uint32_t tris, verts;
+	int stage;
+};
 
 /* a wanted block with its sort keys (nearest first) */
 struct want_key {
@@ -75,14 +93,20 @@ struct world {
 	int far_drop;        /* octaves left out of the coarsest level's new blocks (the governor) */
 	int cur_lod;         /* the level of the block being extracted */
 	int n;               /* cells per block edge */
-	GLuint vbo, ibo, status;
+	GLuint vbo, ibo, status;   /* staging vertices, indices (WORLD_STAGES); status per slot */
 	GLintptr vstride, istride, sstride;
 	uint32_t vcap, tcap;
 	int slots;
 	int *slot_block;     /* slot -> block index, -1 free */
+	struct slot_mem *mem;      /* slot -> where its mesh is */
+	int stage_slot[WORLD_STAGES]; /* staging slot -> slot, -1 free */
+	GLuint arena;              /* the meshes at their real sizes */
+	GLintptr arena_cap, arena_max, arena_used, arena_start;
 	struct block *blocks;
 	uint32_t cap, count; /* hash table of blocks (open addressing) */
 	struct readback rb[READBACKS];
+	GLsync frame_fence[FRAMES_IN_FLIGHT]; /* after each of the last frames drawn */
+	uint32_t draws;      /* frames drawn (world_draw) */
 	uint32_t frame;
 	double credit_ms;    /* generation budget left (negative: owed) */
 	struct world_stats st;
@@ -110,8 +134,35 @@ float block_world_size(const struct params *p, int lod);
 void block_aabb(const struct params *p, const int k[4], float lo[3], float hi[3]);
 /* Range of a level: lod_distance of its blocks, the coarsest to view_distance. */
 float lod_range(const struct params *p, int lod);
+/* Once the table is over half full: the blocks that hold no slot, no
+ * result in flight and were not wanted in the last `age` frames are
+ * forgotten (an empty one would be generated again if wanted), the table
+ * doubled only while the rest would fill more than half of it.  Indices
+ * move: call it before plan_blocks.  0/-1. */
+int prune_blocks(struct world *w, uint32_t age);
+/* Frames a block nobody wants stays known (docs/RELIABILITY.md, "Memory") */
+#define BLOCK_MEMORY_FRAMES 1000
 /* The blocks this camera wants into want[], nearest first.  0/-1. */
 int plan_blocks(struct world *w, const struct params *p, const struct camera *c);
+
+/* ---- world_pool.c ------------------------------------------------------------ */
+
+/* The status blocks, staging slots, arena and read-back ring.  0, or -1 with err. */
+int pool_create(struct world *w, char *err, size_t errlen);
+void pool_destroy(struct world *w);
+/* A free staging slot, or -1. */
+int pool_free_stage(const struct world *w);
+/* Slot's block is generated (again) into staging slot stage: its old mesh
+ * is given up, t is the pipeline's target. */
+void pool_target(struct world *w, int slot, int stage, struct pipeline_target *t);
+/* Slot's block wrote tris triangles and verts vertices: moved from its
+ * staging slot into the arena (grown if needed), its draw command pointed
+ * there.  0/-1. */
+int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts);
+/* Gives up slot's mesh (staging slot and arena range). */
+void pool_release(struct world *w, int slot);
+/* The buffers and byte offsets of slot's vertices and indices. */
+void pool_mesh_at(const struct world *w, int slot, GLuint *vbo, GLintptr *voff, GLuint *ibo, GLintptr *ioff);
 
 /* ---- world_gen.c ----------------------------------------------------------- */
 

@@ -43,9 +43,16 @@ int find_block(struct world *w, const int k[4], bool create)
 	}
 }
 
-static int rehash(struct world *w)
+/* Whether block b stays in the table when it is pruned: it holds a slot or
+ * a result in flight, or was wanted in the last `age` frames (age 0: all). */
+static bool keep_block(const struct world *w, const struct block *b, uint32_t age)
 {
-	uint32_t ncap = w->cap * 2;
+	return !age || b->slot >= 0 || b->readback >= 0 || b->stale || w->frame - b->frame < age;
+}
+
+/* The table re-made with ncap entries, keeping the blocks keep_block keeps. */
+static int rebuild(struct world *w, uint32_t ncap, uint32_t age)
+{
 	struct block *old = w->blocks;
 	uint32_t ocap = w->cap;
 	struct block *nb = malloc(sizeof(*nb) * ncap);
@@ -59,7 +66,7 @@ static int rehash(struct world *w)
 	for (int i = 0; i < w->slots; i++)
 		w->slot_block[i] = -1;
 	for (uint32_t i = 0; i < ocap; i++) {
-		if (old[i].key[3] < 0)
+		if (old[i].key[3] < 0 || !keep_block(w, &old[i], age))
 			continue;
 		int j = find_block(w, old[i].key, true);
 		w->blocks[j] = old[i];
@@ -70,6 +77,25 @@ static int rehash(struct world *w)
 	}
 	free(old);
 	return 0;
+}
+
+static int rehash(struct world *w)
+{
+	return rebuild(w, w->cap * 2, 0);
+}
+
+int prune_blocks(struct world *w, uint32_t age)
+{
+	if (w->count * 2 <= w->cap)
+		return 0;
+	uint32_t keep = 0;
+	for (uint32_t i = 0; i < w->cap; i++)
+		keep += w->blocks[i].key[3] >= 0 && keep_block(w, &w->blocks[i], age);
+	uint32_t ncap = w->cap;
+	while (keep * 2 > ncap)
+		ncap *= 2;
+	w->st.forgotten += w->count - keep;
+	return rebuild(w, ncap, age);
 }
 
 int world_block_generations(const struct world *w, int lod, const int idx[3], int *state)

@@ -1,0 +1,344 @@
+/* isoterra — the streaming world's block memory, sized to what the blocks
+ * hold (docs/RELIABILITY.md, "Memory").
+ *
+ * A block is generated into a staging slot of worst-case capacity
+ * (block_tris triangles, 3/4 as many vertices; WORLD_STAGES of them) and
+ * drawn from there until its status read-back says how many triangles and
+ * vertices it wrote.  Then exactly that much is taken from one arena buffer
+ * (its vertices, then its indices, 32-byte aligned), copied there on the
+ * GPU, and the block's draw command is pointed at it; the staging slot is
+ * free again.  The arena starts small and grows by half (compacting the
+ * blocks into the new buffer) when a block does not fit, up to what
+ * block_pool worst-case blocks would take, so it always can.  The status
+ * blocks (draw commands, counters) stay one per slot. */
+#include "world_int.h"
+#include "gpu.h"
+#include "log.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define ARENA_ALIGN 32 /* a whole vertex: base_vertex = offset / VERTEX_BYTES */
+#define ARENA_FIRST (4 << 20)
+
+static GLintptr round_up(GLintptr v, GLintptr a)
+{
+	return (v + a - 1) / a * a;
+}
+
+/* The arena bytes of a block: its vertices, then its indices. */
+static GLintptr block_bytes(uint32_t tris, uint32_t verts)
+{
+	return round_up((GLintptr)verts * VERTEX_BYTES + (GLintptr)tris * 12, ARENA_ALIGN);
+}
+
+static GLuint new_buffer(GLenum target, GLsizeiptr size, GLenum usage)
+{
+	GLuint b = 0;
+	glGenBuffers(1, &b);
+	glBindBuffer(target, b);
+	glBufferData(target, size, NULL, usage);
+	glBindBuffer(target, 0);
+	return b;
+}
+
+static long long test_start;
+
+void world_test_arena_start(long long bytes)
+{
+	test_start = bytes;
+}
+
+/* The canary after each staging slot's capacity in buf (stride apart). */
+static void write_guards(GLuint buf, GLintptr stride, GLintptr used)
+{
+	uint32_t g[STAGE_GUARD / 4];
+	for (size_t i = 0; i < STAGE_GUARD / 4; i++)
+		g[i] = STAGE_GUARD_WORD;
+	glBindBuffer(GL_COPY_WRITE_BUFFER, buf);
+	for (int s = 0; s < WORLD_STAGES; s++)
+		glBufferSubData(GL_COPY_WRITE_BUFFER, stride * s + used, STAGE_GUARD, g);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+int pool_create(struct world *w, char *err, size_t errlen)
+{
+	w->mem = calloc((size_t)w->slots, sizeof(*w->mem));
+	if (!w->mem) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	for (int i = 0; i < w->slots; i++)
+		w->mem[i].stage = -1;
+	for (int i = 0; i < WORLD_STAGES; i++)
+		w->stage_slot[i] = -1;
+	/* it starts at a sixteenth of the worst case (at most 4 MB) and grows
+	 * by half to what the blocks hold */
+	w->arena_max = (GLintptr)w->slots * block_bytes(w->tcap, w->vcap);
+	w->arena_cap = test_start > 0 ? (GLintptr)test_start : round_up(w->arena_max / 16, 1 << 16);
+	if (w->arena_cap > ARENA_FIRST)
+		w->arena_cap = ARENA_FIRST;
+	if (w->arena_cap > w->arena_max)
+		w->arena_cap = w->arena_max;
+	w->arena_start = w->arena_cap;
+	w->vbo = new_buffer(GL_SHADER_STORAGE_BUFFER, w->vstride * WORLD_STAGES, GL_DYNAMIC_DRAW);
+	w->ibo = new_buffer(GL_SHADER_STORAGE_BUFFER, w->istride * WORLD_STAGES, GL_DYNAMIC_DRAW);
+	w->status = new_buffer(GL_SHADER_STORAGE_BUFFER, w->sstride * w->slots, GL_DYNAMIC_DRAW);
+	w->arena = new_buffer(GL_ARRAY_BUFFER, w->arena_cap, GL_DYNAMIC_DRAW);
+	write_guards(w->vbo, w->vstride, (GLintptr)w->vcap * VERTEX_BYTES);
+	write_guards(w->ibo, w->istride, (GLintptr)w->tcap * 12);
+	for (int i = 0; i < READBACKS; i++) {
+		w->rb[i].buf = new_buffer(GL_COPY_WRITE_BUFFER, RB_BYTES, GL_STREAM_READ);
+		w->rb[i].block = -1;
+	}
+	if (gpu_check("block pool") < 0) {
+		snprintf(err, errlen, "cannot allocate the block pool (%d staging slots of %u triangles: %lld MB); lower --block-tris",
+			 WORLD_STAGES, w->tcap, (long long)((w->vstride + w->istride) * WORLD_STAGES >> 20));
+		return -1;
+	}
+	return 0;
+}
+
+void pool_destroy(struct world *w)
+{
+	GLuint bufs[] = { w->vbo, w->ibo, w->status, w->arena };
+	for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
+		if (bufs[i])
+			glDeleteBuffers(1, &bufs[i]);
+	free(w->mem);
+}
+
+int pool_free_stage(const struct world *w)
+{
+	for (int i = 0; i < WORLD_STAGES; i++)
+		if (w->stage_slot[i] < 0)
+			return i;
+	return -1;
+}
+
+void pool_release(struct world *w, int slot)
+{
+	struct slot_mem *m = &w->mem[slot];
+	if (m->stage >= 0)
+		w->stage_slot[m->stage] = -1;
+	w->arena_used -= m->bytes;
+	memset(m, 0, sizeof(*m));
+	m->stage = -1;
+}
+
+void pool_target(struct world *w, int slot, int stage, struct pipeline_target *t)
+{
+	pool_release(w, slot); /* a block generated again: its old mesh is not drawn any more */
+	w->mem[slot].stage = stage;
+	w->stage_slot[stage] = slot;
+	*t = (struct pipeline_target){
+		.vbo = w->vbo, .ibo = w->ibo, .status = w->status,
+		.vbo_offset = w->vstride * stage, .ibo_offset = w->istride * stage, .status_offset = w->sstride * slot,
+		.vert_cap = w->vcap, .tri_cap = w->tcap,
+		.first_index = (uint32_t)(w->istride * stage / 4), .base_vertex = (uint32_t)(w->vstride * stage / VERTEX_BYTES),
+	};
+}
+
+void pool_mesh_at(const struct world *w, int slot, GLuint *vbo, GLintptr *voff, GLuint *ibo, GLintptr *ioff)
+{
+	const struct slot_mem *m = &w->mem[slot];
+	if (m->stage >= 0) {
+		*vbo = w->vbo;
+		*ibo = w->ibo;
+		*voff = w->vstride * m->stage;
+		*ioff = w->istride * m->stage;
+	} else {
+		*vbo = *ibo = w->arena;
+		*voff = m->off;
+		*ioff = m->off + (GLintptr)m->verts * VERTEX_BYTES;
+	}
+}
+
+/* Points slot's draw command (first index, base vertex) at its arena range. */
+static void point_draw(struct world *w, int slot)
+{
+	const struct slot_mem *m = &w->mem[slot];
+	uint32_t v[2] = { (uint32_t)((m->off + (GLintptr)m->verts * VERTEX_BYTES) / 4),
+			  (uint32_t)(m->off / VERTEX_BYTES) };
+	glBindBuffer(GL_COPY_WRITE_BUFFER, w->status);
+	glBufferSubData(GL_COPY_WRITE_BUFFER, w->sstride * slot + (ST_DRAW_ELEMENTS + 2) * 4, sizeof(v), v);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+static int by_offset(const void *a, const void *b)
+{
+	GLintptr x = ((const struct slot_mem *)a)->off, y = ((const struct slot_mem *)b)->off;
+	return (x > y) - (x < y);
+}
+
+/* The live arena ranges sorted by offset into ord (slot numbers in slot_of);
+ * their count. */
+static int live_ranges(const struct world *w, struct slot_mem *ord)
+{
+	int n = 0;
+	for (int s = 0; s < w->slots; s++)
+		if (w->mem[s].bytes) {
+			ord[n] = w->mem[s];
+			ord[n].stage = s; /* the slot, carried through the sort */
+			n++;
+		}
+	qsort(ord, (size_t)n, sizeof(*ord), by_offset);
+	return n;
+}
+
+/* The first gap of at least need bytes, or -1. */
+static GLintptr first_fit(const struct world *w, const struct slot_mem *ord, int n, GLintptr need)
+{
+	GLintptr at = 0;
+	for (int i = 0; i < n; i++) {
+		if (ord[i].off - at >= need)
+			return at;
+		at = ord[i].off + ord[i].bytes;
+	}
+	return w->arena_cap - at >= need ? at : -1;
+}
+
+/* A new arena of cap bytes with the live blocks packed at its start. */
+static int regrow(struct world *w, struct slot_mem *ord, int n, GLintptr cap)
+{
+	GLuint next = new_buffer(GL_COPY_WRITE_BUFFER, cap, GL_DYNAMIC_DRAW);
+	if (gpu_check("block arena") < 0) {
+		glDeleteBuffers(1, &next);
+		return -1;
+	}
+	glBindBuffer(GL_COPY_READ_BUFFER, w->arena);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, next);
+	GLintptr at = 0;
+	for (int i = 0; i < n; i++) {
+		int s = ord[i].stage;
+		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, ord[i].off, at, ord[i].bytes);
+		w->mem[s].off = at;
+		at += ord[i].bytes;
+	}
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+	for (int i = 0; i < n; i++)
+		point_draw(w, ord[i].stage);
+	glDeleteBuffers(1, &w->arena);
+	w->arena = next;
+	log_debug("world: block arena %lld -> %lld KB (%lld KB in %d blocks)", (long long)(w->arena_cap >> 10),
+		  (long long)(cap >> 10), (long long)(w->arena_used >> 10), n);
+	w->arena_cap = cap;
+	w->st.arena_grown++;
+	return gpu_check("block arena copy");
+}
+
+int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts)
+{
+	struct slot_mem *m = &w->mem[slot];
+	if (m->stage < 0)
+		return 0; /* not staged (evicted or generated again meanwhile) */
+	tris = tris < w->tcap ? tris : w->tcap;
+	verts = verts < w->vcap ? verts : w->vcap;
+	GLintptr need = block_bytes(tris, verts);
+	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
+	if (!ord)
+		return -1;
+	int n = live_ranges(w, ord);
+	GLintptr at = first_fit(w, ord, n, need);
+	if (at < 0) {
+		/* grow by half (at least what is needed), packing the blocks:
+		 * slots x worst case always fits */
+		GLintptr cap = w->arena_cap + w->arena_cap / 2;
+		if (cap < w->arena_used + need)
+			cap = w->arena_used + need;
+		cap = round_up(cap, 1 << 20);
+		if (cap > w->arena_max)
+			cap = w->arena_max;
+		if (regrow(w, ord, n, cap) < 0) {
+			free(ord);
+			return -1;
+		}
+		at = w->arena_used;
+	}
+	free(ord);
+	int stage = m->stage;
+	glBindBuffer(GL_COPY_WRITE_BUFFER, w->arena);
+	glBindBuffer(GL_COPY_READ_BUFFER, w->vbo);
+	if (verts)
+		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, w->vstride * stage, at, (GLsizeiptr)verts * VERTEX_BYTES);
+	glBindBuffer(GL_COPY_READ_BUFFER, w->ibo);
+	if (tris)
+		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, w->istride * stage,
+				    at + (GLintptr)verts * VERTEX_BYTES, (GLsizeiptr)tris * 12);
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+	w->stage_slot[stage] = -1;
+	m->stage = -1;
+	m->off = at;
+	m->bytes = need;
+	m->tris = tris;
+	m->verts = verts;
+	w->arena_used += need;
+	point_draw(w, slot);
+	return gpu_check("block settle");
+}
+
+/* Faults of the staging canaries in buf. */
+static int check_guards(GLuint buf, GLintptr stride, GLintptr used, const char *what)
+{
+	int bad = 0;
+	for (int s = 0; s < WORLD_STAGES; s++) {
+		uint32_t g[STAGE_GUARD / 4];
+		if (gpu_read_buffer(buf, stride * s + used, STAGE_GUARD, g) < 0)
+			return -1;
+		for (size_t i = 0; i < STAGE_GUARD / 4; i++)
+			if (g[i] != STAGE_GUARD_WORD) {
+				log_error("world: staging slot %d: the %s canary overwritten", s, what);
+				bad++;
+				break;
+			}
+	}
+	return bad;
+}
+
+int world_check_pool(struct world *w)
+{
+	int gv = check_guards(w->vbo, w->vstride, (GLintptr)w->vcap * VERTEX_BYTES, "vertex");
+	int gi = check_guards(w->ibo, w->istride, (GLintptr)w->tcap * 12, "index");
+	if (gv < 0 || gi < 0)
+		return -1;
+	int bad = gv + gi;
+	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
+	if (!ord)
+		return -1;
+	int n = live_ranges(w, ord);
+	GLintptr sum = 0, end = 0;
+	for (int i = 0; i < n; i++) {
+		const struct slot_mem *m = &ord[i];
+		if (m->off < end || m->off + m->bytes > w->arena_cap || m->bytes < block_bytes(m->tris, m->verts) ||
+		    m->off % ARENA_ALIGN || m->tris > w->tcap || m->verts > w->vcap) {
+			log_error("world: slot %d: arena bytes %lld..%lld (%u triangles, %u vertices) overlap another "
+				  "or lie outside the arena's %lld", m->stage, (long long)m->off, (long long)(m->off + m->bytes),
+				  m->tris, m->verts, (long long)w->arena_cap);
+			bad++;
+		}
+		end = m->off + m->bytes;
+		sum += m->bytes;
+	}
+	free(ord);
+	if (sum != w->arena_used) {
+		log_error("world: arena bytes in use %lld, the meshes hold %lld", (long long)w->arena_used, (long long)sum);
+		bad++;
+	}
+	return bad;
+}
+
+int world_test_compact(struct world *w)
+{
+	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
+	if (!ord)
+		return -1;
+	int n = live_ranges(w, ord), moved = 0;
+	int rc = regrow(w, ord, n, w->arena_cap);
+	for (int i = 0; i < n; i++)
+		moved += w->mem[ord[i].stage].off != ord[i].off;
+	free(ord);
+	return rc < 0 ? -1 : moved;
+}
