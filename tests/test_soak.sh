@@ -1,9 +1,11 @@
 #!/bin/sh
 # isoterra — the soak's judgement (tools/soak.sh) in both directions:
 #  - the series of window floors that failed CI's soak_world (one window
-#    caught high at each end, the rest flat: least squares +2.67 MB/min)
-#    passes the median slope, and so does a live process whose resident
-#    size swings by 40 MB without growing;
+#    caught high at each end, the rest flat: least squares +2.67 MB/min),
+#    the one that failed the package build's (two windows of six caught
+#    high: the median of the window slopes +3.06) and a live process whose
+#    resident size swings by 40 MB without growing pass: the floor of each
+#    half of the judged time stays where it was;
 #  - a series that grows in steps, and a live process that really grows
 #    (1 MB a second), fail.
 SOAK=${1:-${ISOTERRA_SRC:-.}/tools/soak.sh}
@@ -43,6 +45,14 @@ case $out in *FAIL*) fails=$((fails + 1)) ;; esac
 # the old judgement (least squares) failed this very series
 awk -v s="$(ls_slope "$out")" 'BEGIN { exit !(s > 2) }' || bad "ci_noisy: least squares $(ls_slope "$out") is not the +2.67 that failed CI"
 case $out in *" 224.7 248.4 225.0 225.0 225.0 245.0 MB"*) ;; *) bad "ci_noisy: floors not reproduced" ;; esac
+
+# the package build's soak_world under Debian 13 failed the median of the
+# window slopes (+3.06 MB/min): flat at 145-146 with windows caught high
+series "$T/pkg_noisy" 145.0 146.0 163.6 145.9 149.0 157.1
+out=$(judge 0 "$T/pkg_noisy") || true
+echo "$out"
+case $out in *FAIL*) fails=$((fails + 1)) ;; esac
+case $out in *"floor of each half 145.0 then 145.9 MB"*) ;; *) bad "pkg_noisy: halves' floors not 145.0 then 145.9" ;; esac
 
 series "$T/steps" 225 225 235 235 245 245 # 10 MB every 40 s
 out=$(judge 1 "$T/steps") || true

@@ -7,17 +7,21 @@
 #     --duration S    how long to sample (default 180)
 #     --interval S    seconds between samples (default 5)
 #     --warmup S      samples before this are not judged (default 60)
-#     --window S      the judged series: the lowest sample of each window of
-#                     S seconds after the warm-up (default 20): the floor the
-#                     process comes back to, not the frame in flight
-#     --max-slope M   growth allowed after the warm-up, MB per minute: the
-#                     median of the slopes between every two window floors
-#                     (Theil-Sen; default 2).  One window whose floor is
-#                     caught high (a frame in flight at every sample of it)
-#                     moves a median by at most one of its slopes, where it
-#                     moved a least-squares line by its whole height; a
-#                     process that grows steadily or in steps moves most
-#                     slopes and so the median
+#     --window S      the windows whose lowest samples are printed (default
+#                     20 s): the floor the process comes back to, not the
+#                     frame in flight
+#     --max-slope M   growth allowed after the warm-up, MB per minute
+#                     (default 2), judged on the floor: the lowest sample of
+#                     the second half of the judged time against the lowest
+#                     of the first half, over the time between the halves'
+#                     centres.  Memory held for a moment (a frame's bins)
+#                     only ever adds to what the process keeps, so it moves
+#                     the floors of neither half as long as each half comes
+#                     back to its floor once; what the process keeps for good
+#                     (a leak, steady or in steps) raises the second floor.
+#                     The median of the slopes between every two window
+#                     floors (Theil-Sen) and the least-squares line are
+#                     printed beside it for comparison
 #     --from-output   the clock starts at the program's first byte on
 #                     standard output (e.g. with --out -, the Y4M stream:
 #                     after the first frame), so a slow start-up (the world's
@@ -29,10 +33,10 @@
 #                     earlier run) with the options given
 #
 # After the duration the program gets SIGTERM.  Fails (exit 1) when the
-# program ends by itself before, when the median slope is over --max-slope,
-# or when there are fewer than 3 windows to judge.  Prints the floors, the
-# median slope, the least-squares slope (for comparison) and the band of all
-# samples after the warm-up.  docs/RELIABILITY.md ("Soak") says what the
+# program ends by itself before, when the floor's slope is over --max-slope,
+# or when there are fewer than 3 windows to judge.  Prints the window floors,
+# the two halves' floors and their slope, the median and least-squares
+# slopes (for comparison) and the band of all samples after the warm-up.  docs/RELIABILITY.md ("Soak") says what the
 # limits mean.
 duration=180 interval=5 warmup=60 window=20 max_slope=2 log= from_output= judge=
 while [ $# -gt 0 ]; do
@@ -112,18 +116,25 @@ median=$(awk '{ t[NR] = $1; f[NR] = $2 }
 	sort -g | awk '{ s[NR] = $1 } END { if (NR) print (NR % 2 ? s[(NR + 1) / 2] : (s[NR / 2] + s[NR / 2 + 1]) / 2); else print 0 }')
 awk -v w="$warmup" -v win="$window" -v max="$max_slope" -v died="$died" -v median="$median" -v floors="$floors" '
 	$1 < w { next }
-	{ if (!ns || $2 < blo) blo = $2; if (!ns || $2 > bhi) bhi = $2; ns++ }
+	{ if (!ns || $2 < blo) blo = $2; if (!ns || $2 > bhi) bhi = $2; ns++; st[ns] = $1; sv[ns] = $2; tend = $1 }
 	END {
 		while ((getline line < floors) > 0) {
 			split(line, a, " "); n++; fl[n] = a[2]
 			x += a[1]; y += a[2]; xx += a[1] * a[1]; xy += a[1] * a[2]
 		}
 		if (n < 3) { printf "soak: %d windows after the %d s warm-up: too few to judge\n", n, w; exit 1 }
-		slope = median * 60 / 1024
+		# the two halves of the judged time, and the lowest sample of each
+		mid = (w + tend) / 2
+		for (i = 1; i <= ns; i++)
+			if (st[i] < mid) { if (!n1 || sv[i] < lo1) lo1 = sv[i]; n1++ }
+			else { if (!n2 || sv[i] < lo2) lo2 = sv[i]; n2++ }
+		if (!n1 || !n2) { printf "soak: %d samples after the %d s warm-up: too few to judge\n", ns, w; exit 1 }
+		slope = (lo2 - lo1) / ((tend - w) / 2) * 60 / 1024
+		ts = median * 60 / 1024
 		ls = (n * xy - x * y) / (n * xx - x * x) * 60 / 1024
 		printf "soak: floors of %d windows of %d s after the %d s warm-up:", n, win, w
 		for (k = 1; k <= n; k++) printf " %.1f", fl[k] / 1024
-		printf " MB; median slope %+.2f MB/min (limit %s; least squares %+.2f); all %d samples after the warm-up %.1f-%.1f MB (band %.1f MB)\n",
-			slope, max, ls, ns, blo / 1024, bhi / 1024, (bhi - blo) / 1024
+		printf " MB; floor of each half %.1f then %.1f MB: %+.2f MB/min (limit %s; median of window slopes %+.2f, least squares %+.2f); all %d samples after the warm-up %.1f-%.1f MB (band %.1f MB)\n",
+			lo1 / 1024, lo2 / 1024, slope, max, ts, ls, ns, blo / 1024, bhi / 1024, (bhi - blo) / 1024
 		exit (slope > max || died != "") ? 1 : 0
 	}' "$samples"

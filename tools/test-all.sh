@@ -41,7 +41,7 @@ status=0
 # everything else.
 TEST_ARGS=""
 run_suite "release (-Werror)" build-ci -Dwerror=true -Dbuildtype=debugoptimized || status=1
-TEST_ARGS="--no-suite vm --no-suite gallery"
+TEST_ARGS="--no-suite vm --no-suite gallery --no-suite soak"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
