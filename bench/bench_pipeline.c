@@ -414,6 +414,7 @@ int main(int argc, char **argv)
 	struct platform *plat = bench_open(p.platform, 64, 64);
 	if (!plat)
 		return 1;
+	shader_set_dir(p.shader_dir); /* --shader-dir: try a shader's edit on the same field */
 	print_field(&o, &p);
 	printf("  %d runs per series%s; wall ms around glFinish; CPU = this process's CPU time (llvmpipe's and\n"
 	       "  libnoise's threads included; VTK's: its child's)\n",

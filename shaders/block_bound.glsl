@@ -19,7 +19,7 @@ layout(std430, binding = BIND_AUX_B) restrict writeonly buffer BoundOut { uint b
 uniform uint u_bound_count;
 
 #define BOUND_SUB 24
-shared float s_red[64]; // the reductions (256 bytes, as the density pass's s_inside)
+shared float s_red[64]; // the reductions (256 bytes: app/gpu/gl_limits.c)
 
 // the work group's minimum (sign 1) or maximum (sign -1) of v
 float group_reduce(float v, float sign)

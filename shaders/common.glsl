@@ -42,14 +42,18 @@ uint sign_slab_bits()
 #ifdef FIELD_PASS_DENSITY
 // The density pass: the field at every corner of the grid plus the margin
 // (for gradients, and the ambient-occlusion rays of world blocks), and the
-// sign bits.  Dispatch: (ceil(dim.x * dim.y / 64), dim.z) groups of 64.
+// sign bits.  Each invocation computes the 32 samples of one sign word, in
+// slab order, and writes the word itself: no shared memory and no barrier
+// (a barrier is a switch of every invocation's context on a CPU driver:
+// packing the bits through shared memory cost llvmpipe 10 ns a sample, more
+// than an octave of noise).  Dispatch: (ceil(words of a slab / 64), slabs)
+// groups of 64.
 float density(vec3 ws); // the field's
 layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float dens_out[]; };
 layout(std430, binding = BIND_SIGNS) restrict writeonly buffer SignOut { uint sign_out[]; };
 uniform float u_density_bias; // subtracted (coarse LOD blocks erode a little)
 uniform uint u_sign_words;    // the sign buffer's capacity in words
 uniform int u_z0;             // first z slab of this dispatch (a block's density over two frames)
-shared uint s_inside[64];
 
 // Density grid sample of slab index i (x + dim.x * y): y by a float
 // reciprocal corrected once each way (exact while i < 2^23; no integer
@@ -71,38 +75,40 @@ ivec2 slab_xy(int i, int dx)
 void main()
 {
 	ivec3 dim = dens_dims();
-	int i = int(gl_WorkGroupID.x * 64u + gl_LocalInvocationID.x);
-	ivec3 id = ivec3(slab_xy(i, dim.x), int(gl_WorkGroupID.y) + u_z0);
-	bool inside = false;
-	if (i < dim.x * dim.y) {
-		vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
-		float d = density(ws) - u_density_bias;
-		if (u_closed != 0) {
-			// air on the border corners (walls where the box cuts rock) and
-			// clearly air in the margin (so the walls' gradients point out)
-			ivec3 lo = ivec3(u_margin), hi = dim - 1 - u_margin;
-			if (any(lessThan(id, lo)) || any(greaterThan(id, hi)))
-				d = min(d, u_iso - u_cell);
-			else if (any(equal(id, lo)) || any(equal(id, hi)))
-				d = min(d, u_iso - 1e-3 * u_cell);
+	int n = dim.x * dim.y;
+	uint words = sign_slab_bits() / 32u; // a slab's words, padding included
+	uint wv = gl_WorkGroupID.x * 64u + gl_LocalInvocationID.x;
+	if (wv >= words)
+		return;
+	int z = int(gl_WorkGroupID.y) + u_z0;
+	int i0 = int(wv) * 32;
+	ivec2 xy = slab_xy(i0, dim.x);
+	uint bits = 0u;
+	for (int j = 0; j < 32; ++j) {
+		if (i0 + j < n) {
+			ivec3 id = ivec3(xy, z);
+			vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
+			float d = density(ws) - u_density_bias;
+			if (u_closed != 0) {
+				// air on the border corners (walls where the box cuts rock) and
+				// clearly air in the margin (so the walls' gradients point out)
+				ivec3 lo = ivec3(u_margin), hi = dim - 1 - u_margin;
+				if (any(lessThan(id, lo)) || any(greaterThan(id, hi)))
+					d = min(d, u_iso - u_cell);
+				else if (any(equal(id, lo)) || any(equal(id, hi)))
+					d = min(d, u_iso - 1e-3 * u_cell);
+			}
+			dens_out[i0 + j + n * z] = d;
+			bits |= uint(d > u_iso) << uint(j);
 		}
-		dens_out[i + dim.x * dim.y * id.z] = d;
-		inside = d > u_iso;
+		if (++xy.x == dim.x) {
+			xy.x = 0;
+			xy.y++;
+		}
 	}
-	// 32 lanes' bits -> one word: each lane its bit, one barrier, then
-	// lanes 0 and 32 gather
-	uint l = gl_LocalInvocationID.x;
-	s_inside[l] = uint(inside) << (l & 31u);
-	memoryBarrierShared();
-	barrier();
-	if ((l & 31u) == 0u) {
-		uint w = 0u;
-		for (uint k = 0u; k < 32u; ++k)
-			w |= s_inside[l + k];
-		uint wi = (uint(id.z) * sign_slab_bits() + gl_WorkGroupID.x * 64u + l) >> 5u;
-		if (wi < u_sign_words)
-			sign_out[wi] = w;
-	}
+	uint wi = uint(z) * words + wv;
+	if (wi < u_sign_words)
+		sign_out[wi] = bits;
 }
 #elif defined(FIELD_PASS_BOUND)
 #include "block_bound.glsl"

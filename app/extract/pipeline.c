@@ -425,10 +425,12 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
 	glProgramUniform1ui(pl->p_density, glGetUniformLocation(pl->p_density, "u_sign_words"), pl->sign_words);
 	glProgramUniform1i(pl->p_density, glGetUniformLocation(pl->p_density, "u_z0"), z0);
-	/* one z slab of 64-sample groups per row of groups (common.glsl) */
+	/* one z slab per row of groups; an invocation per sign word, 32
+	 * samples, a slab's words padded to a multiple of two (common.glsl) */
 	int m2 = 1 + 2 * grid_margin(&pl->g);
+	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64) * 2;
 	if (z1 > z0)
-		glDispatchCompute(div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64), (GLuint)(z1 - z0), 1);
+		glDispatchCompute((GLuint)div_up(slab_words, 64), (GLuint)(z1 - z0), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");

@@ -120,10 +120,9 @@ static const struct limit_def defs[] = {
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, 128), N_LOCAL, 0, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1, 128), N_LOCAL, 1, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 2, 64), N_LOCAL, 2, 0, NULL },
-	/* the 'shared' variables, 256 bytes in each program: the density pass's
-	 * uint s_inside[64], the world pre-pass's float s_red[64]
-	 * (tests/test_gl_limits.c checks there is no other) */
-	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 64 * 4, "common.glsl s_inside (sign bits)" },
+	/* the one 'shared' variable, 256 bytes: the world pre-pass's float
+	 * s_red[64] (tests/test_gl_limits.c checks there is no other) */
+	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 64 * 4, "block_bound.glsl s_red (the pre-pass's reductions)" },
 	{ LIM(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_COMPUTE, 0, NULL },
 	{ LIM(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_VERTEX, 0, NULL },
 	{ LIM(GL_MAX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_FRAGMENT, 0, NULL },
