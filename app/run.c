@@ -78,7 +78,7 @@ int render_to_image(const struct params *p_in, struct image *img, char *err, siz
 	struct scene *scene = scene_create(&p, err, errlen);
 	if (!scene)
 		return -1;
-	struct renderer *r = renderer_create(w, h, err, errlen);
+	struct renderer *r = renderer_create(w, h, p.antialias, err, errlen);
 	struct sink_set sinks = { .n = 0 };
 	int rc = -1;
 	if (r && sinks_add(&sinks, sink_memory_open(img, err, errlen)) == 0) {
@@ -141,7 +141,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	if (gpu_init(&caps, p->verbose, err, errlen) < 0)
 		return 1;
 	log_debug("platform %s on %s", rn->plat->backend->name, rn->plat->device_desc);
-	rn->r = renderer_create(rn->w, rn->h, err, errlen);
+	rn->r = renderer_create(rn->w, rn->h, p->antialias, err, errlen);
 	return rn->r ? 0 : 1;
 }
 

@@ -132,7 +132,7 @@ int main(int argc, char **argv)
 	struct edits *ed = edits_create();
 	struct terrain *tr = terrain_create(ed);
 	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
-	if (!pl || !(r = renderer_create(w, h, err, sizeof(err))) || bench_run(pl, &p) < 0) {
+	if (!pl || !(r = renderer_create(w, h, p.antialias, err, sizeof(err))) || bench_run(pl, &p) < 0) {
 		fprintf(stderr, "bench_display: %s\n", err);
 		goto out;
 	}

@@ -248,7 +248,7 @@ int main(int argc, char **argv)
 	struct edits *ed = edits_create();
 	struct terrain *tr = terrain_create(ed);
 	s.pl = pipeline_create(&s.g, &s.p, terrain_field(tr), err, sizeof(err));
-	s.r = s.pl ? renderer_create(s.w, s.h, err, sizeof(err)) : NULL;
+	s.r = s.pl ? renderer_create(s.w, s.h, s.p.antialias, err, sizeof(err)) : NULL;
 	if (!s.r) {
 		fprintf(stderr, "bench: %s\n", err);
 		return 1;

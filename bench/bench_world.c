@@ -109,7 +109,7 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	char err[512];
 	struct params p = *p_in;
 	snprintf(p.size, sizeof(p.size), "%dx%d", w, h);
-	struct renderer *r = renderer_create(w, h, err, sizeof(err));
+	struct renderer *r = renderer_create(w, h, p.antialias, err, sizeof(err));
 	struct edits *ed = edits_create();
 	struct world *wd = world_create(&p, ed, err, sizeof(err));
 	struct autopilot ap;

@@ -50,7 +50,7 @@ int main(void)
 	char err[512] = "";
 	struct fixture_terrain ft;
 	struct renderer *r = NULL;
-	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 || !(r = renderer_create(W, H, err, sizeof(err))) ||
+	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 || !(r = renderer_create(W, H, ANTIALIAS_AUTO, err, sizeof(err))) ||
 	    fixture_run(ft.pl, &p) < 0) {
 		fprintf(stderr, "setup: %s\n", err);
 		return 1;

@@ -26,7 +26,7 @@ int main(void)
 	struct params p;
 	params_defaults(&p);
 	p.grid = 32;
-	struct renderer *r = renderer_create(64, 64, err, sizeof(err));
+	struct renderer *r = renderer_create(64, 64, ANTIALIAS_AUTO, err, sizeof(err));
 	struct scene *s = scene_create(&p, err, sizeof(err));
 	CHECK(r && s, "scene: %s", err);
 	struct mesh m32, m37, ref;

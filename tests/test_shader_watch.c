@@ -146,7 +146,7 @@ int main(void)
 	struct shader_watch *w = shader_watch_open(p.shader_dir, err, sizeof(err));
 	CHECK(w != NULL, "shader_watch_open: %s", err);
 	struct scene *scene = scene_create(&p, err, sizeof(err));
-	struct renderer *r = renderer_create(96, 72, err, sizeof(err));
+	struct renderer *r = renderer_create(96, 72, ANTIALIAS_AUTO, err, sizeof(err));
 	CHECK(scene && r, "scene and renderer: %s", err);
 	struct sink_set sinks = { .n = 0 };
 	sinks_add(&sinks, &es.base);

@@ -91,7 +91,7 @@ static void check_no_holes(const struct params *p)
 	char err[512] = "";
 	struct edits *ed = edits_create();
 	struct world *w = world_create(p, ed, err, sizeof(err));
-	struct renderer *r = renderer_create(160, 160, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 160, ANTIALIAS_AUTO, err, sizeof(err));
 	CHECK(w && r, "world/renderer: %s", err);
 	if (!w || !r) {
 		renderer_destroy(r);
@@ -246,7 +246,7 @@ static void check_staged_matches_offline(const struct params *p_in)
 	char err[512] = "";
 	struct edits *ed = edits_create();
 	struct world *a = world_create(&p, ed, err, sizeof(err)), *b = world_create(&p, ed, err, sizeof(err));
-	struct renderer *r = renderer_create(160, 160, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 160, ANTIALIAS_AUTO, err, sizeof(err));
 	CHECK(a && b && r, "worlds/renderer: %s", err);
 	struct image ia = { 0 }, ib = { 0 };
 	if (a && b && r) {
@@ -329,7 +329,7 @@ static int world_image(const struct params *p, double t, struct image *img)
 	char err[512] = "";
 	struct edits *ed = edits_create();
 	struct world *w = world_create(p, ed, err, sizeof(err));
-	struct renderer *r = renderer_create(160, 96, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 96, p->antialias, err, sizeof(err));
 	struct autopilot ap;
 	int rc = -1;
 	if (w && r && autopilot_init(&ap, p, ed) == 0) {
@@ -352,6 +352,7 @@ static void check_determinism_and_golden(const struct params *p_in)
 	 * rock (the default seed's frame is mostly sky) */
 	struct params q = *p_in;
 	q.seed = 7;
+	q.antialias = ANTIALIAS_MSAA; /* the golden image's, whatever the driver's auto picks */
 	const struct params *p = &q;
 	struct image a = { 0 }, b = { 0 }, ref = { 0 };
 	CHECK(world_image(p, 4.0, &a) == 0, "world image");
@@ -406,7 +407,7 @@ static void check_fade_no_dots(const struct params *p_in)
 	char err[512] = "";
 	struct edits *ed = edits_create();
 	struct world *w = world_create(&q, ed, err, sizeof(err));
-	struct renderer *r = renderer_create(160, 96, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 96, ANTIALIAS_AUTO, err, sizeof(err));
 	struct image mid = { 0 }, settled = { 0 };
 	CHECK(w && r, "world/renderer: %s", err);
 	if (w && r) {

@@ -45,7 +45,7 @@ static int run_world(const struct params *p, long long arena_start, bool move, s
 	struct edits *ed = edits_create();
 	struct world *w = world_create(p, ed, err, sizeof(err));
 	world_test_arena_start(0);
-	struct renderer *r = renderer_create(160, 96, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 96, ANTIALIAS_AUTO, err, sizeof(err));
 	struct autopilot ap;
 	int rc = -1;
 	if (w && r && autopilot_init(&ap, p, ed) == 0) {

@@ -14,8 +14,11 @@ BIN=${1:-./build/isoterra}
 OUT=${2:-docs/gallery}
 SIZE=${GALLERY_SIZE:-192x108}
 mkdir -p "$OUT"
+# 4x multisampled whatever the driver (auto gives a software rasterizer
+# the filter after the frame): the documentation's pictures get the best
+# edges, and the same ones on every machine
 render() { # the program's messages only when it fails
-	"$BIN" "$@" 2>"$OUT/.err.tmp" || { cat "$OUT/.err.tmp" >&2; rm -f "$OUT/.err.tmp"; exit 1; }
+	"$BIN" --antialias msaa "$@" 2>"$OUT/.err.tmp" || { cat "$OUT/.err.tmp" >&2; rm -f "$OUT/.err.tmp"; exit 1; }
 	rm -f "$OUT/.err.tmp"
 }
 "$BIN" --list-presets | awk 'NR > 1 { print $1 }' >"$OUT/.presets.tmp"

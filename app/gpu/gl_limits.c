@@ -79,6 +79,9 @@ static const struct gl_pass passes[] = {
 	/* the governor's upscale (app/render/upscale.c) */
 	{ "upscale.vert + upscale.frag", NULL, "upscale.vert", "upscale.frag", NULL, false,
 	  VF(2, 1, 4), { 0, 0, 0 }, -1, 0 },
+	/* edge smoothing over the finished frame (--antialias fxaa) */
+	{ "upscale.vert + fxaa.frag", NULL, "upscale.vert", "fxaa.frag", NULL, false,
+	  VF(2, 1, 4), { 0, 0, 0 }, -1, 0 },
 	/* the tests' own passes */
 	{ "hp_test.comp", "hp_test.comp", NULL, NULL, NULL, true,
 	  CS(5, 0, 0, 0, 22), { 64, 1, 1 }, BIND_TEST_OUT, 0 },

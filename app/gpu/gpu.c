@@ -98,6 +98,12 @@ int gpu_check(const char *what)
 	return -1;
 }
 
+bool gpu_software_rasterizer(void)
+{
+	const char *ren = (const char *)glGetString(GL_RENDERER);
+	return ren && (strstr(ren, "llvmpipe") || strstr(ren, "softpipe"));
+}
+
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
 {
 	if (size <= 0)

@@ -69,5 +69,8 @@ int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen);
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
 /* glGetError() != GL_NO_ERROR -> logs "what: GL error 0x..." and returns -1. */
 int gpu_check(const char *what);
+/* The current context renders on the CPU (llvmpipe, softpipe): work a GPU
+ * does in fixed function (multisampling) costs as much as shading there. */
+bool gpu_software_rasterizer(void);
 
 #endif

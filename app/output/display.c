@@ -50,7 +50,7 @@ static int resize(struct display_sink *d, struct sink_frame *fr, char *err, size
 {
 	struct platform *plat = d->plat;
 	char e[256];
-	struct renderer *nr = renderer_create(plat->width, plat->height, e, sizeof(e));
+	struct renderer *nr = renderer_create(plat->width, plat->height, renderer_antialias(fr->r), e, sizeof(e));
 	if (!nr) {
 		snprintf(err, errlen, "resize to %dx%d: %s", plat->width, plat->height, e);
 		return -1;

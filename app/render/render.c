@@ -1,5 +1,6 @@
-/* isoterra — offscreen rendering: multisampled colour+depth FBO, lit draw of
- * the mesh with the pipeline's indirect command, resolve and read-back. */
+/* isoterra — offscreen rendering: colour+depth FBO (multisampled, or
+ * smoothed after the frame: --antialias), lit draw of the mesh with the
+ * pipeline's indirect command, resolve and read-back. */
 #include "render.h"
 #include "render_int.h"
 #include "gpu.h"
@@ -11,6 +12,7 @@
 
 struct renderer {
 	int w, h, samples;
+	int aa;       /* ANTIALIAS_MSAA (samples > 0), _FXAA (fx) or _OFF */
 	GLuint fbo_ms, rb_color_ms, rb_depth;
 	GLuint fbo, rb_color;
 	GLuint prog, vao, sky, water;
@@ -21,6 +23,7 @@ struct renderer {
 	float scale;  /* the governor's render scale: the frame is drawn at */
 	int sw, sh;   /* sw x sh in the lower-left corner, then upscaled */
 	struct upscale up;
+	struct upscale fx; /* --antialias fxaa: the pass at full size */
 };
 
 static const char *fbo_status(GLenum s)
@@ -35,7 +38,7 @@ static const char *fbo_status(GLenum s)
 	}
 }
 
-struct renderer *renderer_create(int width, int height, char *err, size_t errlen)
+struct renderer *renderer_create(int width, int height, int antialias, char *err, size_t errlen)
 {
 	struct renderer *r = calloc(1, sizeof(*r));
 	if (!r) {
@@ -56,7 +59,16 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 		free(r);
 		return NULL;
 	}
-	r->samples = max_samples >= 4 ? 4 : 0;
+	/* auto: 4x multisampling where a GPU does it in hardware; a software
+	 * rasterizer pays for it per sample (llvmpipe: 2.5 times the world's
+	 * whole frame at 640x480), so the filter after the frame there; a
+	 * driver without 4 samples gets the filter too */
+	r->aa = antialias;
+	if (r->aa == ANTIALIAS_AUTO)
+		r->aa = gpu_software_rasterizer() ? ANTIALIAS_FXAA : ANTIALIAS_MSAA;
+	if (r->aa == ANTIALIAS_MSAA && max_samples < 4)
+		r->aa = ANTIALIAS_FXAA;
+	r->samples = r->aa == ANTIALIAS_MSAA ? 4 : 0;
 
 	glGenRenderbuffers(1, &r->rb_color);
 	glBindRenderbuffer(GL_RENDERBUFFER, r->rb_color);
@@ -92,7 +104,8 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 		r->sky = gpu_graphics_program("sky.vert", "sky.frag", NULL, err, errlen);
 	if (r->sky)
 		r->water = gpu_graphics_program("water.vert", "water.frag", NULL, err, errlen);
-	if (!r->prog || !r->sky || !r->water) {
+	if (!r->prog || !r->sky || !r->water ||
+	    (r->aa == ANTIALIAS_FXAA && upscale_init(&r->fx, "fxaa.frag", width, height, err, errlen) < 0)) {
 		renderer_destroy(r);
 		return NULL;
 	}
@@ -104,6 +117,11 @@ struct renderer *renderer_create(int width, int height, char *err, size_t errlen
 		return NULL;
 	}
 	return r;
+}
+
+int renderer_antialias(const struct renderer *r)
+{
+	return r->aa;
 }
 
 void renderer_destroy(struct renderer *r)
@@ -121,6 +139,7 @@ void renderer_destroy(struct renderer *r)
 	if (r->surface)
 		glDeleteTextures(1, &r->surface);
 	upscale_free(&r->up);
+	upscale_free(&r->fx);
 	GLuint fb[2] = { r->fbo, r->fbo_ms };
 	glDeleteFramebuffers(2, fb);
 	GLuint rb[3] = { r->rb_color, r->rb_color_ms, r->rb_depth };
@@ -243,6 +262,8 @@ int renderer_end(struct renderer *r)
 	if (rc == 0 && (r->sw != r->w || r->sh != r->h)) {
 		rc = upscale_run(&r->up, r->samples ? r->fbo_ms : r->fbo, r->sw, r->sh);
 		glViewport(0, 0, r->w, r->h);
+	} else if (rc == 0 && r->aa == ANTIALIAS_FXAA) {
+		rc = upscale_run(&r->fx, r->fbo, r->w, r->h);
 	}
 	glBindVertexArray(0);
 	glUseProgram(0);
@@ -252,7 +273,7 @@ int renderer_end(struct renderer *r)
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen)
 {
 	scale = scale < 0.5f ? 0.5f : scale > 1.0f ? 1.0f : scale;
-	if (scale < 1.0f && !r->up.prog && upscale_init(&r->up, r->w, r->h, err, errlen) < 0)
+	if (scale < 1.0f && !r->up.prog && upscale_init(&r->up, "upscale.frag", r->w, r->h, err, errlen) < 0)
 		return -1;
 	r->scale = scale;
 	r->sw = (int)(r->w * scale + 0.5f);

@@ -1,5 +1,5 @@
 /* isoterra — camera and the lit draw of the extracted mesh into an
- * offscreen (multisampled) framebuffer. */
+ * offscreen (multisampled, or smoothed after the frame) framebuffer. */
 #ifndef ISOTERRA_RENDER_H
 #define ISOTERRA_RENDER_H
 
@@ -29,8 +29,14 @@ void camera_look_up(struct camera *c, const float eye[3], const float at[3], con
 GLuint surface_texture_create(void);
 
 struct renderer;
-struct renderer *renderer_create(int width, int height, char *err, size_t errlen);
+/* A width x height target; antialias: an ANTIALIAS_* (params.def: auto is
+ * 4x multisampling on a GPU, the filter after the frame on a software
+ * rasterizer).  NULL with err. */
+struct renderer *renderer_create(int width, int height, int antialias, char *err, size_t errlen);
 void renderer_destroy(struct renderer *r);
+/* The edge smoothing it uses (never ANTIALIAS_AUTO): a renderer made again
+ * at another size (a window resized) keeps it. */
+int renderer_antialias(const struct renderer *r);
 /* A frame in parts: begin (clear, program, camera), any number of meshes
  * drawn with their indirect commands (sink > 0 draws the mesh moved that
  * many world units along its normals into the rock: a level of detail

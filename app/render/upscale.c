@@ -1,7 +1,8 @@
-/* isoterra — the upscale pass (render_int.h): a frame drawn into the
- * lower-left part of the render target is resolved into a texture and
- * drawn back over the whole target with shaders/upscale.frag (Catmull-Rom,
- * clamped to the nearest texels: edges stay crisp).  The overlays and the
+/* isoterra — the passes over a finished frame (render_int.h): a frame
+ * drawn into the lower-left part of the render target is resolved into a
+ * texture and drawn back over the whole target, with shaders/upscale.frag
+ * (Catmull-Rom, clamped to the nearest texels: edges stay crisp) or, at
+ * full size, shaders/fxaa.frag (edge smoothing).  The overlays and the
  * sinks that come after see a full-size frame. */
 #include "render_int.h"
 #include "gpu.h"
@@ -9,10 +10,10 @@
 #include <stdio.h>
 #include <string.h>
 
-int upscale_init(struct upscale *u, int w, int h, char *err, size_t errlen)
+int upscale_init(struct upscale *u, const char *fs, int w, int h, char *err, size_t errlen)
 {
 	memset(u, 0, sizeof(*u));
-	u->prog = gpu_graphics_program("upscale.vert", "upscale.frag", NULL, err, errlen);
+	u->prog = gpu_graphics_program("upscale.vert", fs, NULL, err, errlen);
 	if (!u->prog)
 		return -1;
 	u->w = w;
@@ -36,7 +37,7 @@ int upscale_init(struct upscale *u, int w, int h, char *err, size_t errlen)
 	GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
 	glBindFramebuffer(GL_FRAMEBUFFER, 0);
 	if (st != GL_FRAMEBUFFER_COMPLETE || gpu_check("upscale target") < 0) {
-		snprintf(err, errlen, "cannot create the %dx%d upscale texture (framebuffer status 0x%x)", w, h, st);
+		snprintf(err, errlen, "cannot create the %dx%d texture of %s (framebuffer status 0x%x)", w, h, fs, st);
 		upscale_free(u);
 		return -1;
 	}
