@@ -3,7 +3,9 @@
 // projection, a detail normal near the camera, per-vertex ambient occlusion,
 // altitude/strata colour bands over a soil colour table, snow on flat high
 // ground, sun + hemispheric sky light, distance/height fog towards the sky
-// colour, gamma-correct output.
+// colour, gamma-correct output.  Compiled for the parameters
+// (params_glsl_specialization, app/render/render.c): the shape's and the
+// soil's branches are constants, the marble colour is in only when on.
 in vec3 v_pos;
 in vec3 v_nrm;
 in float v_ao;
@@ -33,6 +35,7 @@ vec3 soil_color(float t)
 	return mix(c[i], c[i + 1], fract(x));
 }
 
+#if TERM_MARBLE_COLOR
 // Marble colour (Perlin 1985): sine veins along y pushed by a turbulence
 // of the surface texture's height channel (four octaves of |h - 0.5|),
 // mixed into the rock by marble_color.
@@ -49,6 +52,7 @@ vec3 marble_color(vec3 rock, vec3 pos)
 	vec3 stone = mix(vec3(0.86, 0.84, 0.80), vec3(0.30, 0.32, 0.36), vein);
 	return mix(rock, stone * (0.85 + 0.15 * s), u_marble_color);
 }
+#endif
 
 void main()
 {
@@ -93,8 +97,10 @@ void main()
 	vec3 rock = soil_color(slow * 0.8 + band * 0.25);
 	rock *= mix(1.0, 0.72 + 0.5 * band * band, u_strata);
 	rock *= 0.75 + 0.5 * tex;
+#if TERM_MARBLE_COLOR
 	if (u_marble_color > 0.0)
 		rock = marble_color(rock, v_pos);
+#endif
 	vec3 grass = mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
 	float flat_ground = smoothstep(0.62, 0.86, up_n + (hgt - 0.5) * 0.3);
 	vec3 albedo = mix(rock, grass, flat_ground);

@@ -10,12 +10,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* the terrain program's specialization (params_glsl_specialization) */
+#define RENDER_KEY_MAX 2048
+
 struct renderer {
 	int w, h, samples;
 	int aa;       /* ANTIALIAS_MSAA (samples > 0), _FXAA (fx) or _OFF */
 	GLuint fbo_ms, rb_color_ms, rb_depth;
 	GLuint fbo, rb_color;
-	GLuint prog, vao, sky, water;
+	GLuint prog, vao, sky, water; /* prog: the terrain's, for key */
+	char key[RENDER_KEY_MAX];
 	bool draw_sky;
 	GLint l_viewproj, l_eye, l_fog, l_sink;
 	float clear[3];
@@ -99,12 +103,11 @@ struct renderer *renderer_create(int width, int height, int antialias, char *err
 		return NULL;
 	}
 	r->draw_sky = true;
-	r->prog = gpu_graphics_program("render.vert", "render.frag", NULL, err, errlen);
-	if (r->prog)
-		r->sky = gpu_graphics_program("sky.vert", "sky.frag", NULL, err, errlen);
+	/* the terrain's program is made for the parameters at the first frame */
+	r->sky = gpu_graphics_program("sky.vert", "sky.frag", NULL, err, errlen);
 	if (r->sky)
 		r->water = gpu_graphics_program("water.vert", "water.frag", NULL, err, errlen);
-	if (!r->prog || !r->sky || !r->water ||
+	if (!r->sky || !r->water ||
 	    (r->aa == ANTIALIAS_FXAA && upscale_init(&r->fx, "fxaa.frag", width, height, err, errlen) < 0)) {
 		renderer_destroy(r);
 		return NULL;
@@ -147,8 +150,37 @@ void renderer_destroy(struct renderer *r)
 	free(r);
 }
 
+/* The terrain's program for p: specialized (params_glsl_specialization:
+ * the shape's and soil's branches folded, the marble colour compiled only
+ * when on; a software rasterizer runs a uniform branch's both sides),
+ * made again when a live knob changes the key, the old one deleted (the
+ * program binary cache keeps switching back cheap).  0, or -1 (logged). */
+static int terrain_program(struct renderer *r, const struct params *p)
+{
+	char key[RENDER_KEY_MAX];
+	if (params_glsl_specialization(p, key, sizeof(key)) < 0) {
+		log_error("terrain program: specialization key too long");
+		return -1;
+	}
+	if (r->prog && !strcmp(key, r->key))
+		return 0;
+	char err[512];
+	GLuint prog = gpu_graphics_program("render.vert", "render.frag", key, err, sizeof(err));
+	if (!prog) {
+		log_error("terrain program: %s", err);
+		return -1;
+	}
+	if (r->prog)
+		glDeleteProgram(r->prog);
+	r->prog = prog;
+	snprintf(r->key, sizeof(r->key), "%s", key);
+	return 0;
+}
+
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p)
 {
+	if (terrain_program(r, p) < 0)
+		return -1;
 	glBindFramebuffer(GL_FRAMEBUFFER, r->samples ? r->fbo_ms : r->fbo);
 	glViewport(0, 0, r->sw, r->sh);
 	/* sky colour (linear -> the shader's fog colour matches it) */
@@ -294,7 +326,8 @@ void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h)
 
 int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
 {
-	renderer_begin(r, c, p);
+	if (renderer_begin(r, c, p) < 0)
+		return -1;
 	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 1.0f);
 	/* water inside the volume only, below its top */
 	struct grid g;

@@ -211,7 +211,8 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 {
 	if (frame_throttle(w) < 0)
 		return -1;
-	renderer_begin(r, c, p);
+	if (renderer_begin(r, c, p) < 0)
+		return -1;
 	int drawn = 0;
 	uint64_t tris = 0;
 	/* want[] is sorted nearest first: front to back */
