@@ -933,8 +933,9 @@ static void test_geotiff(void)
 		fputs("II*\\0 this is not a TIFF", f);
 		fclose(f);
 	}
-	CHECK(heightmap_load(path, &hm, err, sizeof(err)) < 0 && strstr(err, "garbage.tif") && strstr(err, "GDAL"),
-	      "garbage GeoTIFF refused: %s", err);
+	CHECK(heightmap_load(path, &hm, err, sizeof(err)) < 0 && strstr(err, "garbage.tif") &&
+		      strstr(err, "GDAL cannot read it"),
+	      "garbage GeoTIFF refused by GDAL (through the module): %s", err);
 	printf("  GeoTIFF through GDAL: %dx%d Float32 DEM with no-data read and normalised; garbage refused (%s)\n", W,
 	       H, err);
 }

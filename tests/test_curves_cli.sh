@@ -100,6 +100,22 @@ expect_fail "trunc.png" $SMALL --field heightmap --heightmap trunc.png
 "$BIN" --size 16x16 --grid 4 --out rgb.png >/dev/null 2>&1 || bad "could not make an RGB PNG"
 expect_fail "rgb.png.*grayscale" $SMALL --field heightmap --heightmap rgb.png
 expect_fail "GDAL" $SMALL --field heightmap --heightmap dem.tif
+# a GeoTIFF read through the module (isoterra-geotiff.so, next to the
+# program or in $ISOTERRA_MODULE_DIR): GDAL's own refusal of a file that is
+# not one; a copy of the program with no module anywhere names the module
+# and where it looked (a build without GDAL says so instead)
+printf 'II*\000 this is not a TIFF' >bad.tif
+if "$BIN" --help 2>/dev/null | grep -q "GeoTIFF" && [ -e "$(dirname "$BIN")/isoterra-geotiff.so" ]; then
+	expect_fail "bad.tif.*GDAL cannot read it as a GeoTIFF" $SMALL --field heightmap --heightmap bad.tif
+	mkdir -p lone && cp "$BIN" lone/isoterra
+	BIN0=$BIN
+	BIN=$PWD/lone/isoterra
+	ISOTERRA_MODULE_DIR= expect_fail "bad.tif.*need the module isoterra-geotiff.so.*not loaded from $PWD/lone" \
+		$SMALL --field heightmap --heightmap bad.tif
+	BIN=$BIN0
+else
+	expect_fail "bad.tif.*GDAL" $SMALL --field heightmap --heightmap bad.tif
+fi
 expect_fail "field=heightmap needs a heightmap" $SMALL --field heightmap
 expect_fail "cannot open.*nothere.png" $SMALL --field heightmap --heightmap nothere.png
 

@@ -3,6 +3,8 @@
 #include "image.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <stdint.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,81 +15,55 @@
 #define HEIGHTMAP_MAX_SIDE 16384
 
 #ifdef ISOTERRA_HAVE_GDAL
-#include <cpl_error.h>
-#include <gdal.h>
-#include <math.h>
+#include "geotiff.h"
+#include <dlfcn.h>
 
-/* GeoTIFF (any raster GDAL opens) through GDAL: band 1 as floats, the
- * band's valid range [min, max] mapped onto 0..65535 (so heightmap_base /
- * heightmap_height place it as they place a PNG), no-data samples at min. */
-static int load_gdal(const char *path, struct heightmap *hm, char *err, size_t errlen)
+/* The GeoTIFF module: from $ISOTERRA_MODULE_DIR (the build tree's tests),
+ * the program's own folder (an uninstalled build), then the installed
+ * ISOTERRA_MODULE_DIR.  Loaded once, kept for the process. */
+static geotiff_load_fn geotiff_module(char *err, size_t errlen)
 {
-	if (GDALGetDriverCount() == 0) /* not registered yet */
-		GDALAllRegister();
-	CPLPushErrorHandler(CPLQuietErrorHandler);
-	CPLErrorReset();
-	GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, NULL, NULL, NULL);
-	if (!ds) {
-		const char *m = CPLGetLastErrorMsg();
-		snprintf(err, errlen, "heightmap '%s': GDAL cannot read it as a GeoTIFF: %s", path,
-			 m && m[0] ? m : "unknown error");
-		CPLPopErrorHandler();
-		return -1;
+	static geotiff_load_fn fn;
+	if (fn)
+		return fn;
+	char dirs[3][PATH_MAX];
+	int nd = 0;
+	const char *env = getenv("ISOTERRA_MODULE_DIR");
+	if (env && env[0])
+		snprintf(dirs[nd++], PATH_MAX, "%s", env);
+	ssize_t n = readlink("/proc/self/exe", dirs[nd], PATH_MAX - 1);
+	if (n > 0) {
+		dirs[nd][n] = 0;
+		char *slash = strrchr(dirs[nd], '/');
+		if (slash) {
+			*slash = 0;
+			nd++;
+		}
 	}
-	int rc = -1;
-	float *v = NULL;
-	int w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
-	if (GDALGetRasterCount(ds) < 1) {
-		snprintf(err, errlen, "heightmap '%s': the GeoTIFF has no raster band", path);
-		goto out;
-	}
-	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) {
-		snprintf(err, errlen, "heightmap '%s' is %dx%d; 2x2 to %dx%d samples are supported", path, w, h,
-			 HEIGHTMAP_MAX_SIDE, HEIGHTMAP_MAX_SIDE);
-		goto out;
-	}
-	GDALRasterBandH band = GDALGetRasterBand(ds, 1);
-	v = malloc(sizeof(float) * (size_t)w * (size_t)h);
-	if (!band || !v) {
-		snprintf(err, errlen, "heightmap '%s': %s", path, v ? "no band 1" : "out of memory");
-		goto out;
-	}
-	CPLErrorReset();
-	if (GDALRasterIO(band, GF_Read, 0, 0, w, h, v, w, h, GDT_Float32, 0, 0) != CE_None) {
-		const char *m = CPLGetLastErrorMsg();
-		snprintf(err, errlen, "heightmap '%s': GDAL cannot read the samples: %s", path,
-			 m && m[0] ? m : "read error");
-		goto out;
-	}
-	int has_nodata = 0;
-	double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
-	size_t n = (size_t)w * (size_t)h;
-	float lo = INFINITY, hi = -INFINITY;
-	for (size_t i = 0; i < n; i++) {
-		if (!isfinite(v[i]) || (has_nodata && (double)v[i] == (double)(float)nodata))
+	snprintf(dirs[nd++], PATH_MAX, "%s", ISOTERRA_MODULE_DIR);
+	char tried[3 * PATH_MAX + 64] = "", why[PATH_MAX + 256] = "";
+	for (int i = 0; i < nd; i++) {
+		char path[PATH_MAX + 32];
+		int k = snprintf(path, sizeof(path), "%s/%s", dirs[i], GEOTIFF_MODULE);
+		if (k < 0 || (size_t)k >= sizeof(path))
 			continue;
-		lo = v[i] < lo ? v[i] : lo;
-		hi = v[i] > hi ? v[i] : hi;
+		void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+		if (h && (fn = (geotiff_load_fn)(uintptr_t)dlsym(h, GEOTIFF_SYMBOL)))
+			return fn;
+		if (h) {
+			k = snprintf(why, sizeof(why), "%s has no %s (another version's module)", path, GEOTIFF_SYMBOL);
+			dlclose(h);
+		} else if (access(path, F_OK) == 0) {
+			k = snprintf(why, sizeof(why), "%s", dlerror());
+		}
+		size_t u = strlen(tried);
+		k = snprintf(tried + u, sizeof(tried) - u, "%s%s", u ? ", " : "", dirs[i]);
+		if (k < 0 || (size_t)k >= sizeof(tried) - u)
+			break;
 	}
-	if (!(lo <= hi)) {
-		snprintf(err, errlen, "heightmap '%s': every sample is no-data", path);
-		goto out;
-	}
-	float k = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
-	for (size_t i = 0; i < n; i++) {
-		bool valid = isfinite(v[i]) && !(has_nodata && (double)v[i] == (double)(float)nodata);
-		v[i] = valid ? (v[i] - lo) * k : 0.0f;
-	}
-	hm->v = v;
-	hm->w = w;
-	hm->h = h;
-	v = NULL;
-	rc = 0;
-out:
-	free(v);
-	GDALClose(ds);
-	CPLPopErrorHandler();
-	return rc;
+	snprintf(err, errlen, "GeoTIFF heightmaps need the module %s (GDAL), not loaded from %s%s%s", GEOTIFF_MODULE,
+		 tried, why[0] ? ": " : "", why);
+	return NULL;
 }
 #endif
 
@@ -101,7 +77,13 @@ int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t err
 			snprintf(err, errlen, "cannot open heightmap file '%s' (GeoTIFF, read through GDAL)", path);
 			return -1;
 		}
-		return load_gdal(path, hm, err, errlen);
+		char e[PATH_MAX * 4];
+		geotiff_load_fn load = geotiff_module(e, sizeof(e));
+		if (!load) {
+			snprintf(err, errlen, "heightmap '%s': %s", path, e);
+			return -1;
+		}
+		return load(path, HEIGHTMAP_MAX_SIDE, &hm->v, &hm->w, &hm->h, err, errlen);
 #else
 		snprintf(err, errlen, "heightmap '%s': GeoTIFF needs GDAL, which this build does not use; convert it to a "
 			 "16-bit grayscale PNG (gdal_translate -ot UInt16 -of PNG)", path);
