@@ -168,11 +168,28 @@ int cell_case(ivec3 c)
 		   ((f & 2u) << 5) | ((e & 2u) << 6));
 }
 #else
+// Corner c inside, less one-sample islands and bubbles (the debris filter
+// of shaders/mc_debris.comp, from the densities: the atomic and
+// no-compaction methods, which do not read the sign bits)
+int inside_at(ivec3 c)
+{
+	ivec3 lo = ivec3(-u_margin), hi = dens_dims() - u_margin;
+	int count = 0;
+	for (int a = 0; a < 3; a++)
+		for (int s = -1; s <= 1; s += 2) {
+			ivec3 q = c;
+			q[a] += s;
+			if (q[a] >= lo[a] && q[a] < hi[a] && D(q) > u_iso)
+				count++;
+		}
+	return (D(c) > u_iso ? count > 0 : count == 6) ? 1 : 0;
+}
+
 int cell_case(ivec3 c)
 {
 	int cs = 0;
 	for (int n = 0; n < 8; n++)
-		cs |= int(D(c + mc_corner[n].xyz) > u_iso) << n;
+		cs |= inside_at(c + mc_corner[n].xyz) << n;
 	return cs;
 }
 

@@ -65,11 +65,12 @@ struct pipeline {
 	struct program_variant variants[PROGRAM_VARIANTS];
 	uint64_t variant_clock;        /* ticks at every variant lookup */
 	unsigned compiles;             /* programs compiled (pipeline_compiles) */
-	GLuint p_density, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
+	GLuint p_density, p_debris, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint b_dens, b_signs, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
+	GLuint b_signs_raw;            /* the density pass's bits; b_signs: less debris */
 	uint32_t owners, words;        /* owner cells, level-0 words */
-	uint32_t sign_words;           /* the sign buffer's capacity (words) */
+	uint32_t sign_words;           /* each sign buffer's capacity (words) */
 	struct hp_levels hp;
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
 	uint64_t verts_alloc;          /* vertices the vertex buffer holds */

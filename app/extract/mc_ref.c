@@ -18,16 +18,34 @@ static void gradient(const struct grid *g, const float *dens, int i, int j, int 
 	out[2] = D(g, dens, i, j, k + 1) - D(g, dens, i, j, k - 1);
 }
 
+/* Inside: above iso and so is one of the six neighbours (a one-sample
+ * island is dropped: it would float as a speck of eight triangles), or
+ * below it with all six above (a bubble in the rock, never seen, filled);
+ * a neighbour beyond the stored samples counts as outside.  As the GPU's
+ * debris filter (shaders/mc_debris.comp). */
+static int inside(const struct grid *g, const float *dens, float iso, int x, int y, int z)
+{
+	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+	int m = grid_margin(g), n[3] = { g->nx, g->ny, g->nz }, count = 0;
+	for (int k = 0; k < 6; k++) {
+		int q[3] = { x + nb[k][0], y + nb[k][1], z + nb[k][2] };
+		if (q[0] < -m || q[1] < -m || q[2] < -m || q[0] > n[0] + m || q[1] > n[1] + m || q[2] > n[2] + m)
+			continue;
+		count += D(g, dens, q[0], q[1], q[2]) > iso;
+	}
+	return D(g, dens, x, y, z) > iso ? count > 0 : count == 6;
+}
+
 static int vmask(const struct grid *g, const float *dens, float iso, int x, int y, int z)
 {
 	if (x > g->nx || y > g->ny || z > g->nz)
 		return 0;
-	int in0 = D(g, dens, x, y, z) > iso, m = 0;
-	if (x < g->nx && y <= g->ny && z <= g->nz && in0 != (D(g, dens, x + 1, y, z) > iso))
+	int in0 = inside(g, dens, iso, x, y, z), m = 0;
+	if (x < g->nx && y <= g->ny && z <= g->nz && in0 != inside(g, dens, iso, x + 1, y, z))
 		m |= 1;
-	if (y < g->ny && in0 != (D(g, dens, x, y + 1, z) > iso))
+	if (y < g->ny && in0 != inside(g, dens, iso, x, y + 1, z))
 		m |= 2;
-	if (z < g->nz && in0 != (D(g, dens, x, y, z + 1) > iso))
+	if (z < g->nz && in0 != inside(g, dens, iso, x, y, z + 1))
 		m |= 4;
 	return m;
 }
@@ -36,7 +54,7 @@ static int cell_case(const struct mc_tables *t, const struct grid *g, const floa
 {
 	int cs = 0;
 	for (int n = 0; n < 8; n++)
-		cs |= (D(g, dens, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) > iso) << n;
+		cs |= inside(g, dens, iso, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) << n;
 	return cs;
 }
 

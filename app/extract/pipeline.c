@@ -290,6 +290,7 @@ static void plan_capacities(struct pipeline *pl, const struct params *p)
 static int create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
 	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
+	    !(pl->p_debris = program(pl, "mc_debris.comp", err, errlen)) ||
 	    !(pl->p_classify = program(pl, "mc_classify.comp", err, errlen)) ||
 	    !(pl->p_reduce = program(pl, "hp_reduce.comp", err, errlen)) ||
 	    !(pl->p_downsweep = program(pl, "hp_downsweep.comp", err, errlen)) ||
@@ -313,6 +314,7 @@ static int create_buffers(struct pipeline *pl, char *err, size_t errlen)
 {
 	pl->b_dens = extract_buffer((GLsizeiptr)grid_dens_count(&pl->g) * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_signs = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
+	pl->b_signs_raw = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_l0 = extract_buffer((GLsizeiptr)pl->words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 16, NULL, GL_DYNAMIC_COPY); /* pyramid + prefix sums */
 	pl->b_idx = extract_buffer((GLsizeiptr)pl->tri_cap * 12 + GUARD_BYTES, NULL, GL_DYNAMIC_DRAW);
@@ -384,12 +386,12 @@ void pipeline_destroy(struct pipeline *pl)
 	for (int i = 0; i < PROGRAM_VARIANTS; i++)
 		if (pl->variants[i].prog)
 			glDeleteProgram(pl->variants[i].prog);
-	GLuint progs[] = { pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
+	GLuint progs[] = { pl->p_debris, pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
 	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
-	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_l0, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
+	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_l0, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
@@ -418,6 +420,7 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 		return -1;
 	double t = clock_ms();
 	bind_all(pl);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs_raw); /* the debris filter reads them */
 	set_common(pl, pl->p_density, p);
 	if (bind_field(pl, pl->p_density, p, err, errlen) < 0)
 		return -1;
@@ -492,10 +495,28 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 	return 0;
 }
 
-/* Classification and the HistoPyramid (the pipeline's own buffers only). */
+/* The debris filter (shaders/mc_debris.comp): the density pass's sign
+ * bits (b_signs_raw) less one-sample islands and bubbles, into b_signs,
+ * which classification and the index pass read. */
+static void debris_pass(struct pipeline *pl)
+{
+	set_common(pl, pl->p_debris, NULL);
+	glProgramUniform1ui(pl->p_debris, glGetUniformLocation(pl->p_debris, "u_sign_words"), pl->sign_words);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, pl->b_signs_raw);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs);
+	glUseProgram(pl->p_debris);
+	int m2 = 1 + 2 * grid_margin(&pl->g);
+	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64) * 2;
+	glDispatchCompute((GLuint)div_up(slab_words, 64), (GLuint)(pl->g.nz + m2), 1);
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The debris filter, classification and the HistoPyramid (the pipeline's
+ * own buffers only). */
 static void pyramid_passes(struct pipeline *pl, const struct params *p)
 {
 	double t = clock_ms();
+	debris_pass(pl);
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);

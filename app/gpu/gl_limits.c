@@ -40,6 +40,10 @@ static const struct gl_pass passes[] = {
 	 * the candidate boxes and verdicts (12, 13), the field's resources */
 	{ "density.comp (FIELD_PASS_BOUND)", "density.comp", NULL, NULL, "#define FIELD_PASS_BOUND 1\n#define HAS_CONTROL_MAP 1\n",
 	  false, CS(6, 4, 0, 1, 90), { 64, 1, 1 }, BIND_AUX_B, 0 },
+	/* the debris filter: the raw sign bits (12) into the filtered (14); the
+	 * densities and tables of common.glsl are declared, not read */
+	{ "mc_debris.comp", "mc_debris.comp", NULL, NULL, NULL, false,
+	  CS(4, 0, 0, 0, 5), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false,
 	  CS(4, 0, 0, 0, 11), { 64, 1, 1 }, BIND_SIGNS, 0 },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false,
