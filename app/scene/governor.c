@@ -24,7 +24,7 @@ static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 	{ 0.50f, 0.25f, 0.00f, 2, 0.55f, 13 },
 };
 
-#define OVER 1.05        /* step down above target * OVER ... */
+#define OVER 1.00        /* step down above the target ... */
 #define OVER_FOR_S 0.25  /* ... held this long */
 #define UNDER 0.75       /* step up below target * UNDER ... */
 #define UP_WAIT_MIN_S 2.0 /* ... held this long at first */
