@@ -198,6 +198,26 @@ static void spawn(struct autopilot *a)
 		a->pos[0] = a->pos[1] = a->pos[2] = 0.0f; /* solid rock everywhere: nowhere better */
 }
 
+/* Caves: the level heading with the longest run of air from the spawn
+ * point (24 headings, marched in steps of 0.5 up to 60 units), so the
+ * first frame looks down a passage instead of at the nearest wall. */
+static void open_heading(const struct autopilot *a, float out[3])
+{
+	float best = -1.0f;
+	for (int i = 0; i < 24; i++) {
+		float ang = 0.3f + (float)i * (6.2831853f / 24.0f), d[3] = { cosf(ang), 0.0f, sinf(ang) }, run = 0.0f;
+		for (; run < 60.0f; run += 0.5f) {
+			float q[3] = { a->pos[0] + d[0] * run, a->pos[1], a->pos[2] + d[2] * run };
+			if (dens(a, q) > -a->p->fly_clearance)
+				break;
+		}
+		if (run > best) {
+			best = run;
+			memcpy(out, d, sizeof(d));
+		}
+	}
+}
+
 int autopilot_init(struct autopilot *a, const struct params *p, const struct edits *ed)
 {
 	memset(a, 0, sizeof(*a));
@@ -210,7 +230,9 @@ int autopilot_init(struct autopilot *a, const struct params *p, const struct edi
 	spawn(a);
 	float up[3], t[3];
 	local_up(a, a->pos, up);
-	const float start[3] = { cosf(0.3f), 0.0f, sinf(0.3f) };
+	float start[3] = { cosf(0.3f), 0.0f, sinf(0.3f) };
+	if (p->shape == SHAPE_CAVES)
+		open_heading(a, start);
 	tangent_of(start, up, t);
 	memcpy(a->dir, t, sizeof(t));
 	memcpy(a->goal, t, sizeof(t));
