@@ -187,8 +187,41 @@ static bool spawn_shells(struct autopilot *a)
 	return false;
 }
 
+/* The first heading: along x, turned 0.3 rad towards z. */
+#define START_HEADING 0.3f
+
+/* Air all along the segment from p to q (its last tenth may touch rock). */
+static bool clear_sight(const struct autopilot *a, const float p[3], const float q[3])
+{
+	for (int i = 1; i < 58; i++) {
+		float s = (float)i / 64.0f, r[3] = { p[0] + (q[0] - p[0]) * s, p[1] + (q[1] - p[1]) * s,
+						     p[2] + (q[2] - p[2]) * s };
+		if (dens(a, r) > 0.0f)
+			return false;
+	}
+	return true;
+}
+
+/* A landing pad (flat_spot): start back from it along the first heading,
+ * where the pad's centre can be seen over the ground between. */
+static bool spawn_before_pad(struct autopilot *a)
+{
+	const struct params *p = a->p;
+	static const float back[] = { 1.2f, 1.6f, 2.2f, 3.0f };
+	const float pad[3] = { p->flat_x, p->flat_y + 0.5f, p->flat_z };
+	for (size_t i = 0; i < ARRAY_SIZE(back); i++) {
+		float d = back[i] * fmaxf(p->flat_outer, 4.0f);
+		if (spawn_column(a, p->flat_x - d * cosf(START_HEADING), p->flat_z - d * sinf(START_HEADING)) &&
+		    clear_sight(a, a->pos, pad))
+			return true;
+	}
+	return false;
+}
+
 static void spawn(struct autopilot *a)
 {
+	if (a->p->flat_spot && a->p->shape == SHAPE_GROUND && spawn_before_pad(a))
+		return;
 	for (int i = 0; i < 16; i++) {
 		float ang = (float)i * 2.4f, rad = 6.0f * sqrtf((float)i);
 		if (spawn_column(a, rad * cosf(ang), rad * sinf(ang)))
@@ -230,7 +263,7 @@ int autopilot_init(struct autopilot *a, const struct params *p, const struct edi
 	spawn(a);
 	float up[3], t[3];
 	local_up(a, a->pos, up);
-	float start[3] = { cosf(0.3f), 0.0f, sinf(0.3f) };
+	float start[3] = { cosf(START_HEADING), 0.0f, sinf(START_HEADING) };
 	if (p->shape == SHAPE_CAVES)
 		open_heading(a, start);
 	tangent_of(start, up, t);
@@ -481,6 +514,18 @@ void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, fl
 			th += (1.52f - th) * s * s * (3.0f - 2.0f * s);
 			down = tanf(th);
 		}
+	}
+	const struct params *p = a->p;
+	if (p->flat_spot && p->shape == SHAPE_GROUND) {
+		/* a landing pad ahead and below: the view tips down towards its
+		 * centre (fully within 1.5 outer radii, not beyond 3) */
+		float to[3] = { p->flat_x - a->pos[0], 0.0f, p->flat_z - a->pos[2] };
+		float dxz = sqrtf(to[0] * to[0] + to[2] * to[2]), r = fmaxf(p->flat_outer, 4.0f);
+		float ahead = dxz > 1e-3f ? (to[0] * a->dir[0] + to[2] * a->dir[2]) / dxz : 0.0f;
+		float near = fminf(fmaxf((3.0f * r - dxz) / (1.5f * r), 0.0f), 1.0f);
+		float tip = fminf(fmaxf((a->pos[1] - p->flat_y) / fmaxf(dxz, 1.0f), 0.15f), 1.0f);
+		float w = near * fminf(fmaxf((ahead - 0.3f) / 0.4f, 0.0f), 1.0f);
+		down += (tip - down) * w * w * (3.0f - 2.0f * w);
 	}
 	float at[3];
 	for (int k = 0; k < 3; k++)
