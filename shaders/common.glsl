@@ -27,6 +27,31 @@ uint lin_id()
 	       gl_LocalInvocationID.x;
 }
 
+// i / d and i % d for 0 <= i, 0 < d: a float quotient corrected to the
+// exact one (a SIMD driver runs integer division lane by lane; the float
+// estimate is off by at most one below 2^24, the loops cover the rest)
+ivec2 divmod(int i, int d)
+{
+	int q = int(float(i) / float(d));
+	int r = i - q * d;
+	while (r < 0) {
+		q--;
+		r += d;
+	}
+	while (r >= d) {
+		q++;
+		r -= d;
+	}
+	return ivec2(q, r);
+}
+
+// The cell of linear index i over a grid of o cells (x fastest)
+ivec3 cell_of(int i, ivec3 o)
+{
+	ivec2 a = divmod(i, o.x), b = divmod(a.x, o.y);
+	return ivec3(a.y, b.y, b.x);
+}
+
 // Sign bits: one bit per density sample, 1 = inside (d > u_iso), written
 // by the density pass beside the densities so classification reads 32
 // samples a word.  Slab z holds its dim.x * dim.y samples x fastest, padded

@@ -64,7 +64,7 @@ void main()
 	uint first = 16u * g, end = min(first + 16u, owners);
 	for (uint cell = first; cell < end;) {
 		int ic = int(cell);
-		ivec3 c = ivec3(ic % o.x, (ic / o.x) % o.y, ic / (o.x * o.y));
+		ivec3 c = cell_of(ic, o);
 		uint n = min(end - cell, uint(o.x - c.x));
 		piece(c, n, cell - first, w);
 		cell += n;

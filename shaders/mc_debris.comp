@@ -53,8 +53,8 @@ void main()
 	uint prev = wv > 0u ? raw_word(w0 + wv - 1u) : 0u;
 	uint next = wv + 1u < words ? raw_word(w0 + wv + 1u) : 0u;
 	uint xm = (c << 1) | (prev >> 31), xp = (c >> 1) | (next << 31);
-	int x = b0 % dim.x;
-	for (int j = (dim.x - x) % dim.x; j < 32; j += dim.x)
+	int x = divmod(b0, dim.x).y;
+	for (int j = x == 0 ? 0 : dim.x - x; j < 32; j += dim.x)
 		xm &= ~(1u << uint(j)); // x == 0: no sample at x - 1
 	for (int j = dim.x - 1 - x; j < 32; j += dim.x)
 		xp &= ~(1u << uint(j)); // x == dim.x - 1: none at x + 1

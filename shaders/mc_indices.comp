@@ -16,7 +16,7 @@ void main()
 	uint cell, rank;
 	hp_traverse(t, 0, cell, rank);
 	ivec3 o = u_cells + 1;
-	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
+	ivec3 c = cell_of(int(cell), o);
 	int cs = cell_case(c);
 	uint vcount = st[ST_VERTS_WRITTEN];
 	uint ids[3];

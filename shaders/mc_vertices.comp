@@ -29,7 +29,7 @@ void main()
 		}
 	}
 	ivec3 o = u_cells + 1;
-	ivec3 c = ivec3(int(cell) % o.x, (int(cell) / o.x) % o.y, int(cell) / (o.x * o.y));
+	ivec3 c = cell_of(int(cell), o);
 	vec4 p, n;
 	edge_vertex(c, axis, p, n);
 #ifdef WITH_AO
