@@ -9,8 +9,11 @@
  *  4. the world's own rate: a fresh world filling the autopilot's first
  *     view, blocks settled per second (generated, or proven empty by the
  *     coarse pre-pass without being generated), wall and CPU time.
- * usage: bench_world [--quick] [--no-program] [--fill-only] [--platform NAME]
- * (--fill-only: measure 4 alone, three times) */
+ * usage: bench_world [--quick] [--no-program] [--fill-only] [--fly WxH]
+ *                    [--scale S] [--shader-dir DIR] [--platform NAME]
+ * (--fill-only: measure 4 alone, three times; --fly: only the two
+ * fly-throughs of 2, at that size; --scale: the full-quality one drawn at
+ * that render scale, upscaled; --shader-dir: shaders read from DIR) */
 #include "app.h"
 #include "bench.h"
 #include "world.h"
@@ -103,6 +106,9 @@ static void fill_rate(const struct params *p_in)
 	edits_destroy(ed);
 }
 
+/* --scale S: the full-quality fly-throughs drawn at that render scale */
+static float full_scale = 1.0f;
+
 /* p50 of one fly-through (ms), -1 if it could not run */
 static double flythrough(const struct params *p_in, int w, int h, int frames, bool governed)
 {
@@ -126,6 +132,8 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	struct params eff = p;
 	struct camera c;
 	autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
+	if (!governed && full_scale < 1.0f && renderer_set_scale(r, full_scale, err, sizeof(err)) < 0)
+		fprintf(stderr, "bench: %s\n", err);
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
 	double *ft = malloc(sizeof(double) * (size_t)frames);
 	bool trace = getenv("BENCH_TRACE") != NULL; /* per-frame lines on stderr */
@@ -253,7 +261,7 @@ static void program_runs(int n)
 int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
-	int quick = 0, program = 1, fill_only = 0;
+	int quick = 0, program = 1, fill_only = 0, fly_w = 0, fly_h = 0;
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--quick"))
 			quick = 1;
@@ -263,8 +271,18 @@ int main(int argc, char **argv)
 			fill_only = 1;
 		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
 			plat_name = argv[++i];
+		else if (!strcmp(argv[i], "--shader-dir") && i + 1 < argc)
+			shader_set_dir(argv[++i]); /* try a shader's edit on the same flight */
+		else if (!strcmp(argv[i], "--scale") && i + 1 < argc && sscanf(argv[i + 1], "%f", &full_scale) == 1 &&
+			 full_scale >= 0.5f && full_scale <= 1.0f)
+			i++;
+		else if (!strcmp(argv[i], "--fly") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &fly_w, &fly_h) == 2 &&
+			 fly_w >= 16 && fly_h >= 16 && fly_w <= 8192 && fly_h <= 8192)
+			i++;
 		else {
-			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--platform NAME]\n", argv[0]);
+			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--fly WxH] [--scale S]\n"
+				"       [--shader-dir DIR] [--platform NAME]\n",
+				argv[0]);
 			return 2;
 		}
 	}
@@ -274,6 +292,15 @@ int main(int argc, char **argv)
 	struct params p;
 	params_defaults(&p);
 	p.scene = 1;
+	if (fly_w) { /* only the two fly-throughs at one size (profiling) */
+		int fr = quick ? 40 : 150;
+		double full = flythrough(&p, fly_w, fly_h, fr, false);
+		double gov = flythrough(&p, fly_w, fly_h, fr, true);
+		if (full > 0 && gov > 0)
+			printf("  %dx%d: p50 governed / full = %.3f\n", fly_w, fly_h, gov / full);
+		platform_close(plat);
+		return 0;
+	}
 	if (fill_only) {
 		printf("\nthe streaming world (default field, %d^3-cell blocks, %d levels):\n", p.block_cells, p.lod_levels);
 		for (int i = 0; i < 3; i++)

@@ -5,7 +5,8 @@
 // ground, sun + hemispheric sky light, distance/height fog towards the sky
 // colour, gamma-correct output.  Compiled for the parameters
 // (params_glsl_specialization, app/render/render.c): the shape's and the
-// soil's branches are constants, the marble colour is in only when on.
+// soil's branches are constants, the marble colour is in only when on, the
+// detail normals only in the variant for meshes near the eye.
 in vec3 v_pos;
 in vec3 v_nrm;
 in float v_ao;
@@ -70,15 +71,18 @@ void main()
 	vec2 b1 = (t1.gb - 0.5) * u_bump, b2 = (t2.gb - 0.5) * u_bump, b3 = (t3.gb - 0.5) * u_bump;
 	vec3 bump = vec3(0.0, b1.x, b1.y) * w.x + vec3(b2.y, 0.0, b2.x) * w.y + vec3(b3.x, b3.y, 0.0) * w.z;
 	vec3 n = normalize(n0 - bump);
-	// detail normal, fading out with distance
+	// detail normal, fading out with distance (compiled out of the variant
+	// for meshes that stay beyond DETAIL_RANGE: render.c)
+#if DETAIL_NORMALS
 	float dist = length(v_pos - u_eye);
-	float near = u_detail * clamp(1.0 - dist / 25.0, 0.0, 1.0);
+	float near = u_detail * clamp(1.0 - dist / DETAIL_RANGE, 0.0, 1.0);
 	if (near > 0.0) {
 		vec4 d1 = texture(u_surface, c1 * 5.1), d2 = texture(u_surface, c2 * 5.1), d3 = texture(u_surface, c3 * 5.1);
 		vec3 db = vec3(0.0, d1.g - 0.5, d1.b - 0.5) * w.x + vec3(d2.b - 0.5, 0.0, d2.g - 0.5) * w.y +
 			  vec3(d3.g - 0.5, d3.b - 0.5, 0.0) * w.z;
 		n = normalize(n - db * near);
 	}
+#endif
 	float tex = t1.r * w.x + t2.r * w.y + t3.r * w.z;
 	float hgt = t1.a * w.x + t2.a * w.y + t3.a * w.z;
 

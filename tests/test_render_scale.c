@@ -1,13 +1,23 @@
 /* isoterra — the governor's render scale (app/render/upscale.c): the
  * volume drawn at scale 0.5 and upscaled stays close to the full-size
  * frame (PSNR), is closer to it than a nearest-neighbour upscale of the
- * is not the full-size frame itself (the
- * scale took effect), and scale 1 gives back the full-size frame exactly. */
+ * full-size frame, is not the full-size frame itself (the scale took
+ * effect), and scale 1 gives back the full-size frame exactly.  Against
+ * the same view drawn by a renderer of half the size (the low-resolution
+ * frame itself): every upscaled pixel lies within its four nearest texels
+ * (nothing rings), and the upscale is crisper than a bilinear one of that
+ * frame computed here (edge energy).
+ *
+ * Also the terrain's two variants (render.c): a mesh said to stay beyond
+ * DETAIL_RANGE is drawn without the detail normals.  Seen from afar (all
+ * of the volume beyond that range) both variants give the same frame; from
+ * near, they differ (the near variant has the detail). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "abi.h"
 #include "gpu_fixture.h"
 #include "tcheck.h"
 
@@ -22,6 +32,70 @@ static double psnr(const uint8_t *a, const uint8_t *b)
 			se += (double)(a[i] - b[i]) * (a[i] - b[i]);
 	double mse = se / (W * H * 3.0);
 	return mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : 99;
+}
+
+/* edge energy: mean absolute difference between neighbouring pixels
+ * (green), across and along rows */
+static double edge_energy(const uint8_t *a)
+{
+	double sum = 0;
+	for (int y = 0; y + 1 < H; y++)
+		for (int x = 0; x + 1 < W; x++) {
+			const uint8_t *p = a + ((size_t)y * W + x) * 4 + 1;
+			sum += abs(p[0] - p[4]) + abs(p[0] - p[W * 4]);
+		}
+	return sum / ((W - 1.0) * (H - 1.0));
+}
+
+/* the half-size frame lo (W/2 x H/2) bilinearly upscaled to W x H, with
+ * the same texel centres as the GPU's upscale */
+static void bilinear(const uint8_t *lo, uint8_t *out)
+{
+	const int w = W / 2, h = H / 2;
+	for (int y = 0; y < H; y++)
+		for (int x = 0; x < W; x++) {
+			float sx = (x + 0.5f) * 0.5f - 0.5f, sy = (y + 0.5f) * 0.5f - 0.5f;
+			sx = sx < 0 ? 0 : sx > w - 1 ? (float)(w - 1) : sx;
+			sy = sy < 0 ? 0 : sy > h - 1 ? (float)(h - 1) : sy;
+			int x0 = (int)sx, y0 = (int)sy, x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
+			float fx = sx - x0, fy = sy - y0;
+			for (int c = 0; c < 4; c++) {
+				float a = lo[((size_t)y0 * w + x0) * 4 + c], b = lo[((size_t)y0 * w + x1) * 4 + c];
+				float d = lo[((size_t)y1 * w + x0) * 4 + c], e = lo[((size_t)y1 * w + x1) * 4 + c];
+				float v = (a + (b - a) * fx) * (1 - fy) + (d + (e - d) * fx) * fy;
+				out[((size_t)y * W + x) * 4 + c] = (uint8_t)(v + 0.5f);
+			}
+		}
+}
+
+/* pixels of up (W x H) outside the range of their four nearest texels of
+ * lo (W/2 x H/2), by more than 2 (rounding) */
+static int ringing(const uint8_t *up, const uint8_t *lo)
+{
+	const int w = W / 2, h = H / 2;
+	int n = 0;
+	for (int y = 0; y < H; y++)
+		for (int x = 0; x < W; x++) {
+			int x0 = (x - 1) / 2, y0 = (y - 1) / 2;
+			x0 = x0 < 0 ? 0 : x0;
+			y0 = y0 < 0 ? 0 : y0;
+			int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
+			for (int c = 0; c < 3; c++) {
+				int v[4] = { lo[((size_t)y0 * w + x0) * 4 + c], lo[((size_t)y0 * w + x1) * 4 + c],
+					     lo[((size_t)y1 * w + x0) * 4 + c], lo[((size_t)y1 * w + x1) * 4 + c] };
+				int mn = v[0], mx = v[0];
+				for (int k = 1; k < 4; k++) {
+					mn = v[k] < mn ? v[k] : mn;
+					mx = v[k] > mx ? v[k] : mx;
+				}
+				int u = up[((size_t)y * W + x) * 4 + c];
+				if (u < mn - 2 || u > mx + 2) {
+					n++;
+					break;
+				}
+			}
+		}
+	return n;
 }
 
 static int frame(struct renderer *r, const struct pipeline_draw *d, const struct params *p, const struct grid *g,
@@ -39,6 +113,63 @@ static int frame(struct renderer *r, const struct pipeline_draw *d, const struct
 	return renderer_read(r, img);
 }
 
+/* the mesh alone (no water), drawn by the variant for meshes dist away */
+static int mesh_frame(struct renderer *r, const struct pipeline_draw *d, const struct params *p, const struct grid *g,
+		      float dist, struct image *img)
+{
+	struct camera c;
+	camera_orbit(&c, p, g, 0.0f, (float)W / H);
+	if (renderer_begin(r, &c, p) < 0)
+		return -1;
+	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, dist);
+	if (renderer_end(r) < 0)
+		return -1;
+	return renderer_read(r, img);
+}
+
+/* the two variants compared, from near and from afar */
+static void detail_variants(struct renderer *r, const struct pipeline_draw *d, const struct params *p_in,
+			    const struct grid *g)
+{
+	struct params p = *p_in;
+	for (int afar = 0; afar < 2; afar++) {
+		p.cam_dist = afar ? 1.5f : p_in->cam_dist;
+		struct camera c;
+		camera_orbit(&c, &p, g, 0.0f, (float)W / H);
+		/* the eye's distance to the volume's box */
+		float hi[3] = { g->origin[0] + g->cell * g->nx, g->origin[1] + g->cell * g->ny,
+				g->origin[2] + g->cell * g->nz };
+		float dd = 0;
+		for (int a = 0; a < 3; a++) {
+			float e = c.eye[a] < g->origin[a] ? g->origin[a] - c.eye[a] : c.eye[a] > hi[a] ? c.eye[a] - hi[a] : 0;
+			dd += e * e;
+		}
+		dd = sqrtf(dd);
+		struct image a = { 0 }, b = { 0 };
+		CHECK(mesh_frame(r, d, &p, g, 0.0f, &a) == 0, "near variant frame");
+		CHECK(mesh_frame(r, d, &p, g, 1e9f, &b) == 0, "far variant frame");
+		if (a.rgba && b.rgba) {
+			double q = psnr(a.rgba, b.rgba);
+			int moved = 0;
+			for (int i = 0; i < W * H * 4; i += 4)
+				moved += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
+			printf("detail variants, eye %.1f units from the volume: near vs far variant %.2f dB, %d pixels differ\n",
+			       dd, q, moved);
+			if (afar) {
+				CHECK(dd > DETAIL_RANGE, "the far view is beyond the detail range (%.1f)", dd);
+				CHECK(q >= 60.0 && moved <= W * H / 1000,
+				      "from afar the variant without detail draws the same frame (%.2f dB, %d pixels)", q, moved);
+			} else {
+				CHECK(dd < DETAIL_RANGE, "the near view is within the detail range (%.1f)", dd);
+				CHECK(moved >= W * H / 20, "from near the two variants differ: the detail is in one only (%d pixels)",
+				      moved);
+			}
+		}
+		free(a.rgba);
+		free(b.rgba);
+	}
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -49,17 +180,21 @@ int main(void)
 	grid_from_params(&g, &p);
 	char err[512] = "";
 	struct fixture_terrain ft;
-	struct renderer *r = NULL;
-	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 || !(r = renderer_create(W, H, ANTIALIAS_AUTO, err, sizeof(err))) ||
-	    fixture_run(ft.pl, &p) < 0) {
+	struct renderer *r = NULL, *rl = NULL;
+	/* edge smoothing off: the subject is the upscale, and the half-size
+	 * renderer must draw what the scaled one draws */
+	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 ||
+	    !(r = renderer_create(W, H, ANTIALIAS_OFF, err, sizeof(err))) ||
+	    !(rl = renderer_create(W / 2, H / 2, ANTIALIAS_OFF, err, sizeof(err))) || fixture_run(ft.pl, &p) < 0) {
 		fprintf(stderr, "setup: %s\n", err);
 		return 1;
 	}
 	struct pipeline *pl = ft.pl;
 	struct pipeline_draw d;
 	pipeline_draw_info(pl, &d);
-	struct image full = { 0 }, half = { 0 }, again = { 0 };
+	struct image full = { 0 }, half = { 0 }, again = { 0 }, lo = { 0 };
 	CHECK(frame(r, &d, &p, &g, 1.0f, &full) == 0, "full-size frame");
+	CHECK(frame(rl, &d, &p, &g, 1.0f, &lo) == 0, "half-size frame");
 	CHECK(frame(r, &d, &p, &g, 0.5f, &half) == 0, "half-scale frame");
 	CHECK(frame(r, &d, &p, &g, 1.0f, &again) == 0, "full-size frame again");
 	if (full.rgba && half.rgba && again.rgba) {
@@ -72,22 +207,43 @@ int main(void)
 		double q_half = psnr(full.rgba, half.rgba), q_nn = psnr(full.rgba, nn);
 		printf("PSNR vs the full-size frame: upscaled half-scale %.2f dB, nearest-neighbour of full %.2f dB\n",
 		       q_half, q_nn);
+		double e_full = edge_energy(full.rgba), e_half = edge_energy(half.rgba);
+		printf("edge energy: full-size %.3f, upscaled half-scale %.3f (%.3f of it)\n", e_full, e_half,
+		       e_half / e_full);
+		if (lo.rgba) {
+			uint8_t *bl = malloc((size_t)W * H * 4);
+			bilinear(lo.rgba, bl);
+			double e_bl = edge_energy(bl);
+			int ring = ringing(half.rgba, lo.rgba);
+			printf("half-size frame upscaled here: bilinear edge energy %.3f; upscaled pixels outside their "
+			       "four texels: %d\n",
+			       e_bl, ring);
+			CHECK(ring <= W * H / 1000, "nothing rings: %d pixels outside their four nearest texels", ring);
+			CHECK(e_half > e_bl * 1.02, "crisper than bilinear: edge energy %.3f vs %.3f", e_half, e_bl);
+			CHECK(psnr(half.rgba, bl) >= 25.0, "close to the bilinear upscale of the half-size frame (%.2f dB)",
+			      psnr(half.rgba, bl));
+			free(bl);
+		}
 		CHECK(q_half >= 22.0, "upscaled half-scale frame close to the full-size one (%.2f dB)", q_half);
 		CHECK(q_half > q_nn, "upscaled %.2f dB beats pixel doubling %.2f dB", q_half, q_nn);
 		CHECK(q_half < 60.0, "the scale took effect (%.2f dB: not the full-size frame)", q_half);
 		CHECK(psnr(full.rgba, again.rgba) >= 99, "scale 1 again gives the full-size frame exactly");
-		int lo = 255, hi = 0;
+		int g_lo = 255, g_hi = 0;
 		for (int i = 0; i < W * H * 4; i += 4) {
-			lo = half.rgba[i + 1] < lo ? half.rgba[i + 1] : lo;
-			hi = half.rgba[i + 1] > hi ? half.rgba[i + 1] : hi;
+			g_lo = half.rgba[i + 1] < g_lo ? half.rgba[i + 1] : g_lo;
+			g_hi = half.rgba[i + 1] > g_hi ? half.rgba[i + 1] : g_hi;
 		}
-		CHECK(hi - lo > 64, "the upscaled frame has content (green %d..%d)", lo, hi);
+		CHECK(g_hi - g_lo > 64, "the upscaled frame has content (green %d..%d)", g_lo, g_hi);
 		free(nn);
 	}
+	CHECK(renderer_set_scale(r, 1.0f, err, sizeof(err)) == 0, "scale 1: %s", err);
+	detail_variants(r, &d, &p, &g);
 	free(full.rgba);
 	free(half.rgba);
 	free(again.rgba);
+	free(lo.rgba);
 	renderer_destroy(r);
+	renderer_destroy(rl);
 	fixture_terrain_close(&ft);
 	platform_close(plat);
 	return tc_done("render_scale");

@@ -41,6 +41,10 @@
 /* ---- image units ---------------------------------------------------------- */
 #define IMG_CONVERT_OUT 0  /* the V4L2 conversion's output image */
 
+/* ---- shading ------------------------------------------------------------ */
+#define DETAIL_RANGE 25.0  /* world units: the detail normals fade out there (render.frag); farther meshes
+			    * are drawn by the variant without them (render.c) */
+
 /* ---- the status block (BIND_STATUS): indirect commands + counters --------- */
 #define ST_DRAW_ELEMENTS 0   /* DrawElementsIndirectCommand: count, instances, first, baseVertex, baseInstance */
 #define ST_DISPATCH_VERTS 8  /* DispatchIndirectCommand of the vertex pass (3 words) */

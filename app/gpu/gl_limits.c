@@ -72,7 +72,7 @@ static const struct gl_pass passes[] = {
 	/* V4L2 output: the frame sampled, the device's layout stored */
 	{ "v4l2_convert.comp", "v4l2_convert.comp", NULL, NULL, "#define FMT 0u\n", false,
 	  CS(0, 1, 1, 0, 9), { 64, 1, 1 }, -1, 0 },
-	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", NULL, false,
+	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", "#define DETAIL_NORMALS 1\n", false,
 	  VF(17, 1, 22), { 0, 0, 0 }, -1, 2 },
 	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false,
 	  VF(25, 0, 19), { 0, 0, 0 }, -1, 0 },

@@ -13,15 +13,30 @@
 /* the terrain program's specialization (params_glsl_specialization) */
 #define RENDER_KEY_MAX 2048
 
+/* a terrain program and its per-frame uniforms */
+struct terrain_prog {
+	GLuint prog;
+	GLint l_viewproj, l_eye, l_fog, l_sink;
+};
+
+/* the terrain's two variants: with the detail normals (meshes that come
+ * within DETAIL_RANGE of the eye) and without (the rest: the detail has
+ * faded out there, and a software rasterizer would still pay for its
+ * texture taps in every pixel, both sides of a branch being run) */
+enum { PROG_NEAR, PROG_FAR, PROG_COUNT };
+
 struct renderer {
 	int w, h, samples;
 	int aa;       /* ANTIALIAS_MSAA (samples > 0), _FXAA (fx) or _OFF */
 	GLuint fbo_ms, rb_color_ms, rb_depth;
 	GLuint fbo, rb_color;
-	GLuint prog, vao, sky, water; /* prog: the terrain's, for key */
+	GLuint vao, sky, water;
+	struct terrain_prog tp[PROG_COUNT]; /* the terrain's, for key (PROG_FAR made when first needed) */
+	int cur;                            /* the variant in use this frame */
 	char key[RENDER_KEY_MAX];
 	bool draw_sky;
-	GLint l_viewproj, l_eye, l_fog, l_sink;
+	struct camera cam;       /* this frame's, for a variant made mid-frame */
+	const struct params *par; /* this frame's parameters (renderer_begin's) */
 	float clear[3];
 	GLuint surface;
 	float scale;  /* the governor's render scale: the frame is drawn at */
@@ -131,8 +146,9 @@ void renderer_destroy(struct renderer *r)
 {
 	if (!r)
 		return;
-	if (r->prog)
-		glDeleteProgram(r->prog);
+	for (int i = 0; i < PROG_COUNT; i++)
+		if (r->tp[i].prog)
+			glDeleteProgram(r->tp[i].prog);
 	if (r->sky)
 		glDeleteProgram(r->sky);
 	if (r->water)
@@ -150,11 +166,42 @@ void renderer_destroy(struct renderer *r)
 	free(r);
 }
 
+/* One variant of the terrain's program for key: 0 (logged) when it does
+ * not build. */
+static GLuint terrain_variant(const char *key, int variant)
+{
+	char full[RENDER_KEY_MAX + 64], err[512];
+	snprintf(full, sizeof(full), "%s#define DETAIL_NORMALS %d\n", key, variant == PROG_NEAR);
+	GLuint prog = gpu_graphics_program("render.vert", "render.frag", full, err, sizeof(err));
+	if (!prog)
+		log_error("terrain program: %s", err);
+	return prog;
+}
+
+/* The frame's uniforms of one terrain program. */
+static void terrain_uniforms(struct terrain_prog *t, const struct camera *c, const struct params *p)
+{
+	glUseProgram(t->prog);
+	/* looked up per frame: a live shader edit may move them */
+	t->l_viewproj = glGetUniformLocation(t->prog, "u_viewproj");
+	t->l_eye = glGetUniformLocation(t->prog, "u_eye");
+	t->l_fog = glGetUniformLocation(t->prog, "u_fog_density");
+	t->l_sink = glGetUniformLocation(t->prog, "u_sink");
+	gpu_set_param_uniforms(t->prog, p);
+	glUniformMatrix4fv(t->l_viewproj, 1, GL_FALSE, c->viewproj);
+	glUniform3fv(t->l_eye, 1, c->eye);
+	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
+	glUniform1f(t->l_fog, 0.35f / fog_range);
+	glUniform1f(t->l_sink, 0.0f);
+}
+
 /* The terrain's program for p: specialized (params_glsl_specialization:
  * the shape's and soil's branches folded, the marble colour compiled only
  * when on; a software rasterizer runs a uniform branch's both sides),
- * made again when a live knob changes the key, the old one deleted (the
- * program binary cache keeps switching back cheap).  0, or -1 (logged). */
+ * made again when a live knob changes the key, the old ones deleted (the
+ * program binary cache keeps switching back cheap).  The variant without
+ * detail normals is made when a far mesh first asks for it.  0, or -1
+ * (logged). */
 static int terrain_program(struct renderer *r, const struct params *p)
 {
 	char key[RENDER_KEY_MAX];
@@ -162,17 +209,16 @@ static int terrain_program(struct renderer *r, const struct params *p)
 		log_error("terrain program: specialization key too long");
 		return -1;
 	}
-	if (r->prog && !strcmp(key, r->key))
+	if (r->tp[PROG_NEAR].prog && !strcmp(key, r->key))
 		return 0;
-	char err[512];
-	GLuint prog = gpu_graphics_program("render.vert", "render.frag", key, err, sizeof(err));
-	if (!prog) {
-		log_error("terrain program: %s", err);
+	GLuint prog = terrain_variant(key, PROG_NEAR);
+	if (!prog)
 		return -1;
-	}
-	if (r->prog)
-		glDeleteProgram(r->prog);
-	r->prog = prog;
+	for (int i = 0; i < PROG_COUNT; i++)
+		if (r->tp[i].prog)
+			glDeleteProgram(r->tp[i].prog);
+	memset(r->tp, 0, sizeof(r->tp));
+	r->tp[PROG_NEAR].prog = prog;
 	snprintf(r->key, sizeof(r->key), "%s", key);
 	return 0;
 }
@@ -205,18 +251,13 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	glDepthFunc(GL_LESS);
 	glDisable(GL_CULL_FACE); /* the volume's cut sides show back faces */
 
-	glUseProgram(r->prog);
-	/* looked up per frame: a live shader edit may move them */
-	r->l_viewproj = glGetUniformLocation(r->prog, "u_viewproj");
-	r->l_eye = glGetUniformLocation(r->prog, "u_eye");
-	r->l_fog = glGetUniformLocation(r->prog, "u_fog_density");
-	r->l_sink = glGetUniformLocation(r->prog, "u_sink");
-	gpu_set_param_uniforms(r->prog, p);
-	glUniformMatrix4fv(r->l_viewproj, 1, GL_FALSE, c->viewproj);
-	glUniform3fv(r->l_eye, 1, c->eye);
-	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
-	glUniform1f(r->l_fog, 0.35f / fog_range);
-	glUniform1f(r->l_sink, 0.0f);
+	/* a far variant made on an earlier frame gets its uniforms too */
+	for (int i = PROG_COUNT - 1; i >= 0; i--)
+		if (r->tp[i].prog)
+			terrain_uniforms(&r->tp[i], c, p);
+	r->cur = PROG_NEAR;
+	r->cam = *c;
+	r->par = p;
 	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
 	glActiveTexture(GL_TEXTURE0);
@@ -224,9 +265,22 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	return 0;
 }
 
-void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink)
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
+			float dist)
 {
-	glUniform1f(r->l_sink, sink);
+	int want = dist >= DETAIL_RANGE ? PROG_FAR : PROG_NEAR;
+	if (want == PROG_FAR && !r->tp[PROG_FAR].prog) {
+		r->tp[PROG_FAR].prog = terrain_variant(r->key, PROG_FAR);
+		if (r->tp[PROG_FAR].prog)
+			terrain_uniforms(&r->tp[PROG_FAR], &r->cam, r->par);
+	}
+	if (!r->tp[want].prog) /* logged: the near one draws it */
+		want = PROG_NEAR;
+	if (want != r->cur) {
+		glUseProgram(r->tp[want].prog);
+		r->cur = want;
+	}
+	glUniform1f(r->tp[want].l_sink, sink);
 	glBindBuffer(GL_ARRAY_BUFFER, vbo);
 	glEnableVertexAttribArray(0);
 	glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, VERTEX_BYTES, (const void *)0);
@@ -284,7 +338,7 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	}
 	glDepthMask(GL_TRUE);
 	glDisable(GL_BLEND);
-	glUseProgram(r->prog);
+	glUseProgram(r->tp[r->cur].prog);
 }
 
 int renderer_end(struct renderer *r)
@@ -328,7 +382,7 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 {
 	if (renderer_begin(r, c, p) < 0)
 		return -1;
-	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 1.0f);
+	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, 0.0f);
 	/* water inside the volume only, below its top */
 	struct grid g;
 	grid_from_params(&g, p);

@@ -40,14 +40,17 @@ int renderer_antialias(const struct renderer *r);
 /* A frame in parts: begin (clear, program, camera), any number of meshes
  * drawn with their indirect commands (sink > 0 draws the mesh moved that
  * many world units along its normals into the rock: a level of detail
- * fading in or out hides behind the coarser one), end. */
+ * fading in or out hides behind the coarser one; dist: how near to the
+ * eye the mesh comes, world units — from DETAIL_RANGE on it is shaded
+ * without the detail normals, which have faded out there), end. */
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p);
-void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink);
+void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
+			float dist);
 int renderer_end(struct renderer *r);
 /* Water plane over the world rectangle x0,z0 - x1,z1 (after the terrain). */
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);
 /* The governor's render scale (0.5 .. 1): later frames are drawn at that
- * fraction of the size and upscaled (Catmull-Rom, edges kept) at
+ * fraction of the size and upscaled (sharp bilinear, edges kept) at
  * renderer_end, so overlays and sinks still see the full size.  0, or -1
  * with err (the upscale pass could not be made). */
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen);

@@ -1,7 +1,7 @@
 /* isoterra — the passes over a finished frame (render_int.h): a frame
  * drawn into the lower-left part of the render target is resolved into a
  * texture and drawn back over the whole target, with shaders/upscale.frag
- * (Catmull-Rom, clamped to the nearest texels: edges stay crisp) or, at
+ * ("sharp bilinear": one tap, the blend squeezed to 1.5 pixels) or, at
  * full size, shaders/fxaa.frag (edge smoothing).  The overlays and the
  * sinks that come after see a full-size frame. */
 #include "render_int.h"

@@ -240,7 +240,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 		GLuint vbo, ibo;
 		GLintptr voff, ioff;
 		pool_mesh_at(w, blk->slot, &vbo, &voff, &ibo, &ioff);
-		renderer_draw_mesh(r, vbo, ibo, w->status, w->sstride * blk->slot, sink);
+		renderer_draw_mesh(r, vbo, ibo, w->status, w->sstride * blk->slot, sink, blk->dist);
 		drawn++;
 		tris += w->mem[blk->slot].stage >= 0 ? w->tcap : w->mem[blk->slot].tris;
 	}
