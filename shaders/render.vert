@@ -9,6 +9,8 @@ uniform float u_sink;
 out vec3 v_pos;
 out vec3 v_nrm;
 out float v_ao;
+// the depth pre-pass (depth.frag) runs this too: the same depth, bit for bit
+invariant gl_Position;
 
 void main()
 {

@@ -11,7 +11,9 @@
  * Also the terrain's two variants (render.c): a mesh said to stay beyond
  * DETAIL_RANGE is drawn without the detail normals.  Seen from afar (all
  * of the volume beyond that range) both variants give the same frame; from
- * near, they differ (the near variant has the detail). */
+ * near, they differ (the near variant has the detail).  And the depth
+ * pre-pass (render.h): the volume's frame with it is the frame without it,
+ * pixel for pixel. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -170,6 +172,28 @@ static void detail_variants(struct renderer *r, const struct pipeline_draw *d, c
 	}
 }
 
+/* the volume's frame with the depth pre-pass and without */
+static void prepass_same(struct renderer *r, const struct pipeline_draw *d, const struct params *p,
+			 const struct grid *g)
+{
+	struct image with = { 0 }, without = { 0 };
+	bool was = renderer_prepass(r);
+	renderer_set_prepass(r, true);
+	CHECK(frame(r, d, p, g, 1.0f, &with) == 0, "frame with the depth pre-pass");
+	renderer_set_prepass(r, false);
+	CHECK(frame(r, d, p, g, 1.0f, &without) == 0, "frame without the depth pre-pass");
+	renderer_set_prepass(r, was);
+	if (with.rgba && without.rgba) {
+		int moved = 0;
+		for (int i = 0; i < W * H * 4; i += 4)
+			moved += memcmp(with.rgba + i, without.rgba + i, 3) != 0;
+		printf("depth pre-pass: %d pixels differ from the frame without it\n", moved);
+		CHECK(moved <= W * H / 2000, "the depth pre-pass changes no picture (%d pixels differ)", moved);
+	}
+	free(with.rgba);
+	free(without.rgba);
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -238,6 +262,7 @@ int main(void)
 	}
 	CHECK(renderer_set_scale(r, 1.0f, err, sizeof(err)) == 0, "scale 1: %s", err);
 	detail_variants(r, &d, &p, &g);
+	prepass_same(r, &d, &p, &g);
 	free(full.rgba);
 	free(half.rgba);
 	free(again.rgba);

@@ -74,6 +74,9 @@ static const struct gl_pass passes[] = {
 	  CS(0, 1, 1, 0, 9), { 64, 1, 1 }, -1, 0 },
 	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", "#define DETAIL_NORMALS 1\n", false,
 	  VF(17, 1, 22), { 0, 0, 0 }, -1, 2 },
+	/* the volume's depth pre-pass on a software rasterizer (render.c) */
+	{ "render.vert + depth.frag", NULL, "render.vert", "depth.frag", NULL, false,
+	  VF(17, 0, 0), { 0, 0, 0 }, -1, 2 },
 	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false,
 	  VF(25, 0, 19), { 0, 0, 0 }, -1, 0 },
 	{ "sky.vert + sky.frag", NULL, "sky.vert", "sky.frag", NULL, false,

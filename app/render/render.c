@@ -31,6 +31,11 @@ struct renderer {
 	GLuint fbo_ms, rb_color_ms, rb_depth;
 	GLuint fbo, rb_color;
 	GLuint vao, sky, water;
+	/* the depth pre-pass (a software rasterizer's: its fragment shading
+	 * costs CPU time for every layer drawn over a pixel) */
+	bool prepass, in_prepass;
+	GLuint depth_prog;
+	GLint ld_viewproj, ld_sink;
 	struct terrain_prog tp[PROG_COUNT]; /* the terrain's, for key (PROG_FAR made when first needed) */
 	int cur;                            /* the variant in use this frame */
 	char key[RENDER_KEY_MAX];
@@ -85,6 +90,7 @@ struct renderer *renderer_create(int width, int height, int antialias, char *err
 	r->aa = antialias;
 	if (r->aa == ANTIALIAS_AUTO)
 		r->aa = gpu_software_rasterizer() ? ANTIALIAS_FXAA : ANTIALIAS_MSAA;
+	r->prepass = gpu_software_rasterizer();
 	if (r->aa == ANTIALIAS_MSAA && max_samples < 4)
 		r->aa = ANTIALIAS_FXAA;
 	r->samples = r->aa == ANTIALIAS_MSAA ? 4 : 0;
@@ -149,6 +155,8 @@ void renderer_destroy(struct renderer *r)
 	for (int i = 0; i < PROG_COUNT; i++)
 		if (r->tp[i].prog)
 			glDeleteProgram(r->tp[i].prog);
+	if (r->depth_prog)
+		glDeleteProgram(r->depth_prog);
 	if (r->sky)
 		glDeleteProgram(r->sky);
 	if (r->water)
@@ -265,9 +273,71 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	return 0;
 }
 
+void renderer_set_prepass(struct renderer *r, bool on)
+{
+	r->prepass = on;
+}
+
+bool renderer_prepass(const struct renderer *r)
+{
+	return r->prepass;
+}
+
+int renderer_prepass_begin(struct renderer *r)
+{
+	if (!r->prepass)
+		return 0;
+	if (!r->depth_prog) {
+		char err[512];
+		r->depth_prog = gpu_graphics_program("render.vert", "depth.frag", NULL, err, sizeof(err));
+		if (!r->depth_prog) {
+			log_error("depth pre-pass: %s", err);
+			return -1;
+		}
+		r->ld_viewproj = glGetUniformLocation(r->depth_prog, "u_viewproj");
+		r->ld_sink = glGetUniformLocation(r->depth_prog, "u_sink");
+	}
+	glUseProgram(r->depth_prog);
+	glUniformMatrix4fv(r->ld_viewproj, 1, GL_FALSE, r->cam.viewproj);
+	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+	r->in_prepass = true;
+	return 0;
+}
+
+void renderer_prepass_end(struct renderer *r)
+{
+	if (!r->in_prepass)
+		return;
+	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+	glDepthFunc(GL_LEQUAL); /* the surfaces laid down pass again, once */
+	glUseProgram(r->tp[r->cur].prog);
+	r->in_prepass = false;
+}
+
+static void draw_indirect(GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset)
+{
+	glBindBuffer(GL_ARRAY_BUFFER, vbo);
+	glEnableVertexAttribArray(0);
+	glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, VERTEX_BYTES, (const void *)0);
+	glEnableVertexAttribArray(1);
+	glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, VERTEX_BYTES, (const void *)12); /* vertex.glsl */
+	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect);
+	if (ibo) {
+		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)offset);
+	} else {
+		glDrawArraysIndirect(GL_TRIANGLES, (const void *)offset);
+	}
+}
+
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
 			float dist)
 {
+	if (r->in_prepass) {
+		glUniform1f(r->ld_sink, sink);
+		draw_indirect(vbo, ibo, indirect, offset);
+		return;
+	}
 	int want = dist >= DETAIL_RANGE ? PROG_FAR : PROG_NEAR;
 	if (want == PROG_FAR && !r->tp[PROG_FAR].prog) {
 		r->tp[PROG_FAR].prog = terrain_variant(r->key, PROG_FAR);
@@ -281,18 +351,7 @@ void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indir
 		r->cur = want;
 	}
 	glUniform1f(r->tp[want].l_sink, sink);
-	glBindBuffer(GL_ARRAY_BUFFER, vbo);
-	glEnableVertexAttribArray(0);
-	glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, VERTEX_BYTES, (const void *)0);
-	glEnableVertexAttribArray(1);
-	glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, VERTEX_BYTES, (const void *)12); /* vertex.glsl */
-	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect);
-	if (ibo) {
-		glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
-		glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, (const void *)offset);
-	} else {
-		glDrawArraysIndirect(GL_TRIANGLES, (const void *)offset);
-	}
+	draw_indirect(vbo, ibo, indirect, offset);
 }
 
 void renderer_set_clear(struct renderer *r, float red, float green, float blue)
@@ -382,7 +441,13 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 {
 	if (renderer_begin(r, c, p) < 0)
 		return -1;
-	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, 0.0f);
+	for (int pass = renderer_prepass(r) ? 0 : 1; pass < 2; pass++) {
+		if (pass == 0 && renderer_prepass_begin(r) < 0)
+			return -1;
+		renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, 0.0f);
+		if (pass == 0)
+			renderer_prepass_end(r);
+	}
 	/* water inside the volume only, below its top */
 	struct grid g;
 	grid_from_params(&g, p);
