@@ -114,9 +114,13 @@ int image_write_png_staged(const struct image *img, const char *path, struct ato
 	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8,
 	             opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA,
 	             PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-	/* zlib level 3, not libpng's 6: a 1280x720 frame is written in about
-	 * a third of the time (70 ms less of the no-flag run here), 7 % larger */
-	png_set_compression_level(png, 3);
+	/* zlib level 1 and the "sub" filter on every row, not libpng's level 6
+	 * and its trial of all five filters a row: the no-flag 1280x720 frame
+	 * is written in 31 ms of CPU instead of 83 (level 3, all filters) or
+	 * 312 (the defaults), and is 7 % larger than at level 3 (14 % than
+	 * at 6) */
+	png_set_compression_level(png, 1);
+	png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
 	png_write_info(png, info);
 	if (opaque) /* RGB file from the RGBA buffer: drop the 4th byte */
 		png_set_filler(png, 0, PNG_FILLER_AFTER);
