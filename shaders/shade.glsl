@@ -6,11 +6,10 @@ const vec3 SKY_ZENITH = vec3(0.30, 0.48, 0.78);
 vec3 srgb_to_linear(vec3 c) { return pow(c, vec3(2.2)); }
 vec3 linear_to_srgb(vec3 c) { return pow(max(c, 0.0), vec3(1.0 / 2.2)); }
 
-vec3 sun_dir()
-{
-	float el = radians(u_light_el), az = radians(u_light_az);
-	return vec3(cos(el) * cos(az), sin(el), cos(el) * sin(az));
-}
+// towards the sun: from light_el / light_az, worked out once a frame on
+// the CPU (app/render/render.c)
+uniform vec3 u_sun_dir;
+vec3 sun_dir() { return u_sun_dir; }
 
 // distance fog, thinner with height, towards the horizon colour
 vec3 apply_fog(vec3 col, vec3 pos, vec3 eye, float density)

@@ -73,14 +73,14 @@ static const struct gl_pass passes[] = {
 	{ "v4l2_convert.comp", "v4l2_convert.comp", NULL, NULL, "#define FMT 0u\n", false,
 	  CS(0, 1, 1, 0, 9), { 64, 1, 1 }, -1, 0 },
 	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", "#define DETAIL_NORMALS 1\n", false,
-	  VF(17, 1, 22), { 0, 0, 0 }, -1, 2 },
+	  VF(17, 1, 23), { 0, 0, 0 }, -1, 2 },
 	/* the volume's depth pre-pass on a software rasterizer (render.c) */
 	{ "render.vert + depth.frag", NULL, "render.vert", "depth.frag", NULL, false,
 	  VF(17, 0, 0), { 0, 0, 0 }, -1, 2 },
 	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false,
-	  VF(25, 0, 19), { 0, 0, 0 }, -1, 0 },
+	  VF(25, 0, 20), { 0, 0, 0 }, -1, 0 },
 	{ "sky.vert + sky.frag", NULL, "sky.vert", "sky.frag", NULL, false,
-	  VF(19, 0, 6), { 0, 0, 0 }, -1, 0 },
+	  VF(19, 0, 7), { 0, 0, 0 }, -1, 0 },
 	{ "osd.vert + osd.frag", NULL, "osd.vert", "osd.frag", NULL, false,
 	  VF(6, 1, 89), { 0, 0, 0 }, -1, 0 },
 	/* the governor's upscale (app/render/upscale.c) */

@@ -7,6 +7,7 @@
 #include "abi.h"
 #include "log.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -186,6 +187,17 @@ static GLuint terrain_variant(const char *key, int variant)
 	return prog;
 }
 
+/* The parameters' uniforms of a program that shades (shade.glsl), and the
+ * sun's direction worked out once here rather than in every pixel (a
+ * software rasterizer would run its four sines and cosines per fragment). */
+static void shading_uniforms(GLuint prog, const struct params *p)
+{
+	gpu_set_param_uniforms(prog, p);
+	float el = p->light_el * (float)M_PI / 180.0f, az = p->light_az * (float)M_PI / 180.0f;
+	glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sun_dir"), cosf(el) * cosf(az), sinf(el),
+			   cosf(el) * sinf(az));
+}
+
 /* The frame's uniforms of one terrain program. */
 static void terrain_uniforms(struct terrain_prog *t, const struct camera *c, const struct params *p)
 {
@@ -195,7 +207,7 @@ static void terrain_uniforms(struct terrain_prog *t, const struct camera *c, con
 	t->l_eye = glGetUniformLocation(t->prog, "u_eye");
 	t->l_fog = glGetUniformLocation(t->prog, "u_fog_density");
 	t->l_sink = glGetUniformLocation(t->prog, "u_sink");
-	gpu_set_param_uniforms(t->prog, p);
+	shading_uniforms(t->prog, p);
 	glUniformMatrix4fv(t->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(t->l_eye, 1, c->eye);
 	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
@@ -248,7 +260,7 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 			glDisable(GL_DEPTH_TEST);
 			glDepthMask(GL_FALSE);
 			glUseProgram(r->sky);
-			gpu_set_param_uniforms(r->sky, p);
+			shading_uniforms(r->sky, p);
 			glUniformMatrix4fv(glGetUniformLocation(r->sky, "u_inv_viewproj"), 1, GL_FALSE, inv);
 			glUniform3fv(glGetUniformLocation(r->sky, "u_eye"), 1, c->eye);
 			glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -376,7 +388,7 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	glUseProgram(r->water);
 	glUniform1f(glGetUniformLocation(r->water, "u_water_sphere"), sphere ? radius : 0.0f);
 	glUniform3f(glGetUniformLocation(r->water, "u_water_centre"), 0.0f, -p->planet_radius, 0.0f);
-	gpu_set_param_uniforms(r->water, p);
+	shading_uniforms(r->water, p);
 	glUniformMatrix4fv(glGetUniformLocation(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
 	glUniform3fv(glGetUniformLocation(r->water, "u_eye"), 1, c->eye);
 	glUniform4fv(glGetUniformLocation(r->water, "u_water_rect"), 1, rect);
