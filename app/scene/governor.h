@@ -5,7 +5,7 @@
  * drives it with a fake clock and a synthetic load.
  *
  * Hysteresis: it steps down when the smoothed frame time is over the
- * target by 5 % for a short while, up only when it is under 75 % of the
+ * target for a short while, up only when it is under 75 % of the
  * target for longer, waits after every step for the frame time to settle,
  * and each step up that has to be taken back doubles the wait before the
  * next try (so a load that sits between two steps does not make it
