@@ -3,7 +3,9 @@
  * a light load keeps full quality; a heavy one is brought under the target
  * within seconds, without oscillating; when it goes away full quality
  * comes back; a load between two steps does not make it flip back and
- * forth; hitches and broken clocks do not throw it. */
+ * forth; hitches and broken clocks do not throw it; a load whose mean is
+ * under the target while every third frame is far over it is not held
+ * there (what the governor holds is the mean plus one deviation). */
 #include <math.h>
 #include <stdlib.h>
 #include <stdint.h>
@@ -142,6 +144,43 @@ int main(void)
 	      h.g.steps_down);
 	fly(&h, &light, 30, 30);
 	CHECK(h.q.level == 0, "hitch: full quality back (level %d)", h.q.level);
+
+	/* spikes: every third frame carries 20 ms more (blocks generated over
+	 * a heavy view); at full quality 24, 24, 44 ms: the mean, 30.7 ms, is
+	 * under the target, a third of the frames 30 % over it */
+	struct run sp = { .now = 0 };
+	governor_init(&sp.g, target);
+	sp.q = governor_level(0);
+	const struct load base = { 4, 20, 0, 0, 0, 0 };
+	double sp_end = 40, worst0 = 0, worst = 0, sum = 0, sum2 = 0;
+	unsigned n = 0, k = 0, changes = 0;
+	while (sp.now < sp_end) {
+		double ms = cost(&base, sp.q) + (k++ % 3 == 0 ? 20.0 : 0.0);
+		sp.now += ms / 1000.0;
+		if (sp.now < 1.0)
+			worst0 = fmax(worst0, ms);
+		int before = sp.q.level;
+		sp.q = governor_update(&sp.g, ms, sp.now);
+		if (sp.now >= sp_end - 20) { /* the last 20 s */
+			changes += sp.q.level != before;
+			worst = fmax(worst, ms);
+			sum += ms;
+			sum2 += ms * ms;
+			n++;
+		}
+	}
+	double sp_mean = sum / n, sp_dev = sqrt(fmax(0.0, sum2 / n - sp_mean * sp_mean));
+	printf("spikes: level %d, scale %.2f; last 20 s: mean %.1f ms, deviation %.1f, worst %.1f (first second: %.1f), "
+	       "%u changes\n",
+	       sp.q.level, sp.q.render_scale, sp_mean, sp_dev, worst, worst0, changes);
+	CHECK(sp.q.level > 0, "spikes: a mean under the target with a third of the frames over it is not held (level %d)",
+	      sp.q.level);
+	/* at full quality mean + deviation is 30.7 + 9.4 ms: lower now, the
+	 * spikes smaller (one step leaves them 1.2 ms over: inside the band
+	 * the hysteresis keeps) */
+	CHECK(sp_mean + sp_dev < 0.9 * (30.7 + 9.4), "spikes: mean + deviation down to %.1f ms", sp_mean + sp_dev);
+	CHECK(worst < worst0 - 3, "spikes: the worst frame %.1f ms, was %.1f", worst, worst0);
+	CHECK(changes == 0, "spikes: no flipping (%u changes in 20 s)", changes);
 
 	/* the ladder: monotone, in the documented order */
 	for (int i = 1; i < GOVERNOR_LEVELS; i++) {

@@ -31,7 +31,7 @@ static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 #define UP_WAIT_MAX_S 32.0
 #define SETTLE_S 0.5     /* after a step: let the average follow */
 #define FAILED_UP_S 4.0  /* a step down this soon after a step up: that step up failed */
-#define SMOOTH 0.2       /* weight of the newest frame in the average */
+#define SMOOTH 0.2       /* weight of the newest frame in the averages */
 
 struct governor_quality governor_level(int level)
 {
@@ -64,16 +64,21 @@ static void step(struct governor *g, int dir, double now_s)
 	}
 }
 
+double governor_held_ms(const struct governor *g)
+{
+	return g->smooth_ms < 0 ? -1 : g->smooth_ms + sqrt(g->smooth_var);
+}
+
 static void decide(struct governor *g, double now_s)
 {
-	double over = g->target_ms * OVER, under = g->target_ms * UNDER;
-	if (g->smooth_ms > over) {
+	double over = g->target_ms * OVER, under = g->target_ms * UNDER, held = governor_held_ms(g);
+	if (held > over) {
 		g->under_since = -1;
 		if (g->over_since < 0)
 			g->over_since = now_s;
 		if (now_s - g->over_since >= OVER_FOR_S && g->level < GOVERNOR_LEVELS - 1)
 			step(g, +1, now_s);
-	} else if (g->smooth_ms < under) {
+	} else if (held < under) {
 		g->over_since = -1;
 		if (g->under_since < 0)
 			g->under_since = now_s;
@@ -91,11 +96,17 @@ struct governor_quality governor_update(struct governor *g, double frame_ms, dou
 {
 	if (!(frame_ms >= 0) || !isfinite(frame_ms))
 		frame_ms = g->target_ms; /* a clock that jumped tells nothing */
-	/* a frame far over the line (a hitch) moves the average by at most 4 targets */
-	if (g->smooth_ms < 0)
+	/* a frame far over the line (a hitch) moves the averages by at most
+	 * what one 4 targets over the mean would */
+	if (g->smooth_ms < 0) {
 		g->smooth_ms = frame_ms;
-	else
-		g->smooth_ms += SMOOTH * (fmin(frame_ms, g->smooth_ms + 4 * g->target_ms) - g->smooth_ms);
+		g->smooth_var = 0;
+	} else {
+		double d = fmin(frame_ms, g->smooth_ms + 4 * g->target_ms) - g->smooth_ms;
+		g->smooth_ms += SMOOTH * d;
+		/* the deviation's average, as the mean's (West's incremental form) */
+		g->smooth_var = (1 - SMOOTH) * (g->smooth_var + SMOOTH * d * d);
+	}
 	if (now_s >= g->settle_until)
 		decide(g, now_s);
 	struct governor_quality q = ladder[g->level];

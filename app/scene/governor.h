@@ -4,8 +4,12 @@
  * there is headroom.  It only sees frame times and a clock, so a test
  * drives it with a fake clock and a synthetic load.
  *
- * Hysteresis: it steps down when the smoothed frame time is over the
- * target for a short while, up only when it is under 75 % of the
+ * What it holds is the frame time most frames stay under: the smoothed
+ * mean plus one smoothed deviation, so a frame time whose mean sits just
+ * under the target while a third of the frames miss it is not held.
+ *
+ * Hysteresis: it steps down when that is over the target for a short
+ * while, up only when it is under 75 % of the
  * target for longer, waits after every step for the frame time to settle,
  * and each step up that has to be taken back doubles the wait before the
  * next try (so a load that sits between two steps does not make it
@@ -32,6 +36,7 @@ struct governor_quality {
 struct governor {
 	double target_ms;
 	double smooth_ms;       /* exponential average of the frame times */
+	double smooth_var;      /* exponential average of their squared deviation from it */
 	double over_since, under_since; /* clock when the current excursion began (< 0: none) */
 	double settle_until;    /* no decision before this */
 	double up_wait_s;       /* how long under the line before a step up */
@@ -53,6 +58,9 @@ struct governor_quality governor_level(int level);
 /* The parameters a frame runs with under quality q (the render scale is
  * the renderer's, the far octaves the world's: not parameters). */
 void governor_apply(const struct governor_quality *q, const struct params *p, struct params *eff);
+/* What it compares with the target: the smoothed frame time plus one
+ * smoothed deviation (ms; -1 before the first frame). */
+double governor_held_ms(const struct governor *g);
 /* Means over every update so far (1 before the first). */
 double governor_mean_scale(const struct governor *g);
 double governor_mean_view(const struct governor *g);
