@@ -55,9 +55,11 @@ static void world_status(struct scene *s, char *line, size_t len)
 		return;
 	}
 	struct governor_quality q = ws->q;
-	snprintf(line, len, "governor %.1f ms of %.1f: scale %.2f, budget x%.2f, AO x%.2f, far -%d oct, view x%.2f",
-		 ws->last_work_ms, ws->gov.target_ms, q.render_scale, q.gen_budget, q.ao_rays, q.far_octaves_drop,
-		 q.view_distance);
+	/* held: the smoothed frame time plus its deviation (governor.h) */
+	snprintf(line, len,
+		 "governor %.1f ms held of %.1f (last %.1f): scale %.2f, budget x%.2f, AO x%.2f, far -%d oct, view x%.2f",
+		 governor_held_ms(&ws->gov), ws->gov.target_ms, ws->last_work_ms, q.render_scale, q.gen_budget, q.ao_rays,
+		 q.far_octaves_drop, q.view_distance);
 }
 
 static int world_frame(struct scene *s, struct params *p, const struct scene_frame *fr, char *err, size_t errlen)
