@@ -306,10 +306,11 @@ int renderer_prepass_begin(struct renderer *r)
 			log_error("depth pre-pass: %s", err);
 			return -1;
 		}
-		r->ld_viewproj = glGetUniformLocation(r->depth_prog, "u_viewproj");
-		r->ld_sink = glGetUniformLocation(r->depth_prog, "u_sink");
 	}
 	glUseProgram(r->depth_prog);
+	/* looked up each frame: a live shader edit may move them */
+	r->ld_viewproj = glGetUniformLocation(r->depth_prog, "u_viewproj");
+	r->ld_sink = glGetUniformLocation(r->depth_prog, "u_sink");
 	glUniformMatrix4fv(r->ld_viewproj, 1, GL_FALSE, r->cam.viewproj);
 	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 	r->in_prepass = true;
