@@ -34,9 +34,8 @@ struct renderer {
 	GLuint vao, sky, water;
 	/* the depth pre-pass (a software rasterizer's: its fragment shading
 	 * costs CPU time for every layer drawn over a pixel) */
-	bool prepass, in_prepass;
+	bool prepass;
 	GLuint depth_prog;
-	GLint ld_viewproj, ld_sink;
 	struct terrain_prog tp[PROG_COUNT]; /* the terrain's, for key (PROG_FAR made when first needed) */
 	int cur;                            /* the variant in use this frame */
 	char key[RENDER_KEY_MAX];
@@ -295,43 +294,6 @@ bool renderer_prepass(const struct renderer *r)
 	return r->prepass;
 }
 
-int renderer_prepass_begin(struct renderer *r)
-{
-	if (!r->prepass)
-		return 0;
-	if (!r->depth_prog) {
-		char err[512];
-		r->depth_prog = gpu_graphics_program("render.vert", "depth.frag", NULL, err, sizeof(err));
-		if (!r->depth_prog) {
-			log_error("depth pre-pass: %s", err);
-			return -1;
-		}
-	}
-	glUseProgram(r->depth_prog);
-	/* looked up each frame: a live shader edit may move them */
-	r->ld_viewproj = glGetUniformLocation(r->depth_prog, "u_viewproj");
-	r->ld_sink = glGetUniformLocation(r->depth_prog, "u_sink");
-	glUniformMatrix4fv(r->ld_viewproj, 1, GL_FALSE, r->cam.viewproj);
-	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-	r->in_prepass = true;
-	return 0;
-}
-
-void renderer_prepass_end(struct renderer *r)
-{
-	if (!r->in_prepass)
-		return;
-	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-	/* the depth pass rasterized before the shading pass is binned: the
-	 * software rasterizer frees its bins first, and the two do not hold
-	 * memory at once (the no-flag run's peak 153 -> 139.5 MB, its time the
-	 * same) */
-	glFinish();
-	glDepthFunc(GL_LEQUAL); /* the surfaces laid down pass again, once */
-	glUseProgram(r->tp[r->cur].prog);
-	r->in_prepass = false;
-}
-
 static void draw_indirect(GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset)
 {
 	glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -348,14 +310,37 @@ static void draw_indirect(GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offs
 	}
 }
 
+/* The depth pre-pass (render.h): the mesh's depth laid down, rasterized
+ * before the shading pass is binned (the software rasterizer frees the
+ * depth pass's bins first, so the two do not hold memory at once: the
+ * no-flag run's peak 153 -> 139.5 MB, its time the same); the shading pass
+ * then tests GL_LEQUAL.  0, or -1 (logged: no depth program). */
+static int depth_pass(struct renderer *r, const struct pipeline_draw *d, const struct camera *c)
+{
+	if (!r->depth_prog) {
+		char err[512];
+		r->depth_prog = gpu_graphics_program("render.vert", "depth.frag", NULL, err, sizeof(err));
+		if (!r->depth_prog) {
+			log_error("depth pre-pass: %s", err);
+			return -1;
+		}
+	}
+	glUseProgram(r->depth_prog);
+	/* looked up each frame: a live shader edit may move them */
+	glUniformMatrix4fv(glGetUniformLocation(r->depth_prog, "u_viewproj"), 1, GL_FALSE, c->viewproj);
+	glUniform1f(glGetUniformLocation(r->depth_prog, "u_sink"), 0.0f);
+	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+	draw_indirect(d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset);
+	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+	glFinish();
+	glDepthFunc(GL_LEQUAL); /* the surfaces laid down pass again, once */
+	glUseProgram(r->tp[r->cur].prog);
+	return 0;
+}
+
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
 			float dist)
 {
-	if (r->in_prepass) {
-		glUniform1f(r->ld_sink, sink);
-		draw_indirect(vbo, ibo, indirect, offset);
-		return;
-	}
 	int want = dist >= DETAIL_RANGE ? PROG_FAR : PROG_NEAR;
 	if (want == PROG_FAR && !r->tp[PROG_FAR].prog) {
 		r->tp[PROG_FAR].prog = terrain_variant(r->key, PROG_FAR);
@@ -459,13 +444,9 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 {
 	if (renderer_begin(r, c, p) < 0)
 		return -1;
-	for (int pass = renderer_prepass(r) ? 0 : 1; pass < 2; pass++) {
-		if (pass == 0 && renderer_prepass_begin(r) < 0)
-			return -1;
-		renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, 0.0f);
-		if (pass == 0)
-			renderer_prepass_end(r);
-	}
+	if (r->prepass && depth_pass(r, d, c) < 0)
+		return -1;
+	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, 0.0f);
 	/* water inside the volume only, below its top */
 	struct grid g;
 	grid_from_params(&g, p);

@@ -47,21 +47,17 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
 			float dist);
 int renderer_end(struct renderer *r);
-/* The depth pre-pass, between begin and the meshes: the meshes drawn
- * between renderer_prepass_begin and _end lay down depth only; drawn again
- * after it, each pixel is shaded once, by its nearest surface, instead of
- * once per layer drawn over it.  renderer_draw (the volume scene: one mesh
- * in no order) uses it when it is on: by default on a software rasterizer
- * (every shaded fragment costs CPU time there, and the second draw less),
- * off on a GPU (early depth tests there, and vertex work twice on a
- * tiler).  The world does not: its blocks are drawn front to back already,
- * and on llvmpipe its frames cost more with it (640x480 fly-through, p50
- * 38-41 ms without, 46-55 with).  begin: 0, or -1 (logged: no depth
- * program); begin and end do nothing when it is off. */
+/* The depth pre-pass of renderer_draw (the volume scene: one mesh in no
+ * order): the mesh's depth laid down first, so each pixel is shaded once,
+ * by its nearest surface, instead of once per layer drawn over it.  On by
+ * default on a software rasterizer (every shaded fragment costs CPU time
+ * there, and the second draw less), off on a GPU (early depth tests there,
+ * and vertex work twice on a tiler).  The world does not use it: its blocks
+ * are drawn front to back already, and on llvmpipe its frames cost more
+ * with it (640x480 governed fly-through under load, p50 38-41 ms without,
+ * 46-55 with). */
 void renderer_set_prepass(struct renderer *r, bool on);
 bool renderer_prepass(const struct renderer *r);
-int renderer_prepass_begin(struct renderer *r);
-void renderer_prepass_end(struct renderer *r);
 /* Water plane over the world rectangle x0,z0 - x1,z1 (after the terrain). */
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);
 /* The governor's render scale (0.5 .. 1): later frames are drawn at that
