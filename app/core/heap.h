@@ -1,21 +1,26 @@
-/* isoterra — the C heap kept to what is in use: freed memory goes back to
- * the kernel instead of staying in the process (docs/RELIABILITY.md,
- * "Memory"). */
+/* isoterra — the C heap sized once to what the frame loop needs, then
+ * kept: no memory mapped and unmapped every frame, a resident size that
+ * settles after a few steps (docs/RELIABILITY.md, "Memory"). */
 #ifndef ISOTERRA_HEAP_H
 #define ISOTERRA_HEAP_H
 
-/* From now on every allocation of HEAP_OWN_MAP bytes or more gets its own
- * mapping, unmapped when it is freed (glibc: a fixed M_MMAP_THRESHOLD; by
- * default the threshold grows with the largest block freed, up to 32 MB,
- * and blocks under it are carved from the heap, which only shrinks from
- * its top).  Elsewhere a no-op. */
-void heap_policy(void);
-/* Gives whole free pages inside the heap back to the kernel (glibc:
- * malloc_trim), at most once every HEAP_RELEASE_MS; cheap to call every
- * frame.  Elsewhere a no-op. */
-void heap_release(void);
+#include <stddef.h>
 
-#define HEAP_OWN_MAP (64 * 1024)
-#define HEAP_RELEASE_MS 1000.0
+/* From now on allocations under HEAP_OWN_MAP come from the heap and memory
+ * freed inside it stays there for the next frame (glibc: a fixed
+ * M_MMAP_THRESHOLD, so it no longer grows by itself, and an M_TRIM_THRESHOLD
+ * of HEAP_KEEP).  Elsewhere, or under a sanitizer's allocator, a no-op. */
+void heap_policy(void);
+/* Once the heap has grown past what was last reserved, grows it to
+ * HEAP_HEADROOM more (touched, then freed back into the heap): the next
+ * frames' growth lands in memory the process already holds.  Looks at most
+ * once every HEAP_CHECK_MS; cheap to call every frame.  Returns the heap's
+ * size in bytes after it (0 where there is nothing to do). */
+size_t heap_reserve(void);
+
+#define HEAP_OWN_MAP (4 * 1024 * 1024)
+#define HEAP_KEEP (1024 * 1024 * 1024)
+#define HEAP_HEADROOM 0.25
+#define HEAP_CHECK_MS 1000.0
 
 #endif

@@ -80,8 +80,8 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	/* drawing the world churns the driver's memory: keep the process to
-	 * what it uses (heap.c) */
+	/* drawing the world churns the driver's memory: keep it in the heap
+	 * from frame to frame (heap.c) */
 	heap_policy();
 	w->ed = ed;
 	w->n = p->block_cells;
@@ -170,7 +170,7 @@ int world_update(struct world *w, const struct params *p, const struct camera *c
 	/* the pre-pass and the generation, staged over frames (world_gen.c) */
 	if (generate_wanted(w, p, now, deterministic) < 0)
 		return -1;
-	heap_release();
+	heap_reserve();
 	return 0;
 }
 
