@@ -268,7 +268,20 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	}
 	glEnable(GL_DEPTH_TEST);
 	glDepthFunc(GL_LESS);
-	glDisable(GL_CULL_FACE); /* the volume's cut sides show back faces */
+	/* Back faces show only where a cut opens the rock: the sides of a
+	 * volume that is not closed.  The world is seen from the air (the
+	 * autopilot never enters rock) and a closed volume from outside, so
+	 * there every back face is hidden: culled before llvmpipe bins it
+	 * (about a fifth of the world's frame time, and its bins' memory).
+	 * Marching cubes winds every triangle counter-clockwise seen from
+	 * the air. */
+	if (p->scene == SCENE_WORLD || p->closed) {
+		glEnable(GL_CULL_FACE);
+		glCullFace(GL_BACK);
+		glFrontFace(GL_CCW);
+	} else {
+		glDisable(GL_CULL_FACE);
+	}
 
 	/* a far variant made on an earlier frame gets its uniforms too */
 	for (int i = PROG_COUNT - 1; i >= 0; i--)
@@ -376,6 +389,7 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	float radius = p->planet_radius + p->water_level;
 	if (!p->water || (sphere && radius <= 0.0f))
 		return;
+	glDisable(GL_CULL_FACE); /* the plane is seen from both sides */
 	glUseProgram(r->water);
 	glUniform1f(glGetUniformLocation(r->water, "u_water_sphere"), sphere ? radius : 0.0f);
 	glUniform3f(glGetUniformLocation(r->water, "u_water_centre"), 0.0f, -p->planet_radius, 0.0f);
@@ -405,6 +419,7 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 
 int renderer_end(struct renderer *r)
 {
+	glDisable(GL_CULL_FACE); /* the passes after the frame draw whatever their winding */
 	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 	int rc = gpu_check("draw");
 	if (rc == 0 && (r->sw != r->w || r->sh != r->h)) {
