@@ -8,6 +8,8 @@ set -u
 cd "$(dirname "$0")/.."
 total_pass=0
 total_fail=0
+failures=$(mktemp)
+trap 'rm -f "$failures"' EXIT
 
 run_suite() { # name builddir meson-args...
 	name=$1
@@ -29,6 +31,21 @@ run_suite() { # name builddir meson-args...
 	total_pass=$((total_pass + p))
 	total_fail=$((total_fail + f))
 	[ $rc -eq 0 ] || total_fail=$((total_fail + 1))
+	# the failed tests by name, with the end of what each printed, again
+	# at the very end (a CI log is often read from its tail)
+	python3 - "$dir/meson-logs/testlog.json" "$name" >>"$failures" <<'PY' || true
+import json, sys
+for line in open(sys.argv[1], encoding="utf-8", errors="replace"):
+    try:
+        t = json.loads(line)
+    except ValueError:
+        continue
+    if t.get("result") not in ("OK", "SKIP", "EXPECTEDFAIL"):
+        print("--- %s: %s %s (%.0f s)" % (sys.argv[2], t.get("name"), t.get("result"), t.get("duration", 0)))
+        out = ((t.get("stdout") or "") + (t.get("stderr") or "")).rstrip().splitlines()
+        for l in out[-15:]:
+            print("    " + l)
+PY
 	return $rc
 }
 
@@ -113,6 +130,10 @@ if [ "${ISOTERRA_SKIP_CHROOT_SUITES:-0}" != 1 ]; then
 		run_chroot_suite "arm64: cross build, qemu-user smoke run" arm64 || status=1
 		run_chroot_suite "Debian package: build, lintian, install" debpkg || status=1
 	fi
+fi
+if [ -s "$failures" ]; then
+	echo "=== failed tests"
+	cat "$failures"
 fi
 echo "all suites: $total_pass passed, $total_fail failed"
 exit $status
