@@ -20,6 +20,7 @@
 #if defined(__GLIBC__)
 #include <malloc.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 static int active;
 static size_t reserved;
@@ -54,6 +55,8 @@ size_t heap_reserve(void)
 	/* the pieces fill the heap's free holes first, then extend it; taking
 	 * the holes' size more than the growth wanted reaches the target */
 	size_t want = target - mi.arena + mi.fordblks;
+	long page = sysconf(_SC_PAGESIZE); /* 4 KiB, or 16 KiB on a Raspberry Pi 5's kernel */
+	size_t stride = page > 0 ? (size_t)page : 4096;
 	void *chain = NULL;
 	for (size_t got = 0; got < want; got += PIECE) {
 		void **piece = malloc(PIECE);
@@ -61,7 +64,7 @@ size_t heap_reserve(void)
 			break;
 		/* resident now, not at the next frame: a write to each page
 		 * (volatile: the compiler sees the piece freed unread) */
-		for (size_t off = 0; off < PIECE; off += 4096)
+		for (size_t off = 0; off < PIECE; off += stride)
 			((volatile char *)piece)[off] = 0;
 		*piece = chain;
 		chain = piece;
