@@ -37,8 +37,9 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			log_error("%s", msg);
 			controls_notice(lp->ctl, p, "shader error", msg);
 		}
-		struct scene_frame sf = { .index = f, .live = lp->live, .start_s = start, .ctl = lp->ctl,
-					  .r = lp->r, .w = lp->w, .h = lp->h, .refresh_hz = lp->refresh_hz,
+		struct scene_frame sf = { .index = f, .last = p->count > 0 && f == p->count - 1, .live = lp->live,
+					  .start_s = start, .ctl = lp->ctl, .r = lp->r, .w = lp->w, .h = lp->h,
+					  .refresh_hz = lp->refresh_hz,
 					  .timing = lp->timing ? &tm : NULL };
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)

@@ -254,6 +254,51 @@ static void check_determinism(void)
 	edits_destroy(ed);
 }
 
+/* The field's buffers let go after a run (pipeline_release_field): the mesh
+ * stays readable as it was, the densities are not, and the next run makes
+ * them again and gives the same mesh and densities; a stage after the
+ * density's without it is refused. */
+static void check_release(void)
+{
+	struct params p;
+	params_defaults(&p);
+	p.grid = 24;
+	struct grid g;
+	grid_from_params(&g, &p);
+	char err[256];
+	struct fixture_terrain ft;
+	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "release: %s", err);
+	if (!ft.pl)
+		return;
+	size_t nd = (size_t)grid_dens_count(&g);
+	float *da = malloc(nd * 4), *db = malloc(nd * 4);
+	struct mesh a = { 0 }, kept = { 0 }, again = { 0 };
+	CHECK(fixture_run(ft.pl, &p) == 0 && pipeline_read_mesh(ft.pl, &a) == 0 && pipeline_read_density(ft.pl, da) == 0,
+	      "release: first run");
+	pipeline_release_field(ft.pl);
+	pipeline_release_field(ft.pl); /* twice is harmless */
+	CHECK(pipeline_read_mesh(ft.pl, &kept) == 0, "release: the mesh is still readable");
+	CHECK(kept.ntris == a.ntris && kept.nverts == a.nverts && a.ntris > 0 &&
+		      !memcmp(kept.idx, a.idx, 12 * (size_t)a.ntris) && !memcmp(kept.pos, a.pos, 12 * (size_t)a.nverts),
+	      "release: the mesh kept as it was (%u triangles)", kept.ntris);
+	CHECK(pipeline_read_density(ft.pl, db) < 0, "release: no densities to read");
+	CHECK(pipeline_run_stage(ft.pl, &p, PIPE_PYRAMID, err, sizeof(err)) < 0 && strstr(err, "released"),
+	      "release: a pyramid stage without its density is refused (%s)", err);
+	CHECK(fixture_run(ft.pl, &p) == 0 && pipeline_read_mesh(ft.pl, &again) == 0 &&
+		      pipeline_read_density(ft.pl, db) == 0,
+	      "release: the next run");
+	CHECK(again.ntris == a.ntris && again.nverts == a.nverts && !memcmp(again.idx, a.idx, 12 * (size_t)a.ntris) &&
+		      !memcmp(again.pos, a.pos, 12 * (size_t)a.nverts) && !memcmp(da, db, nd * 4),
+	      "release: the next run gives the same mesh and densities");
+	CHECK(pipeline_check_guards(ft.pl) == 0, "release: output canaries intact");
+	mesh_free(&a);
+	mesh_free(&kept);
+	mesh_free(&again);
+	free(da);
+	free(db);
+	fixture_terrain_close(&ft);
+}
+
 /* ---- specialization and the program cache ------------------------------- */
 
 static void set_kv(struct params *p, const char *kv)
@@ -571,6 +616,7 @@ int main(void)
 	}
 	check_worst_case();
 	check_determinism();
+	check_release();
 	check_cache();
 	check_terms();
 	check_curves_switch();

@@ -22,6 +22,8 @@ GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage)
 
 int pipeline_read_density(struct pipeline *pl, float *out)
 {
+	if (!pl->b_dens)
+		return -1; /* released (pipeline_release_field) */
 	return gpu_read_buffer(pl->b_dens, 0, (GLsizeiptr)grid_dens_count(&pl->g) * 4, out);
 }
 

@@ -310,13 +310,37 @@ static uint32_t sign_words(const struct grid *g)
 	return (uint32_t)(slab_bits / 32 * (uint64_t)(g->nz + m2));
 }
 
-static int create_buffers(struct pipeline *pl, char *err, size_t errlen)
+/* What a run needs and its outputs do not: the densities, the sign bits
+ * (raw and filtered) and the HistoPyramid.  0, or -1 with err. */
+static int create_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 {
 	pl->b_dens = extract_buffer((GLsizeiptr)grid_dens_count(&pl->g) * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_signs = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_signs_raw = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_l0 = extract_buffer((GLsizeiptr)pl->words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 16, NULL, GL_DYNAMIC_COPY); /* pyramid + prefix sums */
+	if (gpu_check("the field's buffers") < 0) {
+		snprintf(err, errlen, "cannot allocate the pipeline's field buffers (grid %dx%dx%d)", pl->g.nx, pl->g.ny,
+			 pl->g.nz);
+		return -1;
+	}
+	return 0;
+}
+
+void pipeline_release_field(struct pipeline *pl)
+{
+	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_l0, &pl->b_hp };
+	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++) {
+		if (*bufs[i])
+			glDeleteBuffers(1, bufs[i]);
+		*bufs[i] = 0;
+	}
+}
+
+static int create_buffers(struct pipeline *pl, char *err, size_t errlen)
+{
+	if (create_field_buffers(pl, err, errlen) < 0)
+		return -1;
 	pl->b_idx = extract_buffer((GLsizeiptr)pl->tri_cap * 12 + GUARD_BYTES, NULL, GL_DYNAMIC_DRAW);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_idx);
 	write_guard((GLintptr)pl->tri_cap * 12);
@@ -415,6 +439,8 @@ static void bind_all(const struct pipeline *pl)
 static int density_slabs(struct pipeline *pl, const struct params *p, int z0, int z1, char *err, size_t errlen)
 {
 	err[0] = 0;
+	if (!pl->b_dens && create_field_buffers(pl, err, errlen) < 0) /* released after the last run */
+		return -1;
 	pl->p_density = density_program(pl, p, err, errlen);
 	if (!pl->p_density)
 		return -1;
@@ -562,6 +588,10 @@ int pipeline_run_stage(struct pipeline *pl, const struct params *p, enum pipelin
 {
 	err[0] = 0;
 	int zs = pl->g.nz + 1 + 2 * grid_margin(&pl->g), rc = 0;
+	if (!pl->b_dens && stage > PIPE_DENSITY_LO) {
+		snprintf(err, errlen, "pipeline stage %d without its density: the field's buffers were released", stage);
+		return -1;
+	}
 	switch (stage) {
 	case PIPE_DENSITY_LO: return density_slabs(pl, p, 0, zs / 2, err, errlen);
 	case PIPE_DENSITY_HI: return density_slabs(pl, p, zs / 2, zs, err, errlen);
@@ -660,4 +690,9 @@ void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d)
 	d->ibo = d->indexed ? pl->b_idx : 0;
 	d->indirect = pl->b_status;
 	d->indirect_offset = (d->indexed ? ST_DRAW_ELEMENTS : ST_DRAW_ARRAYS) * 4;
+	/* mc_setup.comp and mc_finish.comp clamp to the capacity; with no
+	 * compaction every cell's five triangles are drawn */
+	d->capacity = pl->last_mode == COMPACTION_NONE
+			      ? (uint32_t)(5 * (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz)
+			      : pl->tri_cap;
 }

@@ -86,6 +86,13 @@ int pipeline_density(struct pipeline *pl, const struct params *p, char *err, siz
 /* Runs density + extraction with the compaction method in p->compaction
  * (HistoPyramid always with a target).  0, or -1 with err as above. */
 int pipeline_run(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+/* Lets go of what only a run needs: the densities, sign bits and the
+ * HistoPyramid (at the no-flag run's 128x58x128, 10.7 MB).  The mesh, its
+ * draw command and counters stay, to draw, read and export; the next run
+ * (or its first stage) makes the rest again.  For a scene's last frame:
+ * the volume's picture is drawn without them.  Not between a run's
+ * stages; pipeline_read_density fails until the next run. */
+void pipeline_release_field(struct pipeline *pl);
 /* The same run in four stages (a world block's generation spread over
  * frames, pipeline_run's HistoPyramid path in order): the density of the
  * lower and the upper half of the z slabs, classification + HistoPyramid,
@@ -113,6 +120,7 @@ struct pipeline_draw {
 	GLuint vbo, ibo, indirect;
 	GLintptr indirect_offset;
 	bool indexed;
+	uint32_t capacity; /* triangles the command can draw at most */
 };
 void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d);
 

@@ -83,6 +83,10 @@ static const struct gl_pass passes[] = {
 	  VF(19, 0, 7), { 0, 0, 0 }, -1, 0 },
 	{ "osd.vert + osd.frag", NULL, "osd.vert", "osd.frag", NULL, false,
 	  VF(6, 1, 89), { 0, 0, 0 }, -1, 0 },
+	/* a mesh's draw command split into parts on a software rasterizer
+	 * (app/render/parts.c): the status block (6) into the parts (12) */
+	{ "draw_parts.comp", "draw_parts.comp", NULL, NULL, NULL, false,
+	  CS(2, 0, 0, 0, 4), { 64, 1, 1 }, BIND_AUX_A, 0 },
 	/* the governor's upscale (app/render/upscale.c) */
 	{ "upscale.vert + upscale.frag", NULL, "upscale.vert", "upscale.frag", NULL, false,
 	  VF(2, 1, 4), { 0, 0, 0 }, -1, 0 },

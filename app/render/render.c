@@ -36,6 +36,11 @@ struct renderer {
 	 * costs CPU time for every layer drawn over a pixel) */
 	bool prepass;
 	GLuint depth_prog;
+	/* renderer_draw's mesh in parts of at least this many triangles, each
+	 * finished before the next is binned (a software rasterizer's: its
+	 * bins hold a whole draw); 0 = one draw */
+	uint32_t part_tris;
+	struct draw_parts pt;
 	struct terrain_prog tp[PROG_COUNT]; /* the terrain's, for key (PROG_FAR made when first needed) */
 	int cur;                            /* the variant in use this frame */
 	char key[RENDER_KEY_MAX];
@@ -91,6 +96,7 @@ struct renderer *renderer_create(int width, int height, int antialias, char *err
 	if (r->aa == ANTIALIAS_AUTO)
 		r->aa = gpu_software_rasterizer() ? ANTIALIAS_FXAA : ANTIALIAS_MSAA;
 	r->prepass = gpu_software_rasterizer();
+	r->part_tris = gpu_software_rasterizer() ? RENDER_PART_TRIANGLES : 0;
 	if (r->aa == ANTIALIAS_MSAA && max_samples < 4)
 		r->aa = ANTIALIAS_FXAA;
 	r->samples = r->aa == ANTIALIAS_MSAA ? 4 : 0;
@@ -167,6 +173,7 @@ void renderer_destroy(struct renderer *r)
 		glDeleteTextures(1, &r->surface);
 	upscale_free(&r->up);
 	upscale_free(&r->fx);
+	parts_free(&r->pt);
 	GLuint fb[2] = { r->fbo, r->fbo_ms };
 	glDeleteFramebuffers(2, fb);
 	GLuint rb[3] = { r->rb_color, r->rb_color_ms, r->rb_depth };
@@ -307,6 +314,16 @@ bool renderer_prepass(const struct renderer *r)
 	return r->prepass;
 }
 
+void renderer_set_parts(struct renderer *r, uint32_t triangles)
+{
+	r->part_tris = triangles;
+}
+
+uint32_t renderer_parts(const struct renderer *r)
+{
+	return r->part_tris;
+}
+
 static void draw_indirect(GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset)
 {
 	glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -323,12 +340,30 @@ static void draw_indirect(GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offs
 	}
 }
 
+/* renderer_draw's mesh: one draw of its indirect command, or its parts
+ * (render_int.h), each rasterized before the next is binned; shaded by
+ * the terrain's program, or by the program in use (the depth pre-pass). */
+static void draw_mesh(struct renderer *r, const struct pipeline_draw *d, uint32_t parts, bool shaded)
+{
+	GLuint ibo = d->indexed ? d->ibo : 0;
+	GLuint cmd = parts ? r->pt.buf : d->indirect;
+	for (uint32_t i = 0; i < (parts ? parts : 1); i++) {
+		GLintptr at = parts ? (GLintptr)i * PART_BYTES : d->indirect_offset;
+		if (shaded)
+			renderer_draw_mesh(r, d->vbo, ibo, cmd, at, 0.0f, 0.0f);
+		else
+			draw_indirect(d->vbo, ibo, cmd, at);
+		if (parts)
+			glFinish();
+	}
+}
+
 /* The depth pre-pass (render.h): the mesh's depth laid down, rasterized
  * before the shading pass is binned (the software rasterizer frees the
  * depth pass's bins first, so the two do not hold memory at once: the
  * no-flag run's peak 153 -> 139.5 MB, its time the same); the shading pass
  * then tests GL_LEQUAL.  0, or -1 (logged: no depth program). */
-static int depth_pass(struct renderer *r, const struct pipeline_draw *d, const struct camera *c)
+static int depth_pass(struct renderer *r, const struct pipeline_draw *d, uint32_t parts, const struct camera *c)
 {
 	if (!r->depth_prog) {
 		char err[512];
@@ -343,7 +378,7 @@ static int depth_pass(struct renderer *r, const struct pipeline_draw *d, const s
 	glUniformMatrix4fv(glGetUniformLocation(r->depth_prog, "u_viewproj"), 1, GL_FALSE, c->viewproj);
 	glUniform1f(glGetUniformLocation(r->depth_prog, "u_sink"), 0.0f);
 	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-	draw_indirect(d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset);
+	draw_mesh(r, d, parts, false);
 	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 	glFinish();
 	glDepthFunc(GL_LEQUAL); /* the surfaces laid down pass again, once */
@@ -457,11 +492,18 @@ void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h)
 
 int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struct camera *c, const struct params *p)
 {
+	/* the parts' commands first: a compute pass, before the frame's state */
+	uint32_t parts = 0, per = 0;
+	if (r->part_tris) {
+		parts = parts_plan(d->capacity, r->part_tris, &per);
+		if (parts_split(&r->pt, d->indirect, d->indirect_offset, d->indexed, parts, per) < 0)
+			return -1;
+	}
 	if (renderer_begin(r, c, p) < 0)
 		return -1;
-	if (r->prepass && depth_pass(r, d, c) < 0)
+	if (r->prepass && depth_pass(r, d, parts, c) < 0)
 		return -1;
-	renderer_draw_mesh(r, d->vbo, d->indexed ? d->ibo : 0, d->indirect, d->indirect_offset, 0.0f, 0.0f);
+	draw_mesh(r, d, parts, true);
 	/* water inside the volume only, below its top */
 	struct grid g;
 	grid_from_params(&g, p);

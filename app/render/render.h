@@ -58,6 +58,16 @@ int renderer_end(struct renderer *r);
  * 46-55 with). */
 void renderer_set_prepass(struct renderer *r, bool on);
 bool renderer_prepass(const struct renderer *r);
+/* renderer_draw's mesh in parts of at least `triangles` (more when its
+ * capacity would need over 64 parts), each rasterized before the next is
+ * binned; 0 draws it at once.  On a software rasterizer it is 16384 by
+ * default: it bins a whole draw before it rasterizes any of it (llvmpipe:
+ * 16 MB for the no-flag picture's 121 504 triangles, the largest part of
+ * that run's peak).  Off on a GPU (a tiler would store and reload its
+ * tiles at every part).  The picture is the same. */
+#define RENDER_PART_TRIANGLES 16384
+void renderer_set_parts(struct renderer *r, uint32_t triangles);
+uint32_t renderer_parts(const struct renderer *r);
 /* Water plane over the world rectangle x0,z0 - x1,z1 (after the terrain). */
 void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);
 /* The governor's render scale (0.5 .. 1): later frames are drawn at that

@@ -16,6 +16,8 @@ struct controls;
 /* The frame to draw. */
 struct scene_frame {
 	int index;               /* 0, 1, ... */
+	bool last;               /* the run's last frame (--count): what only
+	                          * later frames would use may be let go */
 	bool live;               /* on a display: wall-clock time, blocks stream
 	                          * under their budget; else each frame is
 	                          * complete and reproducible (time = index / fps) */

@@ -110,6 +110,10 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 	double t0 = clock_ms();
 	if (follow_grid(vs, p, err, errlen) < 0 || pipeline_run(vs->pl, p, err, errlen) < 0)
 		return -1;
+	/* the last picture is drawn without the densities and the pyramid
+	 * (the no-flag run's peak) */
+	if (fr->last)
+		pipeline_release_field(vs->pl);
 	if (fr->timing) {
 		glFinish();
 		fr->timing->update_ms = clock_ms() - t0;

@@ -1,0 +1,220 @@
+/* isoterra — the volume's mesh drawn in parts (app/render/parts.c,
+ * shaders/draw_parts.comp): the parts' commands, made on the GPU from the
+ * mesh's own, draw the very picture of the single draw (every triangle
+ * once, in order: a part that dropped, repeated or shifted triangles would
+ * change pixels), for indexed and unindexed meshes, with and without the
+ * depth pre-pass, for parts that divide the mesh evenly or not and parts
+ * past its end.  And what the parts are for: on a software rasterizer the
+ * peak resident memory the draw adds, each way measured by the kernel in
+ * a process of its own, is far smaller in parts. */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "gpu_fixture.h"
+#include "tcheck.h"
+
+#define W 320
+#define H 240
+
+#if defined(__SANITIZE_ADDRESS__)
+#define SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SANITIZED 1
+#endif
+#endif
+
+static int frame(struct renderer *r, const struct pipeline_draw *d, const struct params *p, const struct grid *g,
+		 int w, int h, struct image *img)
+{
+	struct camera c;
+	camera_orbit(&c, p, g, 0.0f, (float)w / (float)h);
+	if (renderer_draw(r, d, &c, p) < 0)
+		return -1;
+	return img ? renderer_read(r, img) : 0;
+}
+
+static int differ(const struct image *a, const struct image *b)
+{
+	int n = 0;
+	for (int i = 0; i < W * H * 4; i += 4)
+		n += memcmp(a->rgba + i, b->rgba + i, 4) != 0;
+	return n;
+}
+
+/* The picture drawn in parts of each size against the single draw. */
+static void same_picture(struct renderer *r, struct fixture_terrain *ft, struct params *p, const struct grid *g,
+			 const char *what)
+{
+	CHECK(fixture_run(ft->pl, p) == 0, "%s: run", what);
+	struct extract_stats st;
+	CHECK(pipeline_read_stats(ft->pl, &st) == 0, "%s: stats", what);
+	struct pipeline_draw d;
+	pipeline_draw_info(ft->pl, &d);
+	struct image whole = { 0 };
+	renderer_set_parts(r, 0);
+	CHECK(frame(r, &d, p, g, W, H, &whole) == 0, "%s: the single draw", what);
+	printf("%s: %u triangles, capacity %u\n", what, st.triangles, d.capacity);
+	CHECK(st.triangles > 2000, "%s: a mesh worth splitting (%u triangles)", what, st.triangles);
+	/* the default; parts dividing the capacity's 64 parts; odd sizes;
+	 * one part larger than the mesh */
+	uint32_t sizes[] = { RENDER_PART_TRIANGLES, 1, 700, 1237, 4096, 1000000 };
+	for (size_t k = 0; k < sizeof(sizes) / sizeof(sizes[0]); k++) {
+		for (int pre = 0; pre < 2; pre++) {
+			struct image img = { 0 };
+			bool was = renderer_prepass(r);
+			renderer_set_prepass(r, pre == 1);
+			renderer_set_parts(r, sizes[k]);
+			CHECK(frame(r, &d, p, g, W, H, &img) == 0, "%s: parts of %u", what, sizes[k]);
+			renderer_set_prepass(r, was);
+			if (whole.rgba && img.rgba) {
+				struct image ref = whole;
+				struct image other = { 0 };
+				if (pre != (was ? 1 : 0)) { /* the single draw the same way */
+					renderer_set_prepass(r, pre == 1);
+					renderer_set_parts(r, 0);
+					CHECK(frame(r, &d, p, g, W, H, &other) == 0, "%s: the single draw", what);
+					renderer_set_prepass(r, was);
+					ref = other;
+				}
+				int n = ref.rgba ? differ(&img, &ref) : -1;
+				CHECK(n == 0, "%s: parts of %u triangles (pre-pass %s) change %d pixels of the single draw",
+				      what, sizes[k], pre ? "on" : "off", n);
+				free(other.rgba);
+			}
+			free(img.rgba);
+		}
+	}
+	renderer_set_parts(r, RENDER_PART_TRIANGLES);
+	free(whole.rgba);
+}
+
+/* ---- the memory ------------------------------------------------------------ */
+
+static long status_kb(const char *key)
+{
+	FILE *f = fopen("/proc/self/status", "r");
+	char line[256];
+	long v = -1;
+	size_t n = strlen(key);
+	while (f && fgets(line, sizeof(line), f))
+		if (!strncmp(line, key, n) && line[n] == ':')
+			v = strtol(line + n + 1, NULL, 10);
+	if (f)
+		fclose(f);
+	return v;
+}
+
+/* In this (child) process: the no-flag picture's volume at 1280x720, its
+ * draw warmed up once (shaders compiled) in small parts; then the peak
+ * resident memory (VmHWM, reset through clear_refs) the draw adds over the
+ * resident size before it, in kB, drawn in parts of part_tris (0: whole).
+ * -1 when it cannot be measured. */
+static long draw_growth(uint32_t part_tris)
+{
+	fixture_open();
+	struct params p;
+	params_defaults(&p);
+	struct grid g;
+	grid_from_params(&g, &p);
+	char err[512];
+	struct fixture_terrain ft;
+	struct renderer *r = NULL;
+	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 ||
+	    !(r = renderer_create(1280, 720, ANTIALIAS_OFF, err, sizeof(err))) || fixture_run(ft.pl, &p) < 0) {
+		fprintf(stderr, "memory: %s\n", err);
+		return -1;
+	}
+	pipeline_release_field(ft.pl);
+	struct pipeline_draw d;
+	pipeline_draw_info(ft.pl, &d);
+	renderer_set_parts(r, 2048);
+	if (frame(r, &d, &p, &g, 1280, 720, NULL) < 0)
+		return -1;
+	glFinish();
+	FILE *f = fopen("/proc/self/clear_refs", "w");
+	if (!f || fputs("5", f) < 0 || fclose(f) != 0) {
+		perror("memory: /proc/self/clear_refs");
+		return -1;
+	}
+	long before = status_kb("VmRSS");
+	renderer_set_parts(r, part_tris);
+	if (frame(r, &d, &p, &g, 1280, 720, NULL) < 0)
+		return -1;
+	glFinish();
+	long peak = status_kb("VmHWM");
+	return before < 0 || peak < 0 ? -1 : peak - before;
+}
+
+/* draw_growth in a child process of its own (a fresh heap and context). */
+static long growth_apart(uint32_t part_tris)
+{
+	int fd[2];
+	if (pipe(fd) < 0)
+		return -1;
+	fflush(stdout);
+	pid_t pid = fork();
+	if (pid == 0) {
+		close(fd[0]);
+		long v = draw_growth(part_tris);
+		ssize_t w = write(fd[1], &v, sizeof(v));
+		_exit(w == (ssize_t)sizeof(v) ? 0 : 1);
+	}
+	close(fd[1]);
+	long v = -1;
+	if (pid < 0 || read(fd[0], &v, sizeof(v)) != (ssize_t)sizeof(v))
+		v = -1;
+	close(fd[0]);
+	int status = 0;
+	if (pid > 0 && (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0))
+		v = -1;
+	return v;
+}
+
+static void memory(void)
+{
+#ifdef SANITIZED
+	printf("memory: not measured under a sanitizer (its allocator is not the program's)\n");
+#else
+	long whole = growth_apart(0), parts = growth_apart(RENDER_PART_TRIANGLES);
+	printf("memory: the no-flag picture's draw adds %.1f MB drawn whole, %.1f MB in parts of %d triangles\n",
+	       whole / 1024.0, parts / 1024.0, RENDER_PART_TRIANGLES);
+	CHECK(whole >= 0 && parts >= 0, "memory: both draws measured");
+	CHECK(whole >= 4096, "memory: the single draw's bins are visible (%ld kB)", whole);
+	CHECK(parts * 2 <= whole, "memory: in parts the draw adds at most half as much (%ld kB vs %ld kB)", parts, whole);
+#endif
+}
+
+int main(void)
+{
+	/* first, before this process has a context: the children have theirs */
+	memory();
+	struct platform *plat = fixture_open();
+	bool software = gpu_software_rasterizer();
+	struct params p;
+	params_defaults(&p);
+	p.grid = 48;
+	struct grid g;
+	grid_from_params(&g, &p);
+	char err[512] = "";
+	struct fixture_terrain ft;
+	struct renderer *r = NULL;
+	if (fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) < 0 ||
+	    !(r = renderer_create(W, H, ANTIALIAS_OFF, err, sizeof(err)))) {
+		fprintf(stderr, "setup: %s\n", err);
+		return 1;
+	}
+	CHECK(renderer_parts(r) == (software ? RENDER_PART_TRIANGLES : 0u),
+	      "parts by default on a software rasterizer only (%u)", renderer_parts(r));
+	same_picture(r, &ft, &p, &g, "indexed (HistoPyramid)");
+	p.compaction = COMPACTION_ATOMIC;
+	same_picture(r, &ft, &p, &g, "unindexed (atomic append)");
+	renderer_destroy(r);
+	fixture_terrain_close(&ft);
+	platform_close(plat);
+	return tc_done("parts");
+}
