@@ -7,6 +7,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+/* SANITIZED: 1 in an AddressSanitizer build (its allocator and shadow
+ * memory are not the program's: memory measurements mean nothing there) */
+#if defined(__SANITIZE_ADDRESS__)
+#define SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SANITIZED 1
+#endif
+#endif
+#ifndef SANITIZED
+#define SANITIZED 0
+#endif
+
 static int tc_pass, tc_fail;
 
 #define CHECK(cond, ...)                                                        \

@@ -15,17 +15,6 @@
 #include "heap.h"
 #include "tcheck.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SANITIZED 1
-#endif
-#endif
-#ifndef SANITIZED
-#define SANITIZED 0
-#endif
-
 #define BLOCK (64 * 1024 + 16) /* llvmpipe's data block and its header */
 #define NBLOCKS 512            /* 32 MiB: one heavy frame's bins */
 #define MIB (1024.0 * 1024.0)
