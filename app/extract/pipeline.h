@@ -91,7 +91,10 @@ int pipeline_run(struct pipeline *pl, const struct params *p, char *err, size_t 
  * draw command and counters stay, to draw, read and export; the next run
  * (or its first stage) makes the rest again.  For a scene's last frame:
  * the volume's picture is drawn without them.  Not between a run's
- * stages; pipeline_read_density fails until the next run. */
+ * stages; pipeline_read_density fails until the next run.  A driver may
+ * keep a deleted buffer until its next compute pass binds others (Mesa's
+ * state tracker does): on a software rasterizer the draw's parts pass
+ * (app/render/parts.c) is that pass. */
 void pipeline_release_field(struct pipeline *pl);
 /* The same run in four stages (a world block's generation spread over
  * frames, pipeline_run's HistoPyramid path in order): the density of the
