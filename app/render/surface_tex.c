@@ -2,7 +2,11 @@
  * asset files): one tileable 128x128 RGBA8 texture whose channels hold a
  * rock/soil albedo variation (R), the slopes of a fractal height field
  * (G = d/du, B = d/dv, for per-projection bump mapping) and the height itself
- * (A, used for strata and detail).  Periodic value-noise fBm, so it tiles. */
+ * (A, used for strata and detail).  Periodic value-noise fBm, so it tiles.
+ * Its mip levels are averaged here too (a 2x2 box, what glGenerateMipmap
+ * does for a power-of-two size): llvmpipe's glGenerateMipmap compiles a
+ * blit's shaders first, 50-100 ms of the no-flag run's start, for 22 000
+ * texels that take the CPU well under a millisecond. */
 #include "render.h"
 #include "gpu.h"
 
@@ -10,6 +14,7 @@
 #include <stdlib.h>
 
 #define S 128
+#define LEVELS 8 /* 128 .. 1 */
 
 static float lattice(int x, int y, int period, uint32_t salt)
 {
@@ -41,6 +46,19 @@ static float fbm(float u, float v, uint32_t salt)
 	return s;
 }
 
+/* The next mip level of an n x n RGBA8 image, in place (n/2 x n/2 at
+ * its start): each texel the rounded mean of the 2x2 it covers. */
+static void halve(unsigned char *px, int n)
+{
+	int h = n / 2;
+	for (int y = 0; y < h; y++)
+		for (int x = 0; x < h; x++)
+			for (int c = 0; c < 4; c++) {
+				const unsigned char *a = px + 4 * ((2 * y) * n + 2 * x) + c, *b = a + 4 * n;
+				px[4 * (y * h + x) + c] = (unsigned char)((a[0] + a[4] + b[0] + b[4] + 2) / 4);
+			}
+}
+
 GLuint surface_texture_create(void)
 {
 	unsigned char *px = malloc(S * S * 4);
@@ -67,9 +85,15 @@ GLuint surface_texture_create(void)
 	GLuint tex = 0;
 	glGenTextures(1, &tex);
 	glBindTexture(GL_TEXTURE_2D, tex);
-	glTexStorage2D(GL_TEXTURE_2D, 8, GL_RGBA8, S, S);
-	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, S, S, GL_RGBA, GL_UNSIGNED_BYTE, px);
-	glGenerateMipmap(GL_TEXTURE_2D);
+	glTexStorage2D(GL_TEXTURE_2D, LEVELS, GL_RGBA8, S, S);
+	glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+	for (int level = 0, n = S;; level++, n /= 2) {
+		glTexSubImage2D(GL_TEXTURE_2D, level, 0, 0, n, n, GL_RGBA, GL_UNSIGNED_BYTE, px);
+		if (n == 1)
+			break;
+		halve(px, n);
+	}
+	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
 	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
 	/* bilinear within the nearest mip level, not trilinear: half the texels
