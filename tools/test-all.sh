@@ -17,10 +17,20 @@ run_suite() { # name builddir meson-args...
 	shift 2
 	echo "=== $name: configure ($*)"
 	if [ ! -d "$dir" ]; then
-		meson setup "$dir" "$@" >"$dir.setup.log" 2>&1 || { cat "$dir.setup.log"; return 1; }
+		if ! meson setup "$dir" "$@" >"$dir.setup.log" 2>&1; then
+			cat "$dir.setup.log"
+			total_fail=$((total_fail + 1))
+			echo "--- $name: meson setup failed (its log is above)" >>"$failures"
+			return 1
+		fi
 	fi
 	echo "=== $name: build"
-	ninja -C "$dir" || return 1
+	if ! ninja -C "$dir"; then
+		# counted and named at the end like a failed test
+		total_fail=$((total_fail + 1))
+		echo "--- $name: the build failed (ninja -C $dir; its error is above)" >>"$failures"
+		return 1
+	fi
 	echo "=== $name: test"
 	# shellcheck disable=SC2086 # TEST_ARGS is a word list on purpose
 	meson test -C "$dir" --print-errorlogs --num-processes 1 $TEST_ARGS
