@@ -37,7 +37,8 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			log_error("%s", msg);
 			controls_notice(lp->ctl, p, "shader error", msg);
 		}
-		struct scene_frame sf = { .index = f, .last = p->count > 0 && f == p->count - 1, .live = lp->live,
+		bool last = p->count > 0 && f == p->count - 1;
+		struct scene_frame sf = { .index = f, .last = last, .live = lp->live,
 					  .start_s = start, .ctl = lp->ctl, .r = lp->r, .w = lp->w, .h = lp->h,
 					  .refresh_hz = lp->refresh_hz,
 					  .timing = lp->timing ? &tm : NULL };
@@ -45,7 +46,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
 			return -1;
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .count = p->count,
-					 .last = p->count > 0 && f == p->count - 1, .update_ms = tm.update_ms,
+					 .last = last, .update_ms = tm.update_ms,
 					 .draw_ms = tm.draw_ms };
 		if (lp->scene->ops->status)
 			lp->scene->ops->status(lp->scene, fr.status, sizeof(fr.status));

@@ -38,7 +38,8 @@ static int differ(const struct image *a, const struct image *b)
 	return n;
 }
 
-/* The picture drawn in parts of each size against the single draw. */
+/* The picture drawn in parts of each size against the single draw, with
+ * the depth pre-pass and without. */
 static void same_picture(struct renderer *r, struct fixture_terrain *ft, struct params *p, const struct grid *g,
 			 const char *what)
 {
@@ -47,42 +48,30 @@ static void same_picture(struct renderer *r, struct fixture_terrain *ft, struct 
 	CHECK(pipeline_read_stats(ft->pl, &st) == 0, "%s: stats", what);
 	struct pipeline_draw d;
 	pipeline_draw_info(ft->pl, &d);
-	struct image whole = { 0 };
-	renderer_set_parts(r, 0);
-	CHECK(frame(r, &d, p, g, W, H, &whole) == 0, "%s: the single draw", what);
 	printf("%s: %u triangles, capacity %u\n", what, st.triangles, d.capacity);
 	CHECK(st.triangles > 2000, "%s: a mesh worth splitting (%u triangles)", what, st.triangles);
 	/* the default; parts dividing the capacity's 64 parts; odd sizes;
 	 * one part larger than the mesh */
 	uint32_t sizes[] = { RENDER_PART_TRIANGLES, 1, 700, 1237, 4096, 1000000 };
-	for (size_t k = 0; k < sizeof(sizes) / sizeof(sizes[0]); k++) {
-		for (int pre = 0; pre < 2; pre++) {
+	bool was = renderer_prepass(r);
+	for (int pre = 0; pre < 2; pre++) {
+		renderer_set_prepass(r, pre == 1);
+		struct image whole = { 0 };
+		renderer_set_parts(r, 0);
+		CHECK(frame(r, &d, p, g, W, H, &whole) == 0, "%s: the single draw", what);
+		for (size_t k = 0; k < sizeof(sizes) / sizeof(sizes[0]); k++) {
 			struct image img = { 0 };
-			bool was = renderer_prepass(r);
-			renderer_set_prepass(r, pre == 1);
 			renderer_set_parts(r, sizes[k]);
 			CHECK(frame(r, &d, p, g, W, H, &img) == 0, "%s: parts of %u", what, sizes[k]);
-			renderer_set_prepass(r, was);
-			if (whole.rgba && img.rgba) {
-				struct image ref = whole;
-				struct image other = { 0 };
-				if (pre != (was ? 1 : 0)) { /* the single draw the same way */
-					renderer_set_prepass(r, pre == 1);
-					renderer_set_parts(r, 0);
-					CHECK(frame(r, &d, p, g, W, H, &other) == 0, "%s: the single draw", what);
-					renderer_set_prepass(r, was);
-					ref = other;
-				}
-				int n = ref.rgba ? differ(&img, &ref) : -1;
-				CHECK(n == 0, "%s: parts of %u triangles (pre-pass %s) change %d pixels of the single draw",
-				      what, sizes[k], pre ? "on" : "off", n);
-				free(other.rgba);
-			}
+			int n = whole.rgba && img.rgba ? differ(&img, &whole) : -1;
+			CHECK(n == 0, "%s: parts of %u triangles (pre-pass %s) change %d pixels of the single draw", what,
+			      sizes[k], pre ? "on" : "off", n);
 			free(img.rgba);
 		}
+		free(whole.rgba);
 	}
+	renderer_set_prepass(r, was);
 	renderer_set_parts(r, RENDER_PART_TRIANGLES);
-	free(whole.rgba);
 }
 
 /* ---- the memory ------------------------------------------------------------ */

@@ -331,8 +331,7 @@ void pipeline_release_field(struct pipeline *pl)
 {
 	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_l0, &pl->b_hp };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++) {
-		if (*bufs[i])
-			glDeleteBuffers(1, bufs[i]);
+		glDeleteBuffers(1, bufs[i]); /* 0 is ignored */
 		*bufs[i] = 0;
 	}
 }
@@ -631,6 +630,13 @@ int pipeline_bound(struct pipeline *pl, const struct params *p, GLuint in, GLuin
 	return gpu_check("coarse pre-pass");
 }
 
+/* Triangles the draw command can hold: mc_setup.comp and mc_finish.comp
+ * clamp to the capacity; with no compaction every cell's five are drawn. */
+static uint32_t draw_capacity(const struct pipeline *pl, bool nocompact)
+{
+	return nocompact ? (uint32_t)(5 * (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz) : pl->tri_cap;
+}
+
 static int run_append(struct pipeline *pl, const struct params *p, bool nocompact, char *err, size_t errlen)
 {
 	uint64_t ncells = (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz;
@@ -652,7 +658,7 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_status);
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, ST_APPEND_COUNTER * 4, 4, &zero);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	uint32_t tcap = nocompact ? (uint32_t)(5 * ncells) : pl->tri_cap;
+	uint32_t tcap = draw_capacity(pl, nocompact);
 	set_common(pl, *prog, p);
 	set_caps(*prog, tcap, 3 * tcap);
 	glUseProgram(*prog);
@@ -690,9 +696,5 @@ void pipeline_draw_info(const struct pipeline *pl, struct pipeline_draw *d)
 	d->ibo = d->indexed ? pl->b_idx : 0;
 	d->indirect = pl->b_status;
 	d->indirect_offset = (d->indexed ? ST_DRAW_ELEMENTS : ST_DRAW_ARRAYS) * 4;
-	/* mc_setup.comp and mc_finish.comp clamp to the capacity; with no
-	 * compaction every cell's five triangles are drawn */
-	d->capacity = pl->last_mode == COMPACTION_NONE
-			      ? (uint32_t)(5 * (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz)
-			      : pl->tri_cap;
+	d->capacity = draw_capacity(pl, pl->last_mode == COMPACTION_NONE);
 }

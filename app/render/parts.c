@@ -14,8 +14,6 @@ uint32_t parts_plan(uint32_t capacity, uint32_t triangles, uint32_t *per_part)
 	uint32_t least = (uint32_t)(((uint64_t)capacity + PARTS_MAX - 1) / PARTS_MAX);
 	if (per < least)
 		per = least;
-	if (per < 1)
-		per = 1;
 	*per_part = per;
 	uint32_t n = (uint32_t)(((uint64_t)capacity + per - 1) / per);
 	return n ? n : 1;

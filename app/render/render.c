@@ -380,7 +380,8 @@ static int depth_pass(struct renderer *r, const struct pipeline_draw *d, uint32_
 	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 	draw_mesh(r, d, parts, false);
 	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-	glFinish();
+	if (!parts) /* parts are finished one by one */
+		glFinish();
 	glDepthFunc(GL_LEQUAL); /* the surfaces laid down pass again, once */
 	glUseProgram(r->tp[r->cur].prog);
 	return 0;

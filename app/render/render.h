@@ -62,8 +62,8 @@ bool renderer_prepass(const struct renderer *r);
  * capacity would need over 64 parts), each rasterized before the next is
  * binned; 0 draws it at once.  On a software rasterizer it is 16384 by
  * default: it bins a whole draw before it rasterizes any of it (llvmpipe:
- * 16 MB for the no-flag picture's 121 504 triangles, the largest part of
- * that run's peak).  Off on a GPU (a tiler would store and reload its
+ * 19.9 MB for the no-flag picture's 121 504 triangles, 2.8 MB in parts;
+ * tests/test_parts.c).  Off on a GPU (a tiler would store and reload its
  * tiles at every part).  The picture is the same. */
 #define RENDER_PART_TRIANGLES 16384
 void renderer_set_parts(struct renderer *r, uint32_t triangles);

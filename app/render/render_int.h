@@ -27,9 +27,9 @@ void upscale_free(struct upscale *u);
 
 /* ---- a mesh drawn in parts (parts.c, shaders/draw_parts.comp) -------------
  * A software rasterizer bins all of a draw's triangles before it rasterizes
- * any of them: llvmpipe held 16 MB of bins for the no-flag picture's
- * 121 504 triangles.  Drawn as parts of RENDER_PART_TRIANGLES (render.h), each finished
- * before the next is binned, it holds one part's.  The parts are made on
+ * any of them: llvmpipe held 19.9 MB of bins for the no-flag picture's
+ * 121 504 triangles.  Drawn as parts of RENDER_PART_TRIANGLES (render.h),
+ * each finished before the next is binned, it holds one part's.  The parts are made on
  * the GPU from the mesh's indirect command (no read-back): as many as the
  * mesh's capacity needs, at most PARTS_MAX (larger parts then); those past
  * the mesh's end draw nothing. */

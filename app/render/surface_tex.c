@@ -15,6 +15,7 @@
 
 #define S 128
 #define LEVELS 8 /* 128 .. 1 */
+_Static_assert(S >> (LEVELS - 1) == 1, "the mip chain ends at 1x1");
 
 static float lattice(int x, int y, int period, uint32_t salt)
 {
