@@ -14,16 +14,16 @@
 // (curves.glsl, tunnel_eval), and carries its floor on an embankment in the
 // open:  d' = min(max(d, fill), tube), blended by curve_strength.
 
-#include "curves.glsl"
-#include "heightmap.glsl"
-
 // HAS_CURVES 0: the edit state holds no curves, so the carve is not
-// compiled (the field provider, app/terrain/terrain.c, defines it in the
-// terrain's programs; every other program keeps the code and its
-// u_curve_count check).
+// compiled, nor the curves' storage block declared (the field provider,
+// app/terrain/terrain.c, defines it in the terrain's programs; every other
+// program keeps the code and its u_curve_count check).
 #ifndef HAS_CURVES
 #define HAS_CURVES 1
 #endif
+#include "curves.glsl"
+#include "heightmap.glsl"
+
 // HAS_TUNNELS 0: no tunnel curve, so the second walk over the curves (in
 // 3D) is not compiled.
 #ifndef HAS_TUNNELS

@@ -174,13 +174,29 @@ vec3 grad_at(ivec3 c)
 
 #endif // PASS_READS_SIGNS
 
-// Marching Cubes tables (mc_tables.c), uploaded verbatim.
-layout(std430, binding = BIND_MC_TABLES) restrict readonly buffer McTables {
-	uint mc_tricount[256];
-	int mc_tri[256 * 15];
+// Marching Cubes tables (mc_tables.c), packed into a uniform block
+// (extract/pipeline.c upload_tables): per case two words, its 15 edge ids
+// at 4 bits each (15 = none) and its triangle count in bits 60..63.
+layout(std140, binding = UBIND_MC_TABLES) uniform McTables {
+	uvec4 mc_cases[128]; // cases 2i (xy) and 2i+1 (zw)
 	ivec4 mc_edge_owner[12]; // owner offset xyz, slot
 	ivec4 mc_corner[8];
 };
+uvec2 mc_case_words(int cs)
+{
+	uvec4 v = mc_cases[cs >> 1];
+	return (cs & 1) == 0 ? v.xy : v.zw;
+}
+uint mc_tricount(int cs)
+{
+	return mc_case_words(cs).y >> 28;
+}
+// edge id k (0..14) of case cs's triangles, three a triangle
+int mc_tri(int cs, int k)
+{
+	uvec2 w = mc_case_words(cs);
+	return int(((k < 8 ? w.x : w.y) >> (4u * uint(k & 7))) & 15u);
+}
 
 #ifdef PASS_READS_SIGNS
 // The case byte of cell c from its corners' sign bits (corner order of

@@ -3,22 +3,45 @@
 // Mirrored term by term in app/edit/carve_ref.c; change both together.
 //
 // Resources (app/edit/curves_gl.c; built on the CPU by app/edit/curves.c):
-//   BIND_CURVE_PIVOT  CurvePivot: per hash cell (start, count) into curve_index
-//   BIND_CURVE_INDEX  CurveIndex: per cell entry the first control point of a
-//                     quadratic; from u_curve_all_offset on, every quadratic
-//                     once (the no-hash baseline of the benchmark)
-//   BIND_CURVE_CTRL   CurveCtrl:  control points (x, y, z, inclination tan α);
-//                     quadratic f is curve_ctrl[f], [f+1], [f+2]
-//   BIND_CURVE_PRM    CurvePrm:   curve_prm[f] = (w/2, λ, kind, path)
+// one storage block, BIND_CURVES, of four sections (starts in uvec4 units:
+// u_curve_sect), so that a pass that carves takes one of the boards' eight:
+//   pivot  per hash cell (start, count) into the index section, two a uvec4
+//   index  per cell entry the first control point of a quadratic, four a
+//          uvec4; from u_curve_all_offset on, every quadratic once (the
+//          no-hash baseline of the benchmark)
+//   ctrl   control points (x, y, z, inclination tan α); quadratic f is
+//          curve_ctrl(f), (f+1), (f+2)
+//   prm    curve_prm(f) = (w/2, λ, kind, path)
 //
 //   vec4 curve_eval(vec2 xz);   // (height, Θ of the closest curve, |d| closest, Σ Θ)
 //                               // of the surface curves (every kind but tunnel)
 //   vec2 tunnel_eval(vec3 ws);  // (fill, tube) of the tunnel curves
 
-layout(std430, binding = BIND_CURVE_PIVOT) restrict readonly buffer CurvePivot { ivec2 curve_pivot[]; };
-layout(std430, binding = BIND_CURVE_INDEX) restrict readonly buffer CurveIndex { int curve_index[]; };
-layout(std430, binding = BIND_CURVE_CTRL) restrict readonly buffer CurveCtrl { vec4 curve_ctrl[]; };
-layout(std430, binding = BIND_CURVE_PRM) restrict readonly buffer CurvePrm { vec4 curve_prm[]; };
+// HAS_CURVES 0 (carve.glsl): nothing here is compiled, and the pass takes
+// no storage block for curves it would never read.
+#ifndef HAS_CURVES
+#define HAS_CURVES 1
+#endif
+#if HAS_CURVES
+layout(std430, binding = BIND_CURVES) restrict readonly buffer Curves { uvec4 curve_v[]; };
+uniform ivec4 u_curve_sect; // section starts: pivot, index, ctrl, prm
+ivec2 curve_pivot(int i)
+{
+	uvec4 v = curve_v[u_curve_sect.x + (i >> 1)];
+	return ivec2((i & 1) == 0 ? v.xy : v.zw);
+}
+int curve_index(int i)
+{
+	return int(curve_v[u_curve_sect.y + (i >> 2)][i & 3]);
+}
+vec4 curve_ctrl(int f)
+{
+	return uintBitsToFloat(curve_v[u_curve_sect.z + f]);
+}
+vec4 curve_prm(int f)
+{
+	return uintBitsToFloat(curve_v[u_curve_sect.w + f]);
+}
 
 uniform int u_curve_count;        // quadratics; 0 = no curves (nothing is read)
 uniform int u_curve_all_offset;   // start of the all-curves list in curve_index
@@ -115,7 +138,7 @@ float quad_closest_t(vec2 p0, vec2 p1, vec2 p2, vec2 pos)
 // inclination); the sign is + on the left of the direction of travel.
 vec4 curve_closest(int f, vec2 pos)
 {
-	vec4 c0 = curve_ctrl[f], c1 = curve_ctrl[f + 1], c2 = curve_ctrl[f + 2];
+	vec4 c0 = curve_ctrl(f), c1 = curve_ctrl(f + 1), c2 = curve_ctrl(f + 2);
 	float t = quad_closest_t(c0.xz, c1.xz, c2.xz, pos);
 	float u = 1.0 - t;
 	float w0 = u * u, w1 = 2.0 * u * t, w2 = t * t;
@@ -132,7 +155,7 @@ vec4 curve_closest(int f, vec2 pos)
 // point projected onto each (no closed form).
 vec4 curve_closest_iter(int f, vec2 pos)
 {
-	vec4 c0 = curve_ctrl[f], c1 = curve_ctrl[f + 1], c2 = curve_ctrl[f + 2];
+	vec4 c0 = curve_ctrl(f), c1 = curve_ctrl(f + 1), c2 = curve_ctrl(f + 2);
 	float best = 1e30, bt = 0.0;
 	vec2 bo = vec2(0.0), btan = vec2(1.0, 0.0);
 	vec2 a = c0.xz;
@@ -191,8 +214,8 @@ float curve_seg_d2(vec2 p, vec2 a, vec2 b)
 // rounding never drops a curve with Θ > 0) from its edges.
 bool curve_near(int f, vec2 pos)
 {
-	vec4 prm = curve_prm[f];
-	vec2 q0 = curve_ctrl[f].xz, q1 = curve_ctrl[f + 1].xz, q2 = curve_ctrl[f + 2].xz;
+	vec4 prm = curve_prm(f);
+	vec2 q0 = curve_ctrl(f).xz, q1 = curve_ctrl(f + 1).xz, q2 = curve_ctrl(f + 2).xz;
 	float reach = prm.x + prm.y;
 	vec2 lo = min(min(q0, q1), q2) - reach, hi = max(max(q0, q1), q2) + reach;
 	if (pos.x < lo.x || pos.y < lo.y || pos.x > hi.x || pos.y > hi.y)
@@ -216,13 +239,13 @@ vec4 curve_accumulate(vec2 pos, int start, int count)
 	int end = start + count;
 	int i = start;
 	for (;;) {
-		while (i < end && !curve_near(curve_index[i], pos))
+		while (i < end && !curve_near(curve_index(i), pos))
 			i++;
 		if (i >= end)
 			break;
-		int f = curve_index[i];
+		int f = curve_index(i);
 		i++;
-		vec4 prm = curve_prm[f];
+		vec4 prm = curve_prm(f);
 		if (prm.z == CURVE_KIND_TUNNEL) // not a surface: tunnel_eval
 			continue;
 		vec4 cl = CURVE_CLOSEST(f, pos);
@@ -258,7 +281,7 @@ vec4 curve_eval(vec2 pos)
 	if (!(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
 		return none;
 	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
-	ivec2 piv = curve_pivot[c.x + c.y * u_curve_hash_dim.x];
+	ivec2 piv = curve_pivot(c.x + c.y * u_curve_hash_dim.x);
 	if (piv.y == 0)
 		return none;
 	return curve_accumulate(pos, piv.x, piv.y);
@@ -276,8 +299,8 @@ vec2 tunnel_accumulate(vec3 ws, int start, int count)
 {
 	vec2 r = vec2(-1e30, 1e30);
 	for (int i = start; i < start + count; i++) {
-		int f = curve_index[i];
-		vec4 prm = curve_prm[f];
+		int f = curve_index(i);
+		vec4 prm = curve_prm(f);
 		if (prm.z != CURVE_KIND_TUNNEL || !curve_near(f, ws.xz))
 			continue;
 		vec4 cl = CURVE_CLOSEST(f, ws.xz);
@@ -300,7 +323,8 @@ vec2 tunnel_eval(vec3 ws)
 	if (!(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
 		return none;
 	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
-	ivec2 piv = curve_pivot[c.x + c.y * u_curve_hash_dim.x];
+	ivec2 piv = curve_pivot(c.x + c.y * u_curve_hash_dim.x);
 	return tunnel_accumulate(ws, piv.x, piv.y);
 #endif
 }
+#endif // HAS_CURVES

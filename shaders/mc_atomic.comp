@@ -15,7 +15,7 @@ void main()
 		return;
 	ivec3 c = ivec3(int(id) % u_cells.x, (int(id) / u_cells.x) % u_cells.y, int(id) / (u_cells.x * u_cells.y));
 	int cs = cell_case(c);
-	uint n = mc_tricount[cs];
+	uint n = mc_tricount(int(cs));
 	if (n == 0u)
 		return;
 	uint base = atomicAdd(st[ST_APPEND_COUNTER], n);
@@ -24,7 +24,7 @@ void main()
 		if (t >= u_tri_cap)
 			return;
 		for (int k = 0; k < 3; ++k) {
-			ivec4 eo = mc_edge_owner[mc_tri[cs * 15 + int(r) * 3 + k]];
+			ivec4 eo = mc_edge_owner[mc_tri(cs, int(r) * 3 + k)];
 			vec4 p, nr;
 			edge_vertex(c + eo.xyz, eo.w, p, nr);
 			verts[3u * t + uint(k)] = Vertex(p.xyz, pack_normal_ao(nr.xyz, 1.0));

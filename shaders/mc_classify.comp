@@ -45,7 +45,7 @@ void piece(ivec3 c, uint n, uint p, inout uvec4 w)
 		int x = c.x + int(j);
 		uint tris = 0u;
 		if (yz_tris && x < u_cells.x)
-			tris = mc_tricount[case_of(j, r00, r10, r01, r11)];
+			tris = mc_tricount(int(case_of(j, r00, r10, r01, r11)));
 		uint m = (x < u_cells.x ? (ex >> j) & 1u : 0u) | (c.y < u_cells.y ? ((ey >> j) & 1u) << 1 : 0u) |
 			 (c.z < u_cells.z ? ((ez >> j) & 1u) << 2 : 0u);
 		uint q = p + j;

@@ -22,7 +22,7 @@ void main()
 	uint ids[3];
 	bool ok = true;
 	for (int k = 0; k < 3; ++k) {
-		int e = mc_tri[cs * 15 + int(rank) * 3 + k];
+		int e = mc_tri(cs, int(rank) * 3 + k);
 		ivec4 eo = mc_edge_owner[e];
 		ivec3 q = c + eo.xyz;
 		uint qc = uint(q.x + o.x * (q.y + o.y * q.z));

@@ -14,7 +14,7 @@ void main()
 		return;
 	ivec3 c = ivec3(int(id) % u_cells.x, (int(id) / u_cells.x) % u_cells.y, int(id) / (u_cells.x * u_cells.y));
 	int cs = cell_case(c);
-	uint n = mc_tricount[cs];
+	uint n = mc_tricount(int(cs));
 	if (n != 0u)
 		atomicAdd(st[ST_APPEND_COUNTER], n);
 	vec4 zero = vec4(u_origin, 1.0);
@@ -22,7 +22,7 @@ void main()
 		for (int k = 0; k < 3; ++k) {
 			vec4 p = zero, nr = vec4(0.0, 1.0, 0.0, 0.0);
 			if (r < n) {
-				ivec4 eo = mc_edge_owner[mc_tri[cs * 15 + int(r) * 3 + k]];
+				ivec4 eo = mc_edge_owner[mc_tri(cs, int(r) * 3 + k)];
 				edge_vertex(c + eo.xyz, eo.w, p, nr);
 			}
 			verts[15u * id + 3u * r + uint(k)] = Vertex(p.xyz, pack_normal_ao(nr.xyz, 1.0));

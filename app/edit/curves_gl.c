@@ -1,5 +1,5 @@
-/* isoterra — GL side of the terrain edits: the curve hash in SSBOs
- * (BIND_CURVE_PIVOT..BIND_CURVE_PRM), the heightmap as an R32F texture
+/* isoterra — GL side of the terrain edits: the curve hash in one SSBO of
+ * four sections (BIND_CURVES: pivot, index, ctrl, prm), the heightmap as an R32F texture
  * (TEX_HEIGHTMAP), the control map likewise (TEX_CONTROL), the
  * displacement-map bake and the shader test hook.
  * The GL objects belong to one edit state (struct edits_gl). */
@@ -14,8 +14,9 @@
 
 struct edits_gl {
 	bool ready;
-	GLuint buf[4];           /* pivot, index, ctrl, prm */
-	GLsizeiptr cap[4];       /* explicit capacities (bytes) */
+	GLuint buf;              /* the curve hash: sections pivot, index, ctrl, prm */
+	GLsizeiptr cap;          /* its explicit capacity (bytes) */
+	int32_t sect[4];         /* the sections' starts, in 16-byte units (curves.glsl u_curve_sect) */
 	unsigned curves_gen;
 	GLuint hm_tex, control_tex;
 	unsigned hm_gen, control_gen;
@@ -39,7 +40,7 @@ void edits_gl_release(struct edits *ed)
 	if (!G)
 		return;
 	if (G->ready)
-		glDeleteBuffers(4, G->buf);
+		glDeleteBuffers(1, &G->buf);
 	if (G->hm_tex)
 		glDeleteTextures(1, &G->hm_tex);
 	if (G->control_tex)
@@ -57,34 +58,14 @@ void edits_gl_release(struct edits *ed)
 	ed->gl = NULL;
 }
 
-/* (Re)allocates buffer b to hold size bytes (at least 16) and uploads data. */
-static int upload(GLuint b, GLsizeiptr *cap, const void *data, GLsizeiptr size, const char *what, char *err,
-		  size_t errlen)
-{
-	GLint max_ssbo = 0;
-	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_ssbo);
-	GLsizeiptr want = size > 16 ? size : 16;
-	if (max_ssbo > 0 && want > max_ssbo) {
-		snprintf(err, errlen, "%s: %lld bytes exceed the GL storage block limit (%d)", what, (long long)want,
-			 max_ssbo);
-		return -1;
-	}
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-	if (want > *cap || want < *cap / 4) {
-		glBufferData(GL_SHADER_STORAGE_BUFFER, want, NULL, GL_STATIC_DRAW);
-		*cap = want;
-	}
-	if (size > 0 && data)
-		glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, size, data);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	return gpu_check(what);
-}
-
+/* The curve hash into one buffer: its four sections (pivot, index, ctrl,
+ * prm) each start on 16 bytes; the buffer is reallocated when it must grow
+ * or would waste three quarters. */
 static int upload_curves(struct edits_gl *G, const struct edits *e, char *err, size_t errlen)
 {
 	if (!G->ready) {
-		glGenBuffers(4, G->buf);
-		memset(G->cap, 0, sizeof(G->cap));
+		glGenBuffers(1, &G->buf);
+		G->cap = 0;
 		G->ready = true;
 		G->curves_gen = e->curves_gen - 1;
 	}
@@ -93,14 +74,39 @@ static int upload_curves(struct edits_gl *G, const struct edits *e, char *err, s
 	const struct curve_hash *h = &e->hash;
 	const struct curve_quads *q = &e->quads;
 	bool any = q->nquads > 0 && h->pivot;
-	GLsizeiptr npiv = any ? (GLsizeiptr)h->dim * h->dim * 8 : 0;
-	GLsizeiptr nidx = any ? (GLsizeiptr)(h->nindex + h->nall) * 4 : 0;
-	GLsizeiptr nctl = any ? (GLsizeiptr)q->nctrl * 16 : 0;
-	if (upload(G->buf[0], &G->cap[0], any ? h->pivot : NULL, npiv, "curve pivot table", err, errlen) < 0 ||
-	    upload(G->buf[1], &G->cap[1], any ? h->index : NULL, nidx, "curve index table", err, errlen) < 0 ||
-	    upload(G->buf[2], &G->cap[2], any ? q->ctrl : NULL, nctl, "curve control points", err, errlen) < 0 ||
-	    upload(G->buf[3], &G->cap[3], any ? q->prm : NULL, nctl, "curve parameters", err, errlen) < 0)
+	const void *data[4] = { h->pivot, h->index, q->ctrl, q->prm };
+	GLsizeiptr bytes[4] = { 0, 0, 0, 0 };
+	if (any) {
+		bytes[0] = (GLsizeiptr)h->dim * h->dim * 8;
+		bytes[1] = (GLsizeiptr)(h->nindex + h->nall) * 4;
+		bytes[2] = bytes[3] = (GLsizeiptr)q->nctrl * 16;
+	}
+	GLsizeiptr want = 0;
+	for (int i = 0; i < 4; i++) {
+		G->sect[i] = (int32_t)(want / 16);
+		want += (bytes[i] + 15) / 16 * 16;
+	}
+	want = want > 16 ? want : 16;
+	GLint max_ssbo = 0;
+	glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_ssbo);
+	if ((max_ssbo > 0 && want > max_ssbo) || want / 16 > INT32_MAX) {
+		snprintf(err, errlen, "curves: the hash's %lld bytes exceed the GL storage block limit (%d)",
+			 (long long)want, max_ssbo);
 		return -1;
+	}
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, G->buf);
+	if (want > G->cap || want < G->cap / 4) {
+		glBufferData(GL_SHADER_STORAGE_BUFFER, want, NULL, GL_STATIC_DRAW);
+		G->cap = want;
+	}
+	for (int i = 0; i < 4; i++)
+		if (bytes[i] > 0)
+			glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)G->sect[i] * 16, bytes[i], data[i]);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	if (gpu_check("curve hash") < 0) {
+		snprintf(err, errlen, "curves: uploading the hash's %lld bytes failed", (long long)want);
+		return -1;
+	}
 	G->curves_gen = e->curves_gen;
 	return 0;
 }
@@ -155,11 +161,13 @@ static int upload_heightmap(struct edits_gl *G, const struct edits *e, char *err
 	return 0;
 }
 
-static void set_uniforms(GLuint prog, const struct edits *e)
+static void set_uniforms(GLuint prog, const struct edits *e, const int32_t sect[4])
 {
 	const struct curve_hash *h = &e->hash;
 	bool any = e->quads.nquads > 0 && h->pivot;
 	GLint l;
+	if ((l = glGetUniformLocation(prog, "u_curve_sect")) >= 0)
+		glProgramUniform4i(prog, l, sect[0], sect[1], sect[2], sect[3]);
 	if ((l = glGetUniformLocation(prog, "u_curve_count")) >= 0)
 		glProgramUniform1i(prog, l, any ? e->quads.nquads : 0);
 	if ((l = glGetUniformLocation(prog, "u_curve_all_offset")) >= 0)
@@ -185,8 +193,7 @@ int edits_gl_bind(struct edits *ed, GLuint prog, const struct params *p, char *e
 	struct edits_gl *G = gl_of(ed, err, errlen);
 	if (!G || upload_curves(G, ed, err, errlen) < 0 || upload_heightmap(G, ed, err, errlen) < 0)
 		return -1;
-	for (int i = 0; i < 4; i++)
-		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_CURVE_PIVOT + i, G->buf[i]);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_CURVES, G->buf);
 	GLint prev = 0;
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
 	glActiveTexture(GL_TEXTURE0 + TEX_HEIGHTMAP);
@@ -194,7 +201,7 @@ int edits_gl_bind(struct edits *ed, GLuint prog, const struct params *p, char *e
 	glActiveTexture(GL_TEXTURE0 + TEX_CONTROL);
 	glBindTexture(GL_TEXTURE_2D, G->control_tex);
 	glActiveTexture((GLenum)prev);
-	set_uniforms(prog, ed);
+	set_uniforms(prog, ed, G->sect);
 	return gpu_check("curve/heightmap bind");
 }
 

@@ -104,7 +104,7 @@ bool edits_has_tunnels(const struct edits *ed);
 /* ---- GL (curves_gl.c) ------------------------------------------------------- */
 
 /* edits_load(p), uploads what changed, binds the curve SSBOs
- * (BIND_CURVE_PIVOT..BIND_CURVE_PRM) and the heightmap (TEX_HEIGHTMAP) and
+ * (BIND_CURVES) and the heightmap (TEX_HEIGHTMAP) and
  * sets the curve/heightmap uniforms of prog (which includes
  * shaders/carve.glsl or curves.glsl).  0, or -1 with err (left empty when
  * a GL error was logged). */

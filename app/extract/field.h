@@ -26,7 +26,7 @@
  * uniforms (u_<name>) are declared by the shader prelude and set by the
  * engine.  A program is compiled once per distinct set of #defines and
  * kept in the engine's cache (docs/PIPELINE.md, "Specialization").  A field may use the binding points, texture units and uniform
- * buffers app/gpu/abi.h gives no engine pass (BIND_CURVE_*, TEX_NOISE*,
+ * buffers app/gpu/abi.h gives no engine pass (BIND_CURVES, TEX_NOISE*,
  * TEX_HEIGHTMAP, UBIND_NOISE, ...). */
 #ifndef ISOTERRA_FIELD_H
 #define ISOTERRA_FIELD_H

@@ -108,27 +108,37 @@ static void set_caps(GLuint prog, uint32_t tri_cap, uint32_t vert_cap)
 	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_vert_cap"), vert_cap);
 }
 
+/* The Marching Cubes tables as a uniform block (common.glsl's McTables,
+ * std140): per case two words of the pair of uvec4 entries, the case's 15
+ * edge ids at 4 bits (15 = none) and its triangle count in the top 4 bits;
+ * then the edge owners and corners as ivec4.  A uniform block, not a
+ * storage block: 2368 bytes that every pass reads and none writes, and a
+ * storage block fewer for the boards' 8 (docs/PLATFORMS.md). */
 static void upload_tables(struct pipeline *pl)
 {
 	struct mc_tables t;
 	mc_tables_build(&t);
-	/* std430: uint[256], int[256*15], ivec4[12], ivec4[8] */
-	int32_t buf[256 + 256 * 15 + 12 * 4 + 8 * 4];
-	int32_t *w = buf;
-	for (int i = 0; i < 256; i++)
-		*w++ = t.tri_count[i];
-	for (int i = 0; i < 256; i++)
-		for (int j = 0; j < 15; j++)
-			*w++ = t.tri[i][j];
+	uint32_t buf[256 * MC_TABLE_CASE_WORDS + 12 * 4 + 8 * 4];
+	uint32_t *w = buf;
+	for (int i = 0; i < 256; i++) {
+		uint64_t v = (uint64_t)t.tri_count[i] << 60;
+		for (int j = 0; j < MC_MAX_TRIS * 3; j++)
+			v |= (uint64_t)(t.tri[i][j] < 0 ? 15 : t.tri[i][j]) << (4 * j);
+		*w++ = (uint32_t)v;
+		*w++ = (uint32_t)(v >> 32);
+	}
 	for (int e = 0; e < 12; e++)
 		for (int j = 0; j < 4; j++)
-			*w++ = t.edge_owner[e][j];
+			*w++ = (uint32_t)(int32_t)t.edge_owner[e][j];
 	for (int c = 0; c < 8; c++) {
 		for (int j = 0; j < 3; j++)
-			*w++ = t.corner[c][j];
+			*w++ = (uint32_t)(int32_t)t.corner[c][j];
 		*w++ = 0;
 	}
-	pl->b_tables = extract_buffer(sizeof(buf), buf, GL_STATIC_DRAW);
+	glGenBuffers(1, &pl->b_tables);
+	glBindBuffer(GL_UNIFORM_BUFFER, pl->b_tables);
+	glBufferData(GL_UNIFORM_BUFFER, sizeof(buf), buf, GL_STATIC_DRAW);
+	glBindBuffer(GL_UNIFORM_BUFFER, 0);
 }
 
 /* One of the engine's own passes (not specialized). */
@@ -427,7 +437,7 @@ static void bind_all(const struct pipeline *pl)
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, pl->b_l0);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, pl->b_hp);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_MC_TABLES, pl->b_tables);
+	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, pl->b_verts);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_INDICES, pl->b_idx);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, pl->b_status);
@@ -534,6 +544,8 @@ static void debris_pass(struct pipeline *pl)
 	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64) * 2;
 	glDispatchCompute((GLuint)div_up(slab_words, 64), (GLuint)(pl->g.nz + m2), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	/* the raw bits were read at the vertices' binding point (abi.h) */
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, pl->b_verts);
 }
 
 /* The debris filter, classification and the HistoPyramid (the pipeline's

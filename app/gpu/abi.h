@@ -9,25 +9,30 @@
 #ifndef ISOTERRA_ABI_H
 #define ISOTERRA_ABI_H
 
-/* ---- shader storage buffers (GL_SHADER_STORAGE_BUFFER binding points) ---- */
+/* ---- shader storage buffers (GL_SHADER_STORAGE_BUFFER binding points) ----
+ * Eight binding points, 0..7, and at most six blocks in one pass: Mali's
+ * Panfrost gives 8 of each (docs/PLATFORMS.md).  The passes that use the
+ * two auxiliary buffers write no vertices or indices, so those share the
+ * vertex and index points; whoever binds an auxiliary buffer there binds
+ * the vertices or indices back before a pass that writes them
+ * (extract/pipeline.c binds every point at the start of each stage). */
 #define BIND_DENSITY 0     /* float per grid corner, one-sample margin (density.comp writes) */
 #define BIND_HP_BASE 1     /* HistoPyramid level 0: one byte per owner cell, 4 a word */
 #define BIND_HP_LEVELS 2   /* HistoPyramid levels 1..top (uvec2 sums), then the prefix sums */
-#define BIND_MC_TABLES 3   /* Marching Cubes tables (extract/mc_tables.c) */
-#define BIND_VERTICES 4    /* output vertices (32 bytes each) */
-#define BIND_INDICES 5     /* output triangles (3 uint each) */
-#define BIND_STATUS 6      /* the status block below */
-#define BIND_TEST_OUT 7    /* hp_test.comp's keys and prefix sums (tests) */
-#define BIND_CURVE_PIVOT 8 /* curve spatial hash: per cell (first, count) */
-#define BIND_CURVE_INDEX 9 /* curve spatial hash: quadratic indices */
-#define BIND_CURVE_CTRL 10 /* quadratic control points */
-#define BIND_CURVE_PRM 11  /* per-quadratic profile parameters */
-#define BIND_AUX_A 12      /* pass-specific: curve bake output, curve test input */
-#define BIND_AUX_B 13      /* pass-specific: curve bake tiles, curve test output */
-#define BIND_SIGNS 14      /* sign bit per density sample, 1 = inside (density pass writes, classify reads) */
+#define BIND_VERTICES 3    /* output vertices (16 bytes each) */
+#define BIND_INDICES 4     /* output triangles (3 uint each) */
+#define BIND_STATUS 5      /* the status block below */
+#define BIND_SIGNS 6       /* sign bit per density sample, 1 = inside (density pass writes, classify reads) */
+#define BIND_CURVES 7      /* the curve spatial hash, one buffer of four sections (edit/curves_gl.c) */
+#define BIND_AUX_A BIND_VERTICES /* pass-specific: curve bake output, curve test input, raw sign bits, parts */
+#define BIND_AUX_B BIND_INDICES  /* pass-specific: curve bake tiles, curve test output, pre-pass verdicts */
+#define BIND_TEST_OUT BIND_INDICES /* hp_test.comp's keys and prefix sums (tests) */
+#define BIND_POINTS 8      /* binding points used: 0 .. BIND_POINTS-1 */
 
 /* ---- uniform buffers --------------------------------------------------- */
 #define UBIND_NOISE 0      /* noise rotations and seed keys (terrain/noise_gl.c) */
+#define UBIND_MC_TABLES 1  /* Marching Cubes tables, packed (extract/pipeline.c, common.glsl) */
+#define MC_TABLE_CASE_WORDS 2 /* per case: 15 edge ids of 4 bits (15 = none), the triangle count in bits 60..63 */
 
 /* ---- texture units ------------------------------------------------------ */
 #define TEX_NOISE0 0       /* 16^3 repeating noise textures, three of them */

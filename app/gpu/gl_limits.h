@@ -1,13 +1,15 @@
-/* isoterra — the GL implementation limits the program relies on, checked
- * once at start instead of assumed (docs/PLATFORMS.md).
+/* isoterra — the GL implementation limits the program relies on, queried
+ * instead of assumed (docs/PLATFORMS.md).
  *
- * Each GPU pass (a compute shader, or a vertex + fragment pair) lists what
- * it uses: storage blocks, samplers, images, uniform blocks and components
- * per stage, its local size and its highest storage-buffer binding.  Every
- * checked limit's need is derived from that list (the largest user wins) or
- * from the binding points of abi.h; tests/test_gl_limits.c compiles each
- * pass and compares the list with what the driver reports for the real
- * shaders, so the list cannot drift from shaders/.
+ * The limits are read once, right after the context is made
+ * (gl_limits_check), with the needs that no program declares (the abi.h
+ * binding points, the 3D noise textures, the one shared array) checked
+ * there.  What each pass uses (storage blocks, samplers, images, uniform
+ * blocks and components per stage, its local size, its binding points,
+ * its attributes) is the driver's own count: every program is introspected
+ * (glGetProgramInterfaceiv / glGetProgramResourceiv) when it is linked or
+ * loaded, and refused with one line when it needs more than the driver
+ * gives (gl_limits_check_program).  No table of numbers to keep by hand.
  *
  * Not named "limits.h": app/gpu is on the include path, and a limits.h
  * there would hide the C library's <limits.h>. */
@@ -28,18 +30,31 @@ struct gl_stage_use {
 	int components; /* default-block uniform components (scalars; arrays count every element) */
 };
 
+/* What a linked program uses, as the driver reports it. */
+struct gl_use {
+	struct gl_stage_use use[GLS_COUNT];
+	int ssbo_total;       /* active storage blocks, all stages */
+	int max_binding;      /* highest storage buffer binding point, -1 = none */
+	int max_ubo_binding;  /* highest uniform buffer binding point, -1 = none */
+	int64_t ubo_bytes;    /* largest uniform block (GL_BUFFER_DATA_SIZE) */
+	int max_unit;         /* highest texture unit a sampler is set to, -1 = none */
+	int max_image_unit;   /* highest image unit, -1 = none */
+	int local[3];         /* compute: local size */
+	int attribs;          /* vertex attributes */
+};
+
+/* The driver's count for a linked program. */
+void gl_limits_introspect(unsigned prog, bool compute, struct gl_use *out);
+
+/* The passes the program and its tests build: sources and the #defines
+ * that give each its largest use (every storage block a configuration can
+ * declare).  tests/test_gl_limits.c builds them all. */
 struct gl_pass {
 	const char *name;            /* as messages name it: "mc_vertices.comp (WITH_AO)" */
 	const char *cs, *vs, *fs;    /* compute shader, or vertex + fragment shaders */
-	const char *defines;         /* the #defines that give the pass its largest use */
+	const char *defines;
 	bool tests_only;             /* run by the tests, not by the program */
-	struct gl_stage_use use[GLS_COUNT];
-	int local[3];                /* compute: local size */
-	int max_binding;             /* highest storage buffer binding point, -1 = none */
-	int attribs;                 /* vertex attributes */
 };
-
-/* The passes, tests-only ones included (they are not checked at start). */
 const struct gl_pass *gl_limits_passes(size_t *count);
 
 struct gl_limit {
@@ -50,14 +65,24 @@ struct gl_limit {
 };
 const struct gl_limit *gl_limits_list(size_t *count);
 
-/* What isoterra needs of limit i, and the pass (or abi.h name) behind it. */
+/* What isoterra needs of limit i so far: for the limits a program's use
+ * decides, the largest over the programs checked in this process (0 before
+ * any), with who naming the pass; for the others, the fixed need and where
+ * it comes from. */
 int64_t gl_limits_need(size_t i, const char **who);
 
 /* Queries every limit in the current context, applies the test-only
- * override ISOTERRA_GL_LIMIT_OVERRIDE="NAME=VALUE[,NAME=VALUE...]" and
- * compares.  0 when all suffice; -1 with ONE line in err naming the limit,
- * the value needed and the value found.  have[] (gl_limits_list order, may
- * be NULL) receives the values as seen. */
+ * override ISOTERRA_GL_LIMIT_OVERRIDE="NAME=VALUE[,NAME=VALUE...]", keeps
+ * the values for gl_limits_check_program and checks the fixed needs.  0
+ * when they suffice; -1 with ONE line in err naming the limit, the value
+ * needed and the value found.  have[] (gl_limits_list order, may be NULL)
+ * receives the values as seen. */
 int gl_limits_check(int64_t *have, char *err, size_t errlen);
+
+/* A linked program (what names it in messages) against the limits kept by
+ * gl_limits_check: 0, or -1 with one line in err naming the limit, the
+ * value found, the program's need and the program.  Without a check
+ * before (no limits kept) it only records the needs. */
+int gl_limits_check_program(unsigned prog, bool compute, const char *what, char *err, size_t errlen);
 
 #endif

@@ -3,6 +3,7 @@
  * noted with the live-editing watcher (shader_watch.c) when one is open. */
 #include "gpu.h"
 #include "gpu_int.h"
+#include "gl_limits.h"
 #include "log.h"
 #include "shader_int.h"
 
@@ -296,6 +297,32 @@ static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t e
 	return prog;
 }
 
+/* The program's use, as the driver counts it, against the GL limits
+ * (gl_limits.h); messages name it by its files and its switches (the
+ * #defines set to 1 that are no parameter term), e.g. "density.comp
+ * (FIELD_PASS_VERTICES WITH_AO)". */
+static int check_limits(GLuint prog, const struct shader_desc *d, char *err, size_t errlen)
+{
+	char what[192];
+	int n = snprintf(what, sizeof(what), "%s%s%s", d->file[0], d->compute ? "" : " + ", d->compute ? "" : d->file[1]);
+	const char *s = d->defines;
+	bool open = false;
+	while (s && *s && n > 0 && (size_t)n < sizeof(what) - 40) {
+		const char *eol = strchr(s, '\n');
+		size_t len = eol ? (size_t)(eol - s) : strlen(s);
+		char name[64];
+		if (sscanf(s, "#define %63s 1", name) == 1 && len > 10 && !strncmp(s + len - 2, " 1", 2) &&
+		    strncmp(name, "TERM_", 5) && strncmp(name, "HAS_", 4)) {
+			n += snprintf(what + n, sizeof(what) - (size_t)n, "%s%s", open ? " " : " (", name);
+			open = true;
+		}
+		s = eol ? eol + 1 : s + len;
+	}
+	if (open && n > 0 && (size_t)n < sizeof(what) - 1)
+		snprintf(what + n, sizeof(what) - (size_t)n, ")");
+	return gl_limits_check_program(prog, d->compute, what, err, errlen);
+}
+
 /* A program from d's stages: sources assembled (deps, if not NULL, gets
  * the files), then, with use_cache, the binary cache tried, else the
  * driver compiles and links (and the cache keeps the result). */
@@ -334,6 +361,10 @@ static GLuint build(const struct shader_desc *d, struct shader_deps *deps, bool 
 	if (prog && use_cache)
 		program_cache_store(prog, key);
 out:
+	if (prog && check_limits(prog, d, err, errlen) < 0) {
+		glDeleteProgram(prog);
+		prog = 0;
+	}
 	for (int i = 0; i < n && i <= made; i++)
 		free(b[i].s);
 	return prog;
