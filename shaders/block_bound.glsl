@@ -8,14 +8,14 @@
 // a surface: generate it).  Compiled with FIELD_PASS_BOUND into the field's
 // program.
 //
-// Input (BIND_AUX_A), two vec4 a block: (box low corner, octaves kept at
-// the centres), (box high corner, density bias); output (BIND_AUX_B): a
+// Input (BIND_AUX_IN), two vec4 a block: (box low corner, octaves kept at
+// the centres), (box high corner, density bias); output (BIND_AUX_OUT): a
 // uint verdict a block.
 
 vec2 density_bound(vec3 c, vec3 e, int keep); // the field's
 
-layout(std430, binding = BIND_AUX_A) restrict readonly buffer BoundIn { vec4 bound_in[]; };
-layout(std430, binding = BIND_AUX_B) restrict writeonly buffer BoundOut { uint bound_out[]; };
+layout(std430, binding = BIND_AUX_IN) restrict readonly buffer BoundIn { vec4 bound_in[]; };
+layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer BoundOut { uint bound_out[]; };
 uniform uint u_bound_count;
 
 #define BOUND_SUB 24

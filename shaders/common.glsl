@@ -75,7 +75,7 @@ uint sign_slab_bits()
 // groups of 64.
 float density(vec3 ws); // the field's
 layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float dens_out[]; };
-layout(std430, binding = BIND_SIGNS) restrict writeonly buffer SignOut { uint sign_out[]; };
+layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer SignOut { uint sign_out[]; };
 uniform float u_density_bias; // subtracted (coarse LOD blocks erode a little)
 uniform uint u_sign_words;    // the sign buffer's capacity in words
 uniform int u_z0;             // first z slab of this dispatch (a block's density over two frames)

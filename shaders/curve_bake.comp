@@ -13,9 +13,9 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #ifdef BAKE_HEIGHTMAP
 #include "heightmap.glsl"
 #endif
-layout(std430, binding = BIND_AUX_A) restrict writeonly buffer BakeOut { float bake_out[]; };
+layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer BakeOut { float bake_out[]; };
 #ifndef BAKE_DENSE
-layout(std430, binding = BIND_AUX_B) restrict readonly buffer BakeTiles { uint bake_tiles[]; }; // (tx | ty << 16)
+layout(std430, binding = BIND_AUX_IN) restrict readonly buffer BakeTiles { uint bake_tiles[]; }; // (tx | ty << 16)
 uniform int u_bake_ntiles;
 uniform int u_bake_groups_x;
 #endif

@@ -5,8 +5,8 @@
 //   mode 2: in[i] = (x, z, -, -) -> out[i] = (hm_height(xz, true), hm_height(xz, false), 0, 0)
 layout(local_size_x = 64) in;
 #include "carve.glsl"
-layout(std430, binding = BIND_AUX_A) restrict readonly buffer TestIn { vec4 test_in[]; };
-layout(std430, binding = BIND_AUX_B) restrict writeonly buffer TestOut { vec4 test_out[]; };
+layout(std430, binding = BIND_AUX_IN) restrict readonly buffer TestIn { vec4 test_in[]; };
+layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer TestOut { vec4 test_out[]; };
 uniform int u_test_mode;
 uniform int u_test_n;
 

@@ -7,7 +7,7 @@
 // the mesh draw nothing.
 layout(local_size_x = 64) in;
 layout(std430, binding = BIND_STATUS) readonly restrict buffer Src { uint src[]; };
-layout(std430, binding = BIND_AUX_A) writeonly restrict buffer Parts { uint parts[]; };
+layout(std430, binding = BIND_AUX_OUT) writeonly restrict buffer Parts { uint parts[]; };
 uniform uint u_src;    // the command's first word in Src
 uniform uint u_part;   // indices (vertices) a part
 uniform uint u_parts;  // parts to write

@@ -3,7 +3,7 @@
 layout(local_size_x = 64) in;
 #include "common.glsl"
 #include "hp.glsl"
-layout(std430, binding = BIND_TEST_OUT) restrict buffer TestOut { uvec2 test_out[]; };
+layout(std430, binding = BIND_AUX_OUT) restrict buffer TestOut { uvec2 test_out[]; };
 uniform int u_mode;      // 0: level 1 from level 0; 1: traverse; 2: prefix
 uniform uint u_n;        // items
 uniform uint u_words;
@@ -17,7 +17,7 @@ void main()
 	if (u_mode == 0) {
 		uvec2 s = uvec2(0u);
 		if (i < u_words) {
-			uint w = hp_l0[i];
+			uint w = hp_l0(i);
 			for (uint j = 0u; j < 4u; ++j) {
 				uint b = (w >> (8u * j)) & 255u;
 				s += uvec2(b & 7u, uint(bitCount(b >> 3)));

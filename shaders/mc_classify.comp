@@ -69,6 +69,16 @@ void main()
 		piece(c, n, cell - first, w);
 		cell += n;
 	}
+	// the four level-0 words, two a uvec2 of the pyramid's buffer
+	uint w0 = 4u * g;
+	if (w0 + 1u < u_words)
+		hp[2u * g] = w.xy;
+	else if (w0 < u_words)
+		hp[2u * g].x = w.x;
+	if (w0 + 3u < u_words)
+		hp[2u * g + 1u] = w.zw;
+	else if (w0 + 2u < u_words)
+		hp[2u * g + 1u].x = w.z;
 	uvec2 sum2 = uvec2(0u);
 	for (uint k = 0u; k < 4u; ++k) {
 		uint wi = 4u * g + k;
@@ -77,8 +87,6 @@ void main()
 			uint b = (w[k] >> (8u * j)) & 255u;
 			sum += uvec2(b & 7u, uint(bitCount(b >> 3)));
 		}
-		if (wi < u_words)
-			hp_l0[wi] = w[k];
 		if (wi < u_words_padded)
 			hp[u_hp_off[1] + wi] = sum;
 		sum2 += sum;

@@ -14,12 +14,12 @@
 // in app/extract/mc_ref.c (inside()).  Dispatch: (ceil(words of a slab /
 // 64), slabs) groups of 64.
 layout(local_size_x = 64) in;
+#define PASS_READS_SIGNS 1 // common.glsl's Signs (BIND_SIGNS): here the raw bits
 #include "common.glsl"
-layout(std430, binding = BIND_AUX_A) restrict readonly buffer RawSigns { uint raw[]; };
-layout(std430, binding = BIND_SIGNS) restrict writeonly buffer Signs { uint filtered[]; };
+layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer Filtered { uint filtered[]; };
 uniform uint u_sign_words; // both buffers' capacity in words
 
-uint raw_word(uint w) { return w < u_sign_words ? raw[w] : 0u; }
+uint raw_word(uint w) { return w < u_sign_words ? signs[w] : 0u; }
 
 // 32 raw bits from bit b on (any alignment), bit 0 = sample b
 uint raw_run32(uint b)

@@ -7,8 +7,9 @@
  * driver reported, and the pass with that count is then refused, naming
  * the limit, the count and the pass; at the count itself it builds.  The
  * passes must keep to the design's budget on any driver (app/gpu/abi.h:
- * binding points below BIND_POINTS, six storage blocks a pass, the fewest
- * that Mali's Panfrost gives is 8).  Then the fixed needs: a lowered one
+ * binding points below BIND_POINTS, five storage blocks a pass, where
+ * Mali's Panfrost gives 8; without curves the OpenGL ES 3.1 minimums, 4
+ * blocks and binding points 0..3).  Then the fixed needs: a lowered one
  * (ISOTERRA_GL_LIMIT_OVERRIDE) fails with one line naming the limit, the
  * value needed and the value found.  Prints the driver's values
  * (docs/PLATFORMS.md quotes them). */
@@ -49,7 +50,7 @@ static void check_pass(const struct gl_pass *p, struct most *m)
 	/* the design's budget, as this driver counts it */
 	CHECK(got.max_binding < BIND_POINTS, "%s: storage binding %d, abi.h gives 0..%d", p->name, got.max_binding,
 	      BIND_POINTS - 1);
-	CHECK(got.use[GLS_COMPUTE].ssbo <= 6 && got.ssbo_total <= 6, "%s: %d storage blocks, the budget is 6 a pass",
+	CHECK(got.use[GLS_COMPUTE].ssbo <= 5 && got.ssbo_total <= 5, "%s: %d storage blocks, the budget is 5 a pass",
 	      p->name, got.ssbo_total);
 	CHECK(got.max_ubo_binding <= UBIND_MC_TABLES, "%s: uniform block binding %d past abi.h's", p->name,
 	      got.max_ubo_binding);
@@ -79,6 +80,26 @@ static void check_pass(const struct gl_pass *p, struct most *m)
 	       p->name, got.use[0].ssbo, got.use[1].ssbo, got.use[2].ssbo, got.use[0].samplers, got.use[1].samplers,
 	       got.use[2].samplers, got.use[0].images, got.use[0].ubos, got.use[0].components, got.use[1].components,
 	       got.use[2].components, got.local[0], got.local[1], got.local[2], got.max_binding, got.attribs);
+}
+
+/* Without curves (HAS_CURVES 0: the default volume and the world) a pass
+ * fits the OpenGL ES 3.1 minimums: 4 storage blocks, binding points 0..3. */
+static void check_es31_minimum(const struct gl_pass *p)
+{
+	if (p->tests_only || !p->cs || !strncmp(p->cs, "curve_", 6))
+		return; /* the curves' own passes carve by definition */
+	char defines[512], err[1024] = "";
+	snprintf(defines, sizeof(defines), "#define HAS_CURVES 0\n#define HAS_TUNNELS 0\n%s", p->defines ? p->defines : "");
+	GLuint prog = gpu_compute_program(p->cs, defines, err, sizeof(err));
+	CHECK(prog != 0, "%s without curves: %s", p->name, err);
+	if (!prog)
+		return;
+	struct gl_use got;
+	gl_limits_introspect(prog, true, &got);
+	glDeleteProgram(prog);
+	CHECK(got.ssbo_total <= 4 && got.max_binding < 4,
+	      "%s without curves: %d storage blocks, binding %d: over the ES 3.1 minimums (4, 0..3)", p->name,
+	      got.ssbo_total, got.max_binding);
 }
 
 /* With LIMIT lowered to need - 1 the pass that needs it is refused with one
@@ -167,6 +188,8 @@ int main(void)
 	printf("passes, as the driver counts them (compute/vertex/fragment):\n");
 	for (size_t i = 0; i < np; i++)
 		check_pass(&passes[i], &m);
+	for (size_t i = 0; i < np; i++)
+		check_es31_minimum(&passes[i]);
 	check_shared();
 	printf("the most: %d storage blocks (%s), binding points 0..%d (%s), %d compute uniform components (%s)\n",
 	       m.ssbo, m.by_ssbo ? m.by_ssbo->name : "-", m.binding - 1, m.by_binding ? m.by_binding->name : "-",

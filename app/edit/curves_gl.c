@@ -340,7 +340,7 @@ static int bake_tiled(struct edits_gl *G, const struct edits *e, GLuint prog, co
 		int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
 		glProgramUniform1i(prog, glGetUniformLocation(prog, "u_bake_ntiles"), nt);
 		glProgramUniform1i(prog, glGetUniformLocation(prog, "u_bake_groups_x"), gx);
-		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G->b_tiles);
+		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G->b_tiles);
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 		glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
 	}
@@ -390,7 +390,7 @@ int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts
 	glProgramUniform2f(prog, glGetUniformLocation(prog, "u_bake_origin"), o->origin[0], o->origin[1]);
 	glProgramUniform2f(prog, glGetUniformLocation(prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
 			   o->size[1] / (float)o->res[1]);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G->b_bake);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G->b_bake);
 	glUseProgram(prog);
 	if (o->dense || o->iterative) {
 		glDispatchCompute((GLuint)(o->res[0] + 7) / 8, (GLuint)(o->res[1] + 7) / 8, 1);
@@ -442,8 +442,8 @@ int curves_gpu_test(struct edits *ed, const struct params *p, int mode, const fl
 	gpu_set_param_uniforms(G->p_test, p);
 	glProgramUniform1i(G->p_test, glGetUniformLocation(G->p_test, "u_test_mode"), mode);
 	glProgramUniform1i(G->p_test, glGetUniformLocation(G->p_test, "u_test_n"), n);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, G->b_in);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, G->b_out);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G->b_in);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G->b_out);
 	glUseProgram(G->p_test);
 	glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
 	glUseProgram(0);

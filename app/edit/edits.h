@@ -119,7 +119,7 @@ void edits_gl_release(struct edits *ed);
  * By default only the 8x8 tiles that overlap a quadratic's padded box run
  * (the map is zeroed first); dense: every texel; iterative: the baseline
  * (32 line segments per curve, every curve, no hash).  The map stays in an
- * SSBO (BIND_AUX_A, explicit capacity); out != NULL gets a copy.  0 or -1
+ * SSBO (BIND_AUX_OUT, explicit capacity); out != NULL gets a copy.  0 or -1
  * with err. */
 struct bake_opts {
 	int res[2];

@@ -30,12 +30,14 @@ static inline uint32_t div_up(uint64_t a, uint64_t b)
 
 /* Level sizes: n[1] = level-0 words, n[k] = ceil(n[k-1] / 4) up to one node
  * at `top`; every level but the top padded to a multiple of four (pad) so
- * a parent reads four children; level k at node offset off[k] of the
- * pyramid buffer, `nodes` in all (the prefix sums follow them). */
+ * a parent reads four children.  One buffer of uvec2 nodes (shaders/hp.glsl):
+ * level 0 first (l0 nodes, two words each), level k at node offset off[k],
+ * then the prefix sums of levels 2..top, node i of level k at pre_base +
+ * off[k] + i; `nodes` in all. */
 struct hp_levels {
 	int top;
 	uint32_t n[HP_MAX_LEVELS], pad[HP_MAX_LEVELS], off[HP_MAX_LEVELS];
-	uint32_t nodes;
+	uint32_t l0, pre_base, nodes;
 };
 
 void hp_plan(struct hp_levels *h, uint32_t words);
@@ -44,7 +46,7 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h);
 /* glDispatchCompute of 64-wide groups over items, split in 2D past
  * max_groups. */
 void hp_dispatch_1d(uint64_t items, int max_groups);
-/* With levels 1 .. from-1 written (buffer b_hp at BIND_HP_LEVELS): levels
+/* With levels 1 .. from-1 written (buffer b_hp, bound at BIND_HP): levels
  * from..top by the reduction, then the prefix sum of every node of levels
  * 2..top, top down (down-sweep). */
 void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
@@ -67,7 +69,7 @@ struct pipeline {
 	unsigned compiles;             /* programs compiled (pipeline_compiles) */
 	GLuint p_density, p_debris, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
-	GLuint b_dens, b_signs, b_l0, b_hp, b_tables, b_verts, b_idx, b_status;
+	GLuint b_dens, b_signs, b_hp, b_tables, b_verts, b_idx, b_status;
 	GLuint b_signs_raw;            /* the density pass's bits; b_signs: less debris */
 	uint32_t owners, words;        /* owner cells, level-0 words */
 	uint32_t sign_words;           /* each sign buffer's capacity (words) */

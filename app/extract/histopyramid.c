@@ -22,13 +22,17 @@ void hp_plan(struct hp_levels *h, uint32_t words)
 		k++;
 	}
 	h->top = k;
-	uint32_t o = 0;
+	h->l0 = div_up(words ? words : 1, 2);
+	uint32_t o = h->l0;
 	for (int i = 1; i <= k; i++) {
 		h->pad[i] = i < k ? 4 * h->n[i + 1] : 1;
 		h->off[i] = o;
 		o += h->pad[i];
 	}
-	h->nodes = o;
+	/* the prefix sums of levels 2..top (of the top alone when it is 1) */
+	uint32_t first = h->off[k >= 2 ? 2 : k];
+	h->pre_base = o - first;
+	h->nodes = o + (o - first);
 }
 
 void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
@@ -41,7 +45,7 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 		glProgramUniform1i(prog, loc, h->top);
 	loc = glGetUniformLocation(prog, "u_pre_base");
 	if (loc >= 0)
-		glProgramUniform1ui(prog, loc, h->nodes);
+		glProgramUniform1ui(prog, loc, h->pre_base);
 }
 
 void hp_dispatch_1d(uint64_t items, int max_groups)
@@ -74,7 +78,7 @@ void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downswe
 	glUseProgram(downsweep);
 	uint32_t zero[2] = { 0, 0 };
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b_hp);
-	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(h->nodes + h->off[h->top]) * 8, 8, zero);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(h->pre_base + h->off[h->top]) * 8, 8, zero);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 	GLint l_lev = glGetUniformLocation(downsweep, "u_level");
 	GLint l_cnt = glGetUniformLocation(downsweep, "u_count");
@@ -94,14 +98,14 @@ struct hp_test {
 	int max_groups;
 	uint32_t words;
 	GLuint prog, reduce, down;  /* hp_test.comp, hp_reduce.comp, hp_downsweep.comp */
-	GLuint b_l0, b_hp, b_out;
+	GLuint b_hp, b_out;
 };
 
 static void hp_test_free(struct hp_test *t)
 {
 	glUseProgram(0);
-	GLuint bufs[3] = { t->b_l0, t->b_hp, t->b_out };
-	for (int i = 0; i < 3; i++)
+	GLuint bufs[2] = { t->b_hp, t->b_out };
+	for (int i = 0; i < 2; i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
 	GLuint progs[3] = { t->prog, t->reduce, t->down };
@@ -131,13 +135,15 @@ static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, ui
 	}
 	for (uint32_t i = 0; i < n; i++)
 		words[i / 4] |= (uint32_t)bytes[i] << (8 * (i % 4));
-	t->b_l0 = extract_buffer((GLsizeiptr)t->words * 4, words, GL_STATIC_DRAW);
+	/* level 0 at the start of the pyramid's buffer */
+	t->b_hp = extract_buffer((GLsizeiptr)t->h.nodes * 8, NULL, GL_DYNAMIC_COPY);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, t->b_hp);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)t->words * 4, words);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 	free(words);
-	t->b_hp = extract_buffer((GLsizeiptr)t->h.nodes * 16, NULL, GL_DYNAMIC_COPY);
 	t->b_out = extract_buffer((GLsizeiptr)(outn ? outn : 1) * 8, NULL, GL_DYNAMIC_COPY);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, t->b_l0);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, t->b_hp);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_TEST_OUT, t->b_out);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP, t->b_hp);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, t->b_out);
 	return 0;
 }
 

@@ -327,8 +327,8 @@ static int create_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 	pl->b_dens = extract_buffer((GLsizeiptr)grid_dens_count(&pl->g) * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_signs = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
 	pl->b_signs_raw = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
-	pl->b_l0 = extract_buffer((GLsizeiptr)pl->words * 4, NULL, GL_DYNAMIC_COPY);
-	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 16, NULL, GL_DYNAMIC_COPY); /* pyramid + prefix sums */
+	/* level 0, the pyramid and the prefix sums (extract_int.h, hp_levels) */
+	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 8, NULL, GL_DYNAMIC_COPY);
 	if (gpu_check("the field's buffers") < 0) {
 		snprintf(err, errlen, "cannot allocate the pipeline's field buffers (grid %dx%dx%d)", pl->g.nx, pl->g.ny,
 			 pl->g.nz);
@@ -339,7 +339,7 @@ static int create_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 
 void pipeline_release_field(struct pipeline *pl)
 {
-	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_l0, &pl->b_hp };
+	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_hp };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++) {
 		glDeleteBuffers(1, bufs[i]); /* 0 is ignored */
 		*bufs[i] = 0;
@@ -402,6 +402,12 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	pl->sign_words = sign_words(g);
 	pl->words = div_up(owners, 4);
 	hp_plan(&pl->hp, pl->words);
+	if ((uint64_t)pl->hp.nodes * 8 > (uint64_t)pl->max_ssbo) {
+		snprintf(err, errlen, "grid %dx%dx%d needs a %llu MB HistoPyramid buffer, over the GL limit (%d MB)", g->nx,
+			 g->ny, g->nz, (unsigned long long)((uint64_t)pl->hp.nodes * 8 >> 20), pl->max_ssbo >> 20);
+		free(pl);
+		return NULL;
+	}
 	plan_capacities(pl, p);
 	if (create_programs(pl, p, err, errlen) < 0 || create_buffers(pl, err, errlen) < 0) {
 		pipeline_destroy(pl);
@@ -424,23 +430,53 @@ void pipeline_destroy(struct pipeline *pl)
 	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
-	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_l0, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
+	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
 	free(pl);
 }
 
-static void bind_all(const struct pipeline *pl)
+/* Storage buffers are bound per pass, right before its dispatch: a binding
+ * point is a role (abi.h), four of them, that the passes share. */
+static void bind(GLuint point, GLuint buf)
 {
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_DENSITY, pl->b_dens);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_BASE, pl->b_l0);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_HP_LEVELS, pl->b_hp);
-	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, pl->b_verts);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_INDICES, pl->b_idx);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, pl->b_status);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buf);
+}
+
+/* The outputs: the target slot's ranges (the streaming world's pool) or the
+ * pipeline's own buffers. */
+static void bind_vertices(const struct pipeline *pl)
+{
+	const struct pipeline_target *tg = &pl->target;
+	if (pl->has_target)
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, tg->vbo, tg->vbo_offset,
+				  (GLsizeiptr)tg->vert_cap * VERTEX_BYTES);
+	else
+		bind(BIND_VERTICES, pl->b_verts);
+}
+
+static void bind_indices(const struct pipeline *pl)
+{
+	const struct pipeline_target *tg = &pl->target;
+	if (pl->has_target)
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_INDICES, tg->ibo, tg->ibo_offset, (GLsizeiptr)tg->tri_cap * 12);
+	else
+		bind(BIND_INDICES, pl->b_idx);
+}
+
+/* The status block (returned, with its offset). */
+static GLuint bind_status(const struct pipeline *pl, GLintptr *off)
+{
+	const struct pipeline_target *tg = &pl->target;
+	if (pl->has_target) {
+		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, tg->status, tg->status_offset, ST_BYTES);
+		*off = tg->status_offset;
+		return tg->status;
+	}
+	bind(BIND_STATUS, pl->b_status);
+	*off = 0;
+	return pl->b_status;
 }
 
 /* The density pass over z slabs z0 .. z1-1 of the density grid (its
@@ -454,8 +490,8 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 	if (!pl->p_density)
 		return -1;
 	double t = clock_ms();
-	bind_all(pl);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs_raw); /* the debris filter reads them */
+	bind(BIND_DENSITY, pl->b_dens);
+	bind(BIND_SIGNS_OUT, pl->b_signs_raw); /* the debris filter reads them */
 	set_common(pl, pl->p_density, p);
 	if (bind_field(pl, pl->p_density, p, err, errlen) < 0)
 		return -1;
@@ -484,19 +520,14 @@ int pipeline_density(struct pipeline *pl, const struct params *p, char *err, siz
  * its status block (returned with its offset). */
 static GLuint setup_pass(struct pipeline *pl, const struct params *p, GLintptr *status_off)
 {
-	GLuint status = pl->b_status;
-	*status_off = 0;
 	set_common(pl, pl->p_setup, p);
+	bind(BIND_HP, pl->b_hp);
+	GLuint status = bind_status(pl, status_off);
 	if (pl->has_target) {
 		const struct pipeline_target *tg = &pl->target;
-		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, tg->vbo, tg->vbo_offset, (GLsizeiptr)tg->vert_cap * VERTEX_BYTES);
-		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_INDICES, tg->ibo, tg->ibo_offset, (GLsizeiptr)tg->tri_cap * 12);
-		glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, tg->status, tg->status_offset, ST_BYTES);
 		set_caps(pl->p_setup, tg->tri_cap, tg->vert_cap);
 		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), tg->first_index);
 		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), tg->base_vertex);
-		status = tg->status;
-		*status_off = tg->status_offset;
 	} else {
 		set_caps(pl->p_setup, pl->tri_cap, pl->vert_cap);
 		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), 0);
@@ -519,10 +550,15 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 	set_common(pl, pl->p_vertices, p);
 	if (p->ao_rays > 0 && bind_field(pl, pl->p_vertices, p, err, errlen) < 0) /* the AO rays read the field */
 		return -1;
+	bind(BIND_DENSITY, pl->b_dens);
+	bind_vertices(pl);
 	glUseProgram(pl->p_vertices);
 	glDispatchComputeIndirect(status_off + ST_DISPATCH_VERTS * 4);
 	mark(pl, PASS_VERTICES, t);
 	set_common(pl, pl->p_indices, p);
+	bind(BIND_SIGNS, pl->b_signs);
+	bind_indices(pl);
+	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
 	glUseProgram(pl->p_indices);
 	glDispatchComputeIndirect(status_off + ST_DISPATCH_TRIS * 4);
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -537,15 +573,13 @@ static void debris_pass(struct pipeline *pl)
 {
 	set_common(pl, pl->p_debris, NULL);
 	glProgramUniform1ui(pl->p_debris, glGetUniformLocation(pl->p_debris, "u_sign_words"), pl->sign_words);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, pl->b_signs_raw);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SIGNS, pl->b_signs);
+	bind(BIND_SIGNS, pl->b_signs_raw);
+	bind(BIND_SIGNS_OUT, pl->b_signs);
 	glUseProgram(pl->p_debris);
 	int m2 = 1 + 2 * grid_margin(&pl->g);
 	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64) * 2;
 	glDispatchCompute((GLuint)div_up(slab_words, 64), (GLuint)(pl->g.nz + m2), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-	/* the raw bits were read at the vertices' binding point (abi.h) */
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_VERTICES, pl->b_verts);
 }
 
 /* The debris filter, classification and the HistoPyramid (the pipeline's
@@ -557,6 +591,9 @@ static void pyramid_passes(struct pipeline *pl, const struct params *p)
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
+	bind(BIND_SIGNS, pl->b_signs);
+	bind(BIND_HP, pl->b_hp);
+	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
 	glUseProgram(pl->p_classify);
 	/* an invocation: four level-0 words, their level-1 nodes and the
 	 * level-2 node above them (or a level-2 pad) */
@@ -607,12 +644,10 @@ int pipeline_run_stage(struct pipeline *pl, const struct params *p, enum pipelin
 	case PIPE_DENSITY_LO: return density_slabs(pl, p, 0, zs / 2, err, errlen);
 	case PIPE_DENSITY_HI: return density_slabs(pl, p, zs / 2, zs, err, errlen);
 	case PIPE_PYRAMID:
-		bind_all(pl); /* a frame's drawing came in between */
 		pyramid_passes(pl, p);
 		glUseProgram(0);
 		return gpu_check("pyramid passes");
 	default:
-		bind_all(pl);
 		rc = output_stage(pl, p, err, errlen);
 		pl->last_mode = COMPACTION_HP;
 		end_run();
@@ -632,8 +667,8 @@ int pipeline_bound(struct pipeline *pl, const struct params *p, GLuint in, GLuin
 	set_common(pl, prog, p);
 	if (bind_field(pl, prog, p, err, errlen) < 0)
 		return -1;
-	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, in, 0, (GLsizeiptr)count * 32);
-	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_B, out, 0, (GLsizeiptr)count * 4);
+	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, in, 0, (GLsizeiptr)count * 32);
+	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, out, 0, (GLsizeiptr)count * 4);
 	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_bound_count"), count);
 	glUseProgram(prog);
 	glDispatchCompute(count, 1, 1);
@@ -665,7 +700,10 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
 	if (ensure_vertex_room(pl, need, err, errlen) < 0)
 		return -1;
-	bind_all(pl);
+	bind(BIND_DENSITY, pl->b_dens);
+	bind(BIND_VERTICES, pl->b_verts);
+	bind(BIND_STATUS, pl->b_status);
+	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
 	uint32_t zero = 0;
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_status);
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, ST_APPEND_COUNTER * 4, 4, &zero);

@@ -10,24 +10,26 @@
 #define ISOTERRA_ABI_H
 
 /* ---- shader storage buffers (GL_SHADER_STORAGE_BUFFER binding points) ----
- * Eight binding points, 0..7, and at most six blocks in one pass: Mali's
- * Panfrost gives 8 of each (docs/PLATFORMS.md).  The passes that use the
- * two auxiliary buffers write no vertices or indices, so those share the
- * vertex and index points; whoever binds an auxiliary buffer there binds
- * the vertices or indices back before a pass that writes them
- * (extract/pipeline.c binds every point at the start of each stage). */
-#define BIND_DENSITY 0     /* float per grid corner, one-sample margin (density.comp writes) */
-#define BIND_HP_BASE 1     /* HistoPyramid level 0: one byte per owner cell, 4 a word */
-#define BIND_HP_LEVELS 2   /* HistoPyramid levels 1..top (uvec2 sums), then the prefix sums */
-#define BIND_VERTICES 3    /* output vertices (16 bytes each) */
-#define BIND_INDICES 4     /* output triangles (3 uint each) */
-#define BIND_STATUS 5      /* the status block below */
-#define BIND_SIGNS 6       /* sign bit per density sample, 1 = inside (density pass writes, classify reads) */
-#define BIND_CURVES 7      /* the curve spatial hash, one buffer of four sections (edit/curves_gl.c) */
-#define BIND_AUX_A BIND_VERTICES /* pass-specific: curve bake output, curve test input, raw sign bits, parts */
-#define BIND_AUX_B BIND_INDICES  /* pass-specific: curve bake tiles, curve test output, pre-pass verdicts */
-#define BIND_TEST_OUT BIND_INDICES /* hp_test.comp's keys and prefix sums (tests) */
-#define BIND_POINTS 8      /* binding points used: 0 .. BIND_POINTS-1 */
+ * Four binding points, 0..3 (the OpenGL ES 3.1 minimum), and at most four
+ * blocks in any pass of the default volume or the world; a pass that
+ * carves curves takes a fifth, BIND_CURVES (Mali's Panfrost gives 8).  A
+ * point is a role, not a buffer: each pass binds what it reads and writes
+ * right before its dispatch (extract/pipeline.c), so the names below that
+ * share a number are the roles of different passes. */
+#define BIND_FIELD 0       /* what a pass reads of the field: the densities, or their sign bits */
+#define BIND_HP 1          /* the HistoPyramid: level 0, levels 1..top, the prefix sums (hp.glsl) */
+#define BIND_OUT 2         /* what a pass writes: vertices, indices, sign bits, a bake, ... */
+#define BIND_STATUS 3      /* the status block below */
+#define BIND_CURVES 4      /* the curve spatial hash, one buffer of four sections (edit/curves_gl.c) */
+#define BIND_POINTS 5      /* binding points used: 0 .. BIND_POINTS-1 (4 without curves) */
+
+#define BIND_DENSITY BIND_FIELD  /* float per grid corner, one-sample margin (the density pass writes) */
+#define BIND_SIGNS BIND_FIELD    /* sign bit per density sample, 1 = inside (classification, indices read) */
+#define BIND_SIGNS_OUT BIND_OUT  /* the density pass's raw sign bits, the debris filter's filtered ones */
+#define BIND_VERTICES BIND_OUT   /* output vertices (16 bytes each) */
+#define BIND_INDICES BIND_OUT    /* output triangles (3 uint each) */
+#define BIND_AUX_IN BIND_HP      /* pass-specific input: the pre-pass's boxes, bake tiles, test input */
+#define BIND_AUX_OUT BIND_OUT    /* pass-specific output: the pre-pass's verdicts, the bake, the parts, tests */
 
 /* ---- uniform buffers --------------------------------------------------- */
 #define UBIND_NOISE 0      /* noise rotations and seed keys (terrain/noise_gl.c) */

@@ -51,7 +51,7 @@ int parts_split(struct draw_parts *dp, GLuint src, GLintptr offset, bool indexed
 		return -1;
 	}
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_STATUS, src);
-	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_A, dp->buf);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, dp->buf);
 	glProgramUniform1ui(dp->prog, dp->l_src, (GLuint)(offset / 4));
 	glProgramUniform1ui(dp->prog, dp->l_part, 3 * per_part);
 	glProgramUniform1ui(dp->prog, dp->l_parts, parts);
