@@ -230,17 +230,13 @@ static GLuint density_program(struct pipeline *pl, const struct params *p, char 
 /* The vertex pass: with ambient occlusion its rays read the field, so it is
  * the field's program; without, the engine's own (not specialized: it reads
  * no parameter that selects code). */
+static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field);
 static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	/* AO: a grid with an extra margin is a block of a larger world, whose
-	 * long rays evaluate the field outside it (shaders/ao.glsl) */
-	if (p->ao_rays > 0)
-		return variant_program(pl, pl->field->program,
-				       pl->g.margin_extra > 0 ? "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n"
-								"#define AO_FAR_OUTSIDE 1\n"
-							      : "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n",
-				       p, true, err, errlen);
-	return variant_program(pl, "mc_vertices.comp", "", p, false, err, errlen);
+	const char *file;
+	bool field;
+	const char *defines = vertex_defines(pl, p, &file, &field);
+	return variant_program(pl, file, defines, p, field, err, errlen);
 }
 
 /* The field's resources and uniforms for prog.  0, or -1 with err. */
@@ -297,8 +293,44 @@ static void plan_capacities(struct pipeline *pl, const struct params *p)
 	pl->vert_cap = (uint32_t)(vcap ? vcap : 1);
 }
 
+/* Issues a variant's compile and link ahead (gpu_prefetch_compute). */
+static void prefetch_variant(struct pipeline *pl, const char *file, const char *defines, const struct params *p,
+			     bool field)
+{
+	char key[VARIANT_KEY_MAX], err[256];
+	if (variant_key(pl, file, defines, p, field, key, sizeof(key), err, sizeof(err)) == 0)
+		gpu_prefetch_compute(file, key);
+}
+
+/* The vertex pass's variant (vertex_program). */
+static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field)
+{
+	*field = p->ao_rays > 0;
+	*file = *field ? pl->field->program : "mc_vertices.comp";
+	if (!*field)
+		return "";
+	/* AO: a grid with an extra margin is a block of a larger world, whose
+	 * long rays evaluate the field outside it (shaders/ao.glsl) */
+	return pl->g.margin_extra > 0 ? "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n"
+				      : "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n";
+}
+
+/* Every program of a run, issued together first: a driver with parallel
+ * compilation builds them side by side (the start's largest part on a GPU
+ * with empty caches), then each is taken in order. */
 static int create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
+	static const char *const own[] = { "mc_debris.comp", "mc_classify.comp", "hp_reduce.comp",
+					   "hp_downsweep.comp", "mc_setup.comp", "mc_indices.comp" };
+	const char *vfile;
+	bool vfield;
+	const char *vdefs = vertex_defines(pl, p, &vfile, &vfield);
+	prefetch_variant(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, true);
+	prefetch_variant(pl, vfile, vdefs, p, vfield);
+	if (pl->g.margin_extra > 0) /* a world's block: the coarse pre-pass (pipeline_bound) */
+		prefetch_variant(pl, pl->field->program, "#define FIELD_PASS_BOUND 1\n", p, true);
+	for (size_t i = 0; i < ARRAY_SIZE(own); i++)
+		gpu_prefetch_compute(own[i], NULL);
 	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
 	    !(pl->p_debris = program(pl, "mc_debris.comp", err, errlen)) ||
 	    !(pl->p_classify = program(pl, "mc_classify.comp", err, errlen)) ||

@@ -82,6 +82,15 @@ int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen)
 			(void)glGetError();
 		}
 	}
+	/* programs issued ahead (gpu_prefetch_*) build on the driver's threads */
+	if (has_ext(exts, "GL_KHR_parallel_shader_compile")) {
+		PFNGLMAXSHADERCOMPILERTHREADSKHRPROC threads =
+			(PFNGLMAXSHADERCOMPILERTHREADSKHRPROC)eglGetProcAddress("glMaxShaderCompilerThreadsKHR");
+		if (threads) {
+			threads(0xffffffffu); /* as many as the driver likes */
+			gpu_check("glMaxShaderCompilerThreadsKHR");
+		}
+	}
 	log_debug("GL: %s / %s, max SSBO %d bytes, max groups %d x %d x %d", caps->renderer, caps->version,
 		  caps->max_ssbo_size, caps->max_group_count[0], caps->max_group_count[1], caps->max_group_count[2]);
 	return 0;

@@ -29,6 +29,14 @@ char *shader_read(const char *name, char *err, size_t errlen);
  * or NULL.  Returns 0 with a file:line message in err on failure. */
 GLuint gpu_compute_program(const char *file, const char *defines, char *err, size_t errlen);
 GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char *defines, char *err, size_t errlen);
+/* Issues the compile and link of a program that gpu_compute_program /
+ * gpu_graphics_program will be asked for with the same arguments, and
+ * returns at once: with KHR_parallel_shader_compile the driver builds the
+ * programs issued together on its threads.  Errors show when the program
+ * is asked for.  gpu_prefetch_drop deletes the ones never asked for. */
+void gpu_prefetch_compute(const char *file, const char *defines);
+void gpu_prefetch_graphics(const char *vs_file, const char *fs_file, const char *defines);
+void gpu_prefetch_drop(void);
 /* The program binary cache (program_cache.c): on unless disabled; dir NULL
  * or "" = $XDG_CACHE_HOME/isoterra (else ~/.cache/isoterra).  Call before
  * the first program is made; it also resets the counters. */

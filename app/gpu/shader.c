@@ -297,6 +297,47 @@ static GLuint link(GLuint *shaders, int n, const char *what, char *err, size_t e
 	return prog;
 }
 
+/* ---- programs issued ahead ----------------------------------------------
+ * gpu_prefetch_*() issues a program's compile and link and returns at once;
+ * build() later takes it by its sources.  A driver with
+ * KHR_parallel_shader_compile (gpu.c turns its threads on) builds the
+ * issued programs on its own threads meanwhile, so a scene's programs
+ * compile side by side instead of one after another; elsewhere the work
+ * is the same as building each when asked.  Nothing is checked at issue:
+ * a program that fails is built again by build(), which reports it. */
+#define PREFETCH_MAX 32
+struct prefetched {
+	uint64_t src_key;  /* the assembled sources' hash */
+	GLuint prog;
+	bool from_cache;   /* loaded from the binary cache: linked already */
+	uint64_t cache_key[2];
+};
+static struct prefetched prefetch_tab[PREFETCH_MAX];
+static int prefetch_n;
+
+static uint64_t src_hash(const char *const *src, int n)
+{
+	uint64_t h = 0xcbf29ce484222325ull;
+	for (int i = 0; i < n; i++) {
+		for (const unsigned char *c = (const unsigned char *)src[i]; *c; c++)
+			h = (h ^ *c) * 0x100000001b3ull;
+		h = (h ^ 0xff) * 0x100000001b3ull; /* stage separator */
+	}
+	return h;
+}
+
+/* The issued program of these sources (taken out of the table), or NULL. */
+static bool prefetch_take(uint64_t key, struct prefetched *out)
+{
+	for (int i = 0; i < prefetch_n; i++)
+		if (prefetch_tab[i].src_key == key) {
+			*out = prefetch_tab[i];
+			prefetch_tab[i] = prefetch_tab[--prefetch_n];
+			return true;
+		}
+	return false;
+}
+
 /* The program's use, as the driver counts it, against the GL limits
  * (gl_limits.h); messages name it by its files and its switches (the
  * #defines set to 1 that are no parameter term), e.g. "density.comp
@@ -346,6 +387,19 @@ static GLuint build(const struct shader_desc *d, struct shader_deps *deps, bool 
 	}
 	const char *src[2] = { b[0].s, n > 1 ? b[1].s : NULL };
 	uint64_t key[2] = { 0, 0 };
+	struct prefetched pf;
+	if (use_cache && prefetch_take(src_hash(src, n), &pf)) {
+		GLint ok = pf.from_cache;
+		if (!ok)
+			glGetProgramiv(pf.prog, GL_LINK_STATUS, &ok); /* waits for the driver's thread */
+		if (ok) {
+			prog = pf.prog;
+			if (!pf.from_cache)
+				program_cache_store(prog, pf.cache_key);
+			goto out;
+		}
+		glDeleteProgram(pf.prog); /* built again below, for its message */
+	}
 	if (use_cache && (prog = program_cache_load(src, n, key)) != 0)
 		goto out;
 	GLuint sh[2] = { 0, 0 };
@@ -401,6 +455,70 @@ GLuint gpu_graphics_program(const char *vs_file, const char *fs_file, const char
 	snprintf(d.file[0], sizeof(d.file[0]), "%s", vs_file);
 	snprintf(d.file[1], sizeof(d.file[1]), "%s", fs_file);
 	return build_noted(&d, err, errlen);
+}
+
+/* Issues d's program (see "programs issued ahead" above). */
+static void prefetch(const struct shader_desc *d)
+{
+	static const GLenum types[3] = { GL_COMPUTE_SHADER, GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+	static const char *const stages[3] = { "#define STAGE_COMPUTE 1\n", "#define STAGE_VERTEX 1\n",
+					       "#define STAGE_FRAGMENT 1\n" };
+	if (prefetch_n >= PREFETCH_MAX)
+		return;
+	int n = d->compute ? 1 : 2, first = d->compute ? 0 : 1, made = 0;
+	struct srcbuf b[2];
+	memset(b, 0, sizeof(b));
+	char err[256];
+	for (; made < n; made++)
+		if (assemble(&b[made], stages[first + made], d->file[made], d->defines, err, sizeof(err)) < 0)
+			goto out; /* build() reports it */
+	const char *src[2] = { b[0].s, n > 1 ? b[1].s : NULL };
+	struct prefetched pf = { .src_key = src_hash(src, n) };
+	for (int i = 0; i < prefetch_n; i++)
+		if (prefetch_tab[i].src_key == pf.src_key)
+			goto out; /* issued already */
+	pf.prog = program_cache_load(src, n, pf.cache_key);
+	pf.from_cache = pf.prog != 0;
+	if (!pf.prog && (pf.prog = glCreateProgram()) != 0) {
+		for (int i = 0; i < n; i++) {
+			GLuint sh = glCreateShader(types[first + i]);
+			if (!sh)
+				continue;
+			glShaderSource(sh, 1, &src[i], NULL);
+			glCompileShader(sh);
+			glAttachShader(pf.prog, sh);
+			glDeleteShader(sh); /* freed with the program */
+		}
+		glProgramParameteri(pf.prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+		glLinkProgram(pf.prog); /* no status asked: the driver may go on in the background */
+	}
+	if (pf.prog)
+		prefetch_tab[prefetch_n++] = pf;
+out:
+	for (int i = 0; i < n && i <= made && i < 2; i++)
+		free(b[i].s);
+}
+
+void gpu_prefetch_compute(const char *file, const char *defines)
+{
+	struct shader_desc d = { .compute = true, .defines = defines };
+	snprintf(d.file[0], sizeof(d.file[0]), "%s", file);
+	prefetch(&d);
+}
+
+void gpu_prefetch_graphics(const char *vs_file, const char *fs_file, const char *defines)
+{
+	struct shader_desc d = { .compute = false, .defines = defines };
+	snprintf(d.file[0], sizeof(d.file[0]), "%s", vs_file);
+	snprintf(d.file[1], sizeof(d.file[1]), "%s", fs_file);
+	prefetch(&d);
+}
+
+void gpu_prefetch_drop(void)
+{
+	for (int i = 0; i < prefetch_n; i++)
+		glDeleteProgram(prefetch_tab[i].prog);
+	prefetch_n = 0;
 }
 
 void gpu_set_param_uniforms(GLuint prog, const struct params *p)

@@ -130,7 +130,13 @@ struct renderer *renderer_create(int width, int height, int antialias, char *err
 		return NULL;
 	}
 	r->draw_sky = true;
-	/* the terrain's program is made for the parameters at the first frame */
+	/* issued together (a driver with parallel compilation builds them side
+	 * by side); the terrain's program is made for the parameters at the
+	 * first frame */
+	gpu_prefetch_graphics("sky.vert", "sky.frag", NULL);
+	gpu_prefetch_graphics("water.vert", "water.frag", NULL);
+	if (r->aa == ANTIALIAS_FXAA)
+		gpu_prefetch_graphics("upscale.vert", "fxaa.frag", NULL);
 	r->sky = gpu_graphics_program("sky.vert", "sky.frag", NULL, err, errlen);
 	if (r->sky)
 		r->water = gpu_graphics_program("water.vert", "water.frag", NULL, err, errlen);
