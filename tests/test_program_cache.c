@@ -163,6 +163,28 @@ int main(void)
 	CHECK(extract(&m) == 0 && same_mesh(&m, &ref), "impossible cache directory: same mesh");
 	mesh_free(&m);
 
+	/* programs issued ahead (gpu_prefetch_*: the pipeline issues its own,
+	 * so the runs above went through it): one issued and then asked for is
+	 * compiled once; one never asked for is dropped; a missing file issued
+	 * ahead is still reported, by the build, with its name */
+	gpu_program_cache_config(true, dir);
+	gpu_prefetch_compute("mc_setup.comp", "#define PREFETCH_TEST 1\n");
+	gpu_prefetch_compute("mc_setup.comp", "#define PREFETCH_TEST 1\n"); /* issued once */
+	char err[512] = "";
+	GLuint prog = gpu_compute_program("mc_setup.comp", "#define PREFETCH_TEST 1\n", err, sizeof(err));
+	st = gpu_program_cache_stats();
+	CHECK(prog != 0 && st.misses == 1 && st.writes == 1, "issued ahead, then asked for: one compile (%u), one write (%u) %s",
+	      st.misses, st.writes, err);
+	if (prog)
+		glDeleteProgram(prog);
+	gpu_prefetch_compute("no_such_file.comp", NULL);
+	prog = gpu_compute_program("no_such_file.comp", NULL, err, sizeof(err));
+	CHECK(prog == 0 && strstr(err, "no_such_file.comp"), "a missing file issued ahead is reported: '%s'", err);
+	gpu_prefetch_compute("mc_finish.comp", "#define PREFETCH_TEST 2\n");
+	gpu_prefetch_drop();
+	CHECK(gpu_check("prefetch") == 0, "no GL error");
+
+	n = entries(names, 64);
 	for (int i = 0; i < n; i++) {
 		char path[512];
 		path_of(names[i], path, sizeof(path));
