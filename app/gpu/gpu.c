@@ -4,6 +4,7 @@
 #include "log.h"
 
 #include <EGL/egl.h>
+#include <EGL/eglext.h>
 #include <GLES2/gl2ext.h>
 #include <stdio.h>
 #include <string.h>
@@ -107,10 +108,35 @@ int gpu_check(const char *what)
 	return -1;
 }
 
+/* A capability, not a name: the current display's EGL device says whether
+ * it renders on the CPU (EGL_MESA_device_software: llvmpipe, softpipe,
+ * lavapipe under zink).  A display whose device cannot be queried counts as
+ * hardware.  Asked once per display. */
 bool gpu_software_rasterizer(void)
 {
-	const char *ren = (const char *)glGetString(GL_RENDERER);
-	return ren && (strstr(ren, "llvmpipe") || strstr(ren, "softpipe"));
+	static EGLDisplay asked = EGL_NO_DISPLAY;
+	static bool software;
+	EGLDisplay dpy = eglGetCurrentDisplay();
+	if (dpy == EGL_NO_DISPLAY || dpy == asked)
+		return dpy != EGL_NO_DISPLAY && software;
+	asked = dpy;
+	software = false;
+	const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+	if (!has_ext(client, "EGL_EXT_device_query") && !has_ext(client, "EGL_EXT_device_base"))
+		return false;
+	PFNEGLQUERYDISPLAYATTRIBEXTPROC query_display =
+		(PFNEGLQUERYDISPLAYATTRIBEXTPROC)eglGetProcAddress("eglQueryDisplayAttribEXT");
+	PFNEGLQUERYDEVICESTRINGEXTPROC query_device =
+		(PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+	EGLAttrib dev = 0;
+	if (!query_display || !query_device || !query_display(dpy, EGL_DEVICE_EXT, &dev) || !dev) {
+		(void)eglGetError();
+		return false;
+	}
+	const char *exts = query_device((EGLDeviceEXT)dev, EGL_EXTENSIONS);
+	software = has_ext(exts, "EGL_MESA_device_software");
+	log_debug("EGL device of this display: %s", software ? "software (EGL_MESA_device_software)" : "hardware");
+	return software;
 }
 
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)

@@ -77,8 +77,10 @@ int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen);
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
 /* glGetError() != GL_NO_ERROR -> logs "what: GL error 0x..." and returns -1. */
 int gpu_check(const char *what);
-/* The current context renders on the CPU (llvmpipe, softpipe): work a GPU
- * does in fixed function (multisampling) costs as much as shading there. */
+/* The current context renders on the CPU (its EGL device has
+ * EGL_MESA_device_software: llvmpipe, softpipe, lavapipe under zink): work a
+ * GPU does in fixed function (multisampling) costs as much as shading
+ * there.  A capability of the display, not a renderer name. */
 bool gpu_software_rasterizer(void);
 
 #endif
