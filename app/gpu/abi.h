@@ -44,6 +44,7 @@
 #define TEX_CONTROL 4      /* the control map (edit/curves_gl.c) */
 #define TEX_SURFACE 7      /* the generated surface texture (render/surface_tex.c) */
 #define TEX_FRAME 0        /* the finished frame, read by the V4L2 conversion and the OSD's pass */
+#define NOISE_TEX_SIZE 16  /* the 3D noise textures' edge, texels (terrain/noise.c, noise_gl.c) */
 
 /* ---- image units ---------------------------------------------------------- */
 #define IMG_CONVERT_OUT 0  /* the V4L2 conversion's output image */

@@ -3,7 +3,6 @@
  * See gl_limits.h. */
 #include "gl_limits.h"
 #include "abi.h"
-#include "noise.h"
 
 #include <GLES3/gl31.h>
 #include <errno.h>
@@ -101,7 +100,7 @@ static const struct limit_def defs[] = {
 	{ LIM(GL_MAX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_FRAGMENT, 0, NULL },
 	/* glActiveTexture(GL_TEXTURE0 + unit) and layout(binding = unit) */
 	{ LIM(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, -1, 48), N_UNITS, 0, 0, NULL },
-	{ LIM(GL_MAX_3D_TEXTURE_SIZE, -1, 256), N_CONST, 0, NOISE_TEX_SIZE, "the 3D noise textures (noise.h)" },
+	{ LIM(GL_MAX_3D_TEXTURE_SIZE, -1, 256), N_CONST, 0, NOISE_TEX_SIZE, "the 3D noise textures (abi.h NOISE_TEX_SIZE)" },
 	{ LIM(GL_MAX_COMPUTE_IMAGE_UNIFORMS, -1, 4), N_STAGE_IMAGES, GLS_COMPUTE, 0, NULL },
 	{ LIM(GL_MAX_IMAGE_UNITS, -1, 4), N_IMAGE_UNITS, 0, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_UNIFORM_BLOCKS, -1, 12), N_STAGE_UBOS, GLS_COMPUTE, 0, NULL },
