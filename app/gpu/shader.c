@@ -74,9 +74,8 @@ char *shader_read(const char *name, char *err, size_t errlen)
 struct srcbuf {
 	char *s;
 	size_t len, cap;
-	const char *files[MAX_FILES]; /* source-string number -> file name */
 	int nfiles;
-	char names[MAX_FILES][64];
+	char names[MAX_FILES][64]; /* source-string number (the "#line N id" of each file) -> file name */
 };
 
 static int sb_add(struct srcbuf *b, const char *s, size_t n)
@@ -122,12 +121,18 @@ static int expand(struct srcbuf *b, const char *name, int depth, char *err, size
 	char *text = shader_read(name, err, errlen);
 	if (!text)
 		return -1;
-	int rc = sb_printf(b, "#line 1 %d\n", id, 0);
+	/* the file's lines count from id * SHADER_LINE_BASE (shader_int.h) */
+	int base = id * SHADER_LINE_BASE;
+	int rc = sb_printf(b, "#line %d %d\n", base + 1, id);
 	int lineno = 0;
 	for (char *line = text; rc == 0 && line && *line;) {
 		char *nl = strchr(line, '\n');
 		size_t n = nl ? (size_t)(nl - line) + 1 : strlen(line);
-		lineno++;
+		if (++lineno >= SHADER_LINE_BASE) {
+			snprintf(err, errlen, "%s: more than %d lines", name, SHADER_LINE_BASE - 1);
+			free(text);
+			return -1;
+		}
 		char *p = line;
 		while (*p == ' ' || *p == '\t')
 			p++;
@@ -147,7 +152,7 @@ static int expand(struct srcbuf *b, const char *name, int depth, char *err, size
 				free(text);
 				return -1;
 			}
-			rc = sb_printf(b, "#line %d %d\n", lineno + 1, id);
+			rc = sb_printf(b, "#line %d %d\n", base + lineno + 1, id);
 		} else {
 			rc = sb_add(b, line, n);
 			if (rc == 0 && !nl)
@@ -198,45 +203,14 @@ static int assemble(struct srcbuf *b, const char *stage_define, const char *file
 	return expand(b, file, 0, err, errlen);
 }
 
-/* Rewrites the driver's "N:L(C): msg" (Mesa) or "ERROR: N:L: msg" prefixes
- * to "file:L: msg"; one line of the log (the first error) goes to err. */
+/* The compile log's line worth reporting, as "file:line: message" against
+ * the program's file table (shader_log.c reads every vendor's format). */
 static void format_log(const struct srcbuf *b, const char *log, const char *fallback, char *err, size_t errlen)
 {
-	const char *line = log;
-	const char *pick = NULL;
-	while (line && *line) {
-		if (strstr(line, "error") || strstr(line, "ERROR")) {
-			pick = line;
-			break;
-		}
-		line = strchr(line, '\n');
-		if (line)
-			line++;
-	}
-	if (!pick)
-		pick = log;
-	const char *nl = strchr(pick, '\n');
-	int n = nl ? (int)(nl - pick) : (int)strlen(pick);
-	const char *p = pick;
-	if (!strncmp(p, "ERROR: ", 7))
-		p += 7;
-	int src, ln, consumed = 0;
-	if (sscanf(p, "%d:%d%n", &src, &ln, &consumed) == 2 && src >= 0 && src < b->nfiles) {
-		const char *rest = p + consumed;
-		if (*rest == '(') {
-			const char *close = strchr(rest, ')');
-			if (close && close < pick + n)
-				rest = close + 1;
-		}
-		if (*rest == ':')
-			rest++;
-		while (*rest == ' ')
-			rest++;
-		int rn = (int)(pick + n - rest);
-		snprintf(err, errlen, "%s:%d: %.*s", b->names[src], ln, rn > 0 ? rn : 0, rest);
-	} else {
-		snprintf(err, errlen, "%s: %.*s", fallback, n, pick);
-	}
+	const char *files[MAX_FILES];
+	for (int i = 0; i < b->nfiles; i++)
+		files[i] = b->names[i];
+	shader_log_format(log, log ? strlen(log) : 0, files, b->nfiles, fallback, err, errlen);
 }
 
 static GLuint compile(GLenum type, const struct srcbuf *b, const char *file, char *err, size_t errlen)
