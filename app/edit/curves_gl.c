@@ -166,23 +166,23 @@ static void set_uniforms(GLuint prog, const struct edits *e, const int32_t sect[
 	const struct curve_hash *h = &e->hash;
 	bool any = e->quads.nquads > 0 && h->pivot;
 	GLint l;
-	if ((l = glGetUniformLocation(prog, "u_curve_sect")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_sect")) >= 0)
 		glProgramUniform4i(prog, l, sect[0], sect[1], sect[2], sect[3]);
-	if ((l = glGetUniformLocation(prog, "u_curve_count")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_count")) >= 0)
 		glProgramUniform1i(prog, l, any ? e->quads.nquads : 0);
-	if ((l = glGetUniformLocation(prog, "u_curve_all_offset")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_all_offset")) >= 0)
 		glProgramUniform1i(prog, l, any ? h->all_offset : 0);
-	if ((l = glGetUniformLocation(prog, "u_curve_hash_dim")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_hash_dim")) >= 0)
 		glProgramUniform2i(prog, l, any ? h->dim : 1, any ? h->dim : 1);
-	if ((l = glGetUniformLocation(prog, "u_curve_hash_origin")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_hash_origin")) >= 0)
 		glProgramUniform2f(prog, l, h->origin[0], h->origin[1]);
-	if ((l = glGetUniformLocation(prog, "u_curve_hash_size")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_hash_size")) >= 0)
 		glProgramUniform2f(prog, l, h->size[0], h->size[1]);
-	if ((l = glGetUniformLocation(prog, "u_curve_hash_cell")) >= 0)
+	if ((l = gpu_uniform(prog, "u_curve_hash_cell")) >= 0)
 		glProgramUniform2f(prog, l, any ? h->cell[0] : 1.0f, any ? h->cell[1] : 1.0f);
-	if ((l = glGetUniformLocation(prog, "u_heightmap_size")) >= 0)
+	if ((l = gpu_uniform(prog, "u_heightmap_size")) >= 0)
 		glProgramUniform2i(prog, l, e->hm.w, e->hm.h);
-	if ((l = glGetUniformLocation(prog, "u_control_size")) >= 0)
+	if ((l = gpu_uniform(prog, "u_control_size")) >= 0)
 		glProgramUniform2i(prog, l, e->control.w, e->control.h);
 }
 
@@ -338,8 +338,8 @@ static int bake_tiled(struct edits_gl *G, const struct edits *e, GLuint prog, co
 		glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)nt * 4, tiles);
 		glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 		int gx = nt < 65535 ? nt : 65535, gy = (nt + gx - 1) / gx;
-		glProgramUniform1i(prog, glGetUniformLocation(prog, "u_bake_ntiles"), nt);
-		glProgramUniform1i(prog, glGetUniformLocation(prog, "u_bake_groups_x"), gx);
+		glProgramUniform1i(prog, gpu_uniform(prog, "u_bake_ntiles"), nt);
+		glProgramUniform1i(prog, gpu_uniform(prog, "u_bake_groups_x"), gx);
 		glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G->b_tiles);
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 		glDispatchCompute((GLuint)gx, (GLuint)gy, 1);
@@ -386,9 +386,9 @@ int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts
 		return -1;
 	}
 	gpu_set_param_uniforms(prog, p);
-	glProgramUniform2i(prog, glGetUniformLocation(prog, "u_bake_res"), o->res[0], o->res[1]);
-	glProgramUniform2f(prog, glGetUniformLocation(prog, "u_bake_origin"), o->origin[0], o->origin[1]);
-	glProgramUniform2f(prog, glGetUniformLocation(prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
+	glProgramUniform2i(prog, gpu_uniform(prog, "u_bake_res"), o->res[0], o->res[1]);
+	glProgramUniform2f(prog, gpu_uniform(prog, "u_bake_origin"), o->origin[0], o->origin[1]);
+	glProgramUniform2f(prog, gpu_uniform(prog, "u_bake_texel"), o->size[0] / (float)o->res[0],
 			   o->size[1] / (float)o->res[1]);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G->b_bake);
 	glUseProgram(prog);
@@ -440,8 +440,8 @@ int curves_gpu_test(struct edits *ed, const struct params *p, int mode, const fl
 		return -1;
 	}
 	gpu_set_param_uniforms(G->p_test, p);
-	glProgramUniform1i(G->p_test, glGetUniformLocation(G->p_test, "u_test_mode"), mode);
-	glProgramUniform1i(G->p_test, glGetUniformLocation(G->p_test, "u_test_n"), n);
+	glProgramUniform1i(G->p_test, gpu_uniform(G->p_test, "u_test_mode"), mode);
+	glProgramUniform1i(G->p_test, gpu_uniform(G->p_test, "u_test_n"), n);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G->b_in);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G->b_out);
 	glUseProgram(G->p_test);

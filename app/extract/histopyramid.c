@@ -37,13 +37,13 @@ void hp_plan(struct hp_levels *h, uint32_t words)
 
 void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 {
-	GLint loc = glGetUniformLocation(prog, "u_hp_off");
+	GLint loc = gpu_uniform(prog, "u_hp_off");
 	if (loc >= 0)
 		glProgramUniform1uiv(prog, loc, HP_MAX_LEVELS, h->off);
-	loc = glGetUniformLocation(prog, "u_hp_top");
+	loc = gpu_uniform(prog, "u_hp_top");
 	if (loc >= 0)
 		glProgramUniform1i(prog, loc, h->top);
-	loc = glGetUniformLocation(prog, "u_pre_base");
+	loc = gpu_uniform(prog, "u_pre_base");
 	if (loc >= 0)
 		glProgramUniform1ui(prog, loc, h->pre_base);
 }
@@ -60,9 +60,9 @@ void hp_dispatch_1d(uint64_t items, int max_groups)
 void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups)
 {
 	hp_set_uniforms(reduce, h);
-	GLint l_level = glGetUniformLocation(reduce, "u_level");
-	GLint l_count = glGetUniformLocation(reduce, "u_count");
-	GLint l_pad = glGetUniformLocation(reduce, "u_padded");
+	GLint l_level = gpu_uniform(reduce, "u_level");
+	GLint l_count = gpu_uniform(reduce, "u_count");
+	GLint l_pad = gpu_uniform(reduce, "u_padded");
 	glUseProgram(reduce);
 	for (int k = from; k <= h->top; k++) {
 		glProgramUniform1i(reduce, l_level, k);
@@ -80,8 +80,8 @@ void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downswe
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b_hp);
 	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(h->pre_base + h->off[h->top]) * 8, 8, zero);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	GLint l_lev = glGetUniformLocation(downsweep, "u_level");
-	GLint l_cnt = glGetUniformLocation(downsweep, "u_count");
+	GLint l_lev = gpu_uniform(downsweep, "u_level");
+	GLint l_cnt = gpu_uniform(downsweep, "u_count");
 	for (int k = h->top - 1; k >= 2; k--) {
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 		glProgramUniform1i(downsweep, l_lev, k);
@@ -152,8 +152,8 @@ static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, ui
 static void hp_test_pass(const struct hp_test *t, int mode, uint32_t count)
 {
 	glUseProgram(t->prog);
-	glProgramUniform1i(t->prog, glGetUniformLocation(t->prog, "u_mode"), mode);
-	glProgramUniform1ui(t->prog, glGetUniformLocation(t->prog, "u_n"), count);
+	glProgramUniform1i(t->prog, gpu_uniform(t->prog, "u_mode"), mode);
+	glProgramUniform1ui(t->prog, gpu_uniform(t->prog, "u_n"), count);
 	hp_dispatch_1d(count, t->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -171,8 +171,8 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 	uint32_t top[2] = { 0, 0 };
 	if (rc == 0) {
 		hp_set_uniforms(t.prog, &t.h);
-		glProgramUniform1ui(t.prog, glGetUniformLocation(t.prog, "u_words"), t.words);
-		glProgramUniform1i(t.prog, glGetUniformLocation(t.prog, "u_comp"), comp);
+		glProgramUniform1ui(t.prog, gpu_uniform(t.prog, "u_words"), t.words);
+		glProgramUniform1i(t.prog, gpu_uniform(t.prog, "u_comp"), comp);
 		hp_test_pass(&t, 0, t.h.pad[1]); /* level 1 from the bytes */
 		hp_build(&t.h, 2, t.reduce, t.down, t.b_hp, t.max_groups);
 		rc = gpu_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);

@@ -74,13 +74,13 @@ GLuint pipeline_density_program(const struct pipeline *pl)
 
 static void set_common(const struct pipeline *pl, GLuint prog, const struct params *p)
 {
-	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_cells"), pl->g.nx, pl->g.ny, pl->g.nz);
-	glProgramUniform3f(prog, glGetUniformLocation(prog, "u_origin"), pl->g.origin[0], pl->g.origin[1], pl->g.origin[2]);
-	glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cell"), pl->g.cell);
-	glProgramUniform3i(prog, glGetUniformLocation(prog, "u_base"), pl->g.base[0], pl->g.base[1], pl->g.base[2]);
-	glProgramUniform1i(prog, glGetUniformLocation(prog, "u_margin"), grid_margin(&pl->g));
+	glProgramUniform3i(prog, gpu_uniform(prog, "u_cells"), pl->g.nx, pl->g.ny, pl->g.nz);
+	glProgramUniform3f(prog, gpu_uniform(prog, "u_origin"), pl->g.origin[0], pl->g.origin[1], pl->g.origin[2]);
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_cell"), pl->g.cell);
+	glProgramUniform3i(prog, gpu_uniform(prog, "u_base"), pl->g.base[0], pl->g.base[1], pl->g.base[2]);
+	glProgramUniform1i(prog, gpu_uniform(prog, "u_margin"), grid_margin(&pl->g));
 	hp_set_uniforms(prog, &pl->hp);
-	GLint loc = glGetUniformLocation(prog, "u_max_groups");
+	GLint loc = gpu_uniform(prog, "u_max_groups");
 	if (loc >= 0)
 		glProgramUniform1ui(prog, loc, (GLuint)pl->max_groups);
 	if (p)
@@ -104,8 +104,8 @@ void pipeline_set_grid(struct pipeline *pl, const struct grid *g, float density_
 
 static void set_caps(GLuint prog, uint32_t tri_cap, uint32_t vert_cap)
 {
-	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_tri_cap"), tri_cap);
-	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_vert_cap"), vert_cap);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_tri_cap"), tri_cap);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_vert_cap"), vert_cap);
 }
 
 /* The Marching Cubes tables as a uniform block (common.glsl's McTables,
@@ -528,9 +528,9 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 	if (bind_field(pl, pl->p_density, p, err, errlen) < 0)
 		return -1;
 	glUseProgram(pl->p_density);
-	glProgramUniform1f(pl->p_density, glGetUniformLocation(pl->p_density, "u_density_bias"), pl->density_bias);
-	glProgramUniform1ui(pl->p_density, glGetUniformLocation(pl->p_density, "u_sign_words"), pl->sign_words);
-	glProgramUniform1i(pl->p_density, glGetUniformLocation(pl->p_density, "u_z0"), z0);
+	glProgramUniform1f(pl->p_density, gpu_uniform(pl->p_density, "u_density_bias"), pl->density_bias);
+	glProgramUniform1ui(pl->p_density, gpu_uniform(pl->p_density, "u_sign_words"), pl->sign_words);
+	glProgramUniform1i(pl->p_density, gpu_uniform(pl->p_density, "u_z0"), z0);
 	/* one z slab per row of groups; an invocation per sign word, 32
 	 * samples, a slab's words padded to a multiple of two (common.glsl) */
 	int m2 = 1 + 2 * grid_margin(&pl->g);
@@ -558,12 +558,12 @@ static GLuint setup_pass(struct pipeline *pl, const struct params *p, GLintptr *
 	if (pl->has_target) {
 		const struct pipeline_target *tg = &pl->target;
 		set_caps(pl->p_setup, tg->tri_cap, tg->vert_cap);
-		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), tg->first_index);
-		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), tg->base_vertex);
+		glProgramUniform1ui(pl->p_setup, gpu_uniform(pl->p_setup, "u_first_index"), tg->first_index);
+		glProgramUniform1ui(pl->p_setup, gpu_uniform(pl->p_setup, "u_base_vertex"), tg->base_vertex);
 	} else {
 		set_caps(pl->p_setup, pl->tri_cap, pl->vert_cap);
-		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_first_index"), 0);
-		glProgramUniform1ui(pl->p_setup, glGetUniformLocation(pl->p_setup, "u_base_vertex"), 0);
+		glProgramUniform1ui(pl->p_setup, gpu_uniform(pl->p_setup, "u_first_index"), 0);
+		glProgramUniform1ui(pl->p_setup, gpu_uniform(pl->p_setup, "u_base_vertex"), 0);
 	}
 	glUseProgram(pl->p_setup);
 	glDispatchCompute(1, 1, 1);
@@ -604,7 +604,7 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 static void debris_pass(struct pipeline *pl)
 {
 	set_common(pl, pl->p_debris, NULL);
-	glProgramUniform1ui(pl->p_debris, glGetUniformLocation(pl->p_debris, "u_sign_words"), pl->sign_words);
+	glProgramUniform1ui(pl->p_debris, gpu_uniform(pl->p_debris, "u_sign_words"), pl->sign_words);
 	bind(BIND_SIGNS, pl->b_signs_raw);
 	bind(BIND_SIGNS_OUT, pl->b_signs);
 	glUseProgram(pl->p_debris);
@@ -621,8 +621,8 @@ static void pyramid_passes(struct pipeline *pl, const struct params *p)
 	double t = clock_ms();
 	debris_pass(pl);
 	set_common(pl, pl->p_classify, p);
-	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words"), pl->words);
-	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
+	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words"), pl->words);
+	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
 	bind(BIND_SIGNS, pl->b_signs);
 	bind(BIND_HP, pl->b_hp);
 	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
@@ -630,7 +630,7 @@ static void pyramid_passes(struct pipeline *pl, const struct params *p)
 	/* an invocation: four level-0 words, their level-1 nodes and the
 	 * level-2 node above them (or a level-2 pad) */
 	uint32_t l2 = pl->hp.top >= 2 ? pl->hp.pad[2] : 1;
-	glProgramUniform1ui(pl->p_classify, glGetUniformLocation(pl->p_classify, "u_level2_nodes"), l2);
+	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_level2_nodes"), l2);
 	hp_dispatch_1d(l2, pl->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_CLASSIFY, &t);
@@ -701,7 +701,7 @@ int pipeline_bound(struct pipeline *pl, const struct params *p, GLuint in, GLuin
 		return -1;
 	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, in, 0, (GLsizeiptr)count * 32);
 	glBindBufferRange(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, out, 0, (GLsizeiptr)count * 4);
-	glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_bound_count"), count);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_bound_count"), count);
 	glUseProgram(prog);
 	glDispatchCompute(count, 1, 1);
 	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -748,7 +748,7 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	set_common(pl, pl->p_finish, p);
 	set_caps(pl->p_finish, tcap, 3 * tcap);
-	glProgramUniform1i(pl->p_finish, glGetUniformLocation(pl->p_finish, "u_nocompact"), nocompact);
+	glProgramUniform1i(pl->p_finish, gpu_uniform(pl->p_finish, "u_nocompact"), nocompact);
 	glUseProgram(pl->p_finish);
 	glDispatchCompute(1, 1, 1);
 	return 0;

@@ -61,6 +61,9 @@ void shader_watch_close(struct shader_watch *w); /* NULL is fine */
 int shader_watch_poll(struct shader_watch *w, char *msg, size_t msglen);
 /* Sets every u_<name> uniform the program uses from the parameter table. */
 void gpu_set_param_uniforms(GLuint prog, const struct params *p);
+/* glGetUniformLocation, looked up once per program (app/gpu/uniform_cache.c):
+ * name must be a string that outlives the program (a literal). */
+GLint gpu_uniform(GLuint prog, const char *name);
 
 /* Capabilities and checks. */
 struct gpu_caps {

@@ -14,4 +14,8 @@ GLuint program_cache_load(const char *const *sources, int n, uint64_t key_out[2]
  * logged once and otherwise ignored. */
 void program_cache_store(GLuint prog, const uint64_t key[2]);
 
+/* The locations cached for prog are stale: it was (re)linked
+ * (uniform_cache.c). */
+void uniform_cache_forget(GLuint prog);
+
 #endif

@@ -389,6 +389,8 @@ static GLuint build(const struct shader_desc *d, struct shader_deps *deps, bool 
 	if (prog && use_cache)
 		program_cache_store(prog, key);
 out:
+	if (prog)
+		uniform_cache_forget(prog); /* a new program, perhaps a deleted one's name */
 	if (prog && check_limits(prog, d, err, errlen) < 0) {
 		glDeleteProgram(prog);
 		prog = 0;
@@ -495,20 +497,3 @@ void gpu_prefetch_drop(void)
 	prefetch_n = 0;
 }
 
-void gpu_set_param_uniforms(GLuint prog, const struct params *p)
-{
-	for (size_t i = 0; i < param_count; i++) {
-		const struct param_info *pi = &param_table[i];
-		if (!(pi->flags & P_SHADER))
-			continue;
-		char name[80];
-		snprintf(name, sizeof(name), "u_%s", pi->name);
-		GLint loc = glGetUniformLocation(prog, name);
-		if (loc < 0)
-			continue;
-		if (pi->type == PT_FLOAT)
-			glProgramUniform1f(prog, loc, (float)params_get_number(p, pi));
-		else
-			glProgramUniform1i(prog, loc, (int)params_get_number(p, pi));
-	}
-}

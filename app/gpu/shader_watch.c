@@ -8,6 +8,7 @@
  * them); uniform locations may change with an edit, so owners look them up
  * after glUseProgram rather than once. */
 #include "gpu.h"
+#include "gpu_int.h"
 #include "log.h"
 #include "shader_int.h"
 
@@ -206,6 +207,7 @@ static int rebuild(struct watched *r, char *msg, size_t msglen)
 	for (GLsizei i = 0; i < n; i++)
 		glAttachShader(r->prog, sh[i]);
 	glLinkProgram(r->prog);
+	uniform_cache_forget(r->prog); /* its uniforms may have moved */
 	glDeleteProgram(tmp); /* its shaders live on in r->prog */
 	GLint ok = 0;
 	glGetProgramiv(r->prog, GL_LINK_STATUS, &ok);

@@ -206,7 +206,7 @@ static void shading_uniforms(GLuint prog, const struct params *p)
 {
 	gpu_set_param_uniforms(prog, p);
 	float el = p->light_el * (float)M_PI / 180.0f, az = p->light_az * (float)M_PI / 180.0f;
-	glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sun_dir"), cosf(el) * cosf(az), sinf(el),
+	glProgramUniform3f(prog, gpu_uniform(prog, "u_sun_dir"), cosf(el) * cosf(az), sinf(el),
 			   cosf(el) * sinf(az));
 }
 
@@ -215,10 +215,10 @@ static void terrain_uniforms(struct terrain_prog *t, const struct camera *c, con
 {
 	glUseProgram(t->prog);
 	/* looked up per frame: a live shader edit may move them */
-	t->l_viewproj = glGetUniformLocation(t->prog, "u_viewproj");
-	t->l_eye = glGetUniformLocation(t->prog, "u_eye");
-	t->l_fog = glGetUniformLocation(t->prog, "u_fog_density");
-	t->l_sink = glGetUniformLocation(t->prog, "u_sink");
+	t->l_viewproj = gpu_uniform(t->prog, "u_viewproj");
+	t->l_eye = gpu_uniform(t->prog, "u_eye");
+	t->l_fog = gpu_uniform(t->prog, "u_fog_density");
+	t->l_sink = gpu_uniform(t->prog, "u_sink");
 	shading_uniforms(t->prog, p);
 	glUniformMatrix4fv(t->l_viewproj, 1, GL_FALSE, c->viewproj);
 	glUniform3fv(t->l_eye, 1, c->eye);
@@ -273,8 +273,8 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 			glDepthMask(GL_FALSE);
 			glUseProgram(r->sky);
 			shading_uniforms(r->sky, p);
-			glUniformMatrix4fv(glGetUniformLocation(r->sky, "u_inv_viewproj"), 1, GL_FALSE, inv);
-			glUniform3fv(glGetUniformLocation(r->sky, "u_eye"), 1, c->eye);
+			glUniformMatrix4fv(gpu_uniform(r->sky, "u_inv_viewproj"), 1, GL_FALSE, inv);
+			glUniform3fv(gpu_uniform(r->sky, "u_eye"), 1, c->eye);
 			glDrawArrays(GL_TRIANGLES, 0, 3);
 			glDepthMask(GL_TRUE);
 		}
@@ -380,9 +380,9 @@ static int depth_pass(struct renderer *r, const struct pipeline_draw *d, uint32_
 		}
 	}
 	glUseProgram(r->depth_prog);
-	/* looked up each frame: a live shader edit may move them */
-	glUniformMatrix4fv(glGetUniformLocation(r->depth_prog, "u_viewproj"), 1, GL_FALSE, c->viewproj);
-	glUniform1f(glGetUniformLocation(r->depth_prog, "u_sink"), 0.0f);
+	/* cached per program; a live shader edit's relink forgets them (gpu_uniform) */
+	glUniformMatrix4fv(gpu_uniform(r->depth_prog, "u_viewproj"), 1, GL_FALSE, c->viewproj);
+	glUniform1f(gpu_uniform(r->depth_prog, "u_sink"), 0.0f);
 	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 	draw_mesh(r, d, parts, false);
 	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -433,14 +433,14 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 		return;
 	glDisable(GL_CULL_FACE); /* the plane is seen from both sides */
 	glUseProgram(r->water);
-	glUniform1f(glGetUniformLocation(r->water, "u_water_sphere"), sphere ? radius : 0.0f);
-	glUniform3f(glGetUniformLocation(r->water, "u_water_centre"), 0.0f, -p->planet_radius, 0.0f);
+	glUniform1f(gpu_uniform(r->water, "u_water_sphere"), sphere ? radius : 0.0f);
+	glUniform3f(gpu_uniform(r->water, "u_water_centre"), 0.0f, -p->planet_radius, 0.0f);
 	shading_uniforms(r->water, p);
-	glUniformMatrix4fv(glGetUniformLocation(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
-	glUniform3fv(glGetUniformLocation(r->water, "u_eye"), 1, c->eye);
-	glUniform4fv(glGetUniformLocation(r->water, "u_water_rect"), 1, rect);
+	glUniformMatrix4fv(gpu_uniform(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
+	glUniform3fv(gpu_uniform(r->water, "u_eye"), 1, c->eye);
+	glUniform4fv(gpu_uniform(r->water, "u_water_rect"), 1, rect);
 	float fog_range = p->scene == SCENE_WORLD ? p->view_distance * 0.6f : p->vol_size * p->cam_dist * 2.0f;
-	glUniform1f(glGetUniformLocation(r->water, "u_fog_density"), 0.35f / fog_range);
+	glUniform1f(gpu_uniform(r->water, "u_fog_density"), 0.35f / fog_range);
 	glEnable(GL_BLEND);
 	/* the frame stays opaque: a compositor (Wayland) would show the desktop through the water */
 	glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
