@@ -1,5 +1,6 @@
 /* isoterra — procedural GPU terrain: entry point. */
 #include "app.h"
+#include "probe.h"
 
 int main(int argc, char **argv)
 {
@@ -12,5 +13,7 @@ int main(int argc, char **argv)
 		return 2;
 	case CLI_RUN: break;
 	}
+	if (p.probe)
+		return probe_run(&p);
 	return run_program(&p);
 }

@@ -165,7 +165,7 @@ static struct hal_gpiod_chip *chip_by_label(const char *label)
  * a label (which stays when a chip comes back as another gpiochipN), then a
  * path (with a slash) or a name in /dev.  NULL with errno from the last
  * attempt. */
-static struct hal_gpiod_chip *chip_lookup(const char *descr)
+struct hal_gpiod_chip *hal_gpio_chip_lookup(const char *descr)
 {
 	char path[HAL_NAME_MAX + 16];
 	if (descr[strspn(descr, "0123456789")] == 0) {
@@ -185,7 +185,7 @@ static bool chip_up(struct hal_gpio *g, int c, uint64_t now)
 {
 	struct gchip *ch = &g->chips[c];
 	ch->next_try = now + g->retry_ns;
-	ch->chip = chip_lookup(ch->name);
+	ch->chip = hal_gpio_chip_lookup(ch->name);
 	if (!ch->chip) {
 		if (ch->problem != CH_MISSING)
 			hal_logf(&g->log, HAL_WARN, "gpio: cannot open gpiochip '%s': %s; controls on it are off, retrying every %g s", ch->name,

@@ -54,4 +54,9 @@ int hal_gpiod_line_value(struct hal_gpiod_line *l);       /* 0 / 1 (active-low a
 int hal_gpiod_line_read(struct hal_gpiod_line *l, struct hal_gpiod_edge *ev, int max);
 void hal_gpiod_line_release(struct hal_gpiod_line *l);
 
+/* gpio.c: the chip named descr, looked up as the knobs look it up (a
+ * number, a label, a path or a name in /dev; also for hal/probe.c).  NULL
+ * with errno. */
+struct hal_gpiod_chip *hal_gpio_chip_lookup(const char *descr);
+
 #endif
