@@ -5,6 +5,10 @@ set -eu
 export DEBIAN_FRONTEND=noninteractive
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
+# as a user: through sudo, which drops the environment (DEBIAN_FRONTEND
+# with it); as root (a container, a board's first boot) there may be none
+[ -z "$SUDO" ] || SUDO="sudo env DEBIAN_FRONTEND=noninteractive"
+[ -z "$SUDO" ] || command -v sudo >/dev/null 2>&1 || { echo "$0: run it as root, or install sudo" >&2; exit 1; }
 $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
@@ -40,6 +44,8 @@ $SUDO apt-get install -y -q --no-install-recommends \
 # (tools/debian13.sh, arm64.sh, debpkg.sh): debootstrap fetches everything
 # else from Debian's archive into build-d13/
 $SUDO apt-get install -y -q --no-install-recommends debootstrap
+# the Debian 12 package, built on this host by tools/debpkg.sh
+$SUDO apt-get install -y -q --no-install-recommends debhelper dpkg-dev fakeroot
 # optional, bench only: the peers of build/bench/bench_pipeline (libnoise's
 # Perlin fBm, linked when found; VTK's flying edges through python3, found
 # at run time).  The build and the tests work without them; python3-vtk9
