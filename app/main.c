@@ -15,5 +15,5 @@ int main(int argc, char **argv)
 	}
 	if (p.probe)
 		return probe_run(&p);
-	return run_program(&p);
+	return run_program_args(&p, argc, argv);
 }

@@ -6,6 +6,7 @@
 #include "clock.h"
 #include "controls.h"
 #include "gpu.h"
+#include "kiosk.h"
 #include "log.h"
 #include "notify.h"
 #include "platform.h"
@@ -37,12 +38,14 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			log_error("%s", msg);
 			controls_notice(lp->ctl, p, "shader error", msg);
 		}
+		kiosk_frame_begin(lp->kiosk, p, lp->r, lp->live ? clock_ms() / 1e3 - start : (double)f / p->fps);
 		bool last = p->count > 0 && f == p->count - 1;
 		struct scene_frame sf = { .index = f, .last = last, .live = lp->live,
 					  .start_s = start, .ctl = lp->ctl, .r = lp->r, .w = lp->w, .h = lp->h,
 					  .refresh_hz = lp->refresh_hz,
 					  .timing = lp->timing ? &tm : NULL };
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
+		    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
 			return -1;
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .count = p->count,
@@ -115,6 +118,9 @@ struct run {
 	struct sink_set sinks;
 	struct scene *scene;
 	struct shader_watch *shaders;
+	struct kiosk *kiosk;
+	int argc;
+	char **argv;
 };
 
 /* Platform, GL and the renderer, at the window's / mode's size on a
@@ -175,6 +181,9 @@ static int open_run(struct run *rn, bool signals_ok, char *err, size_t errlen)
 		sinks_add(&rn->sinks, rn->display); /* last: a resize re-creates the renderer */
 		rn->display = NULL;
 	}
+	rn->kiosk = kiosk_create(&rn->p, rn->argc, rn->argv, err, errlen);
+	if (!rn->kiosk)
+		return 2;
 	rn->scene = scene_create(&rn->p, err, errlen);
 	return rn->scene ? 0 : 1;
 }
@@ -235,7 +244,7 @@ static int run_frames(struct run *rn)
 				 .shaders = rn->shaders,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,
 				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz,
-				 .timing = p->results[0] != 0, .notify = notify_open() };
+				 .timing = p->results[0] != 0, .notify = notify_open(), .kiosk = rn->kiosk };
 	int rc = frame_loop_run(&lp, err, sizeof(err)) < 0 ? 1 : 0;
 	notify_close(lp.notify); /* STOPPING=1 */
 	rn->r = lp.r;
@@ -266,6 +275,7 @@ static int run_frames(struct run *rn)
 static void close_run(struct run *rn)
 {
 	scene_destroy(rn->scene);
+	kiosk_destroy(rn->kiosk);
 	controls_destroy(rn->ctl);
 	renderer_destroy(rn->r);
 	shader_watch_close(rn->shaders);
@@ -278,9 +288,16 @@ static void close_run(struct run *rn)
 
 int run_program(const struct params *p_in)
 {
+	return run_program_args(p_in, 0, NULL);
+}
+
+int run_program_args(const struct params *p_in, int argc, char **argv)
+{
 	struct run rn;
 	memset(&rn, 0, sizeof(rn));
 	rn.p = *p_in;
+	rn.argc = argc;
+	rn.argv = argv;
 	char err[1024];
 	if (cli_parse_size(rn.p.size, &rn.w, &rn.h) < 0) {
 		log_error("--size '%s' is not WxH", rn.p.size);

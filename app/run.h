@@ -13,6 +13,7 @@ struct controls;
 struct sink_set;
 struct renderer;
 struct notify;
+struct kiosk;
 
 /* One frame loop for every scene and every destination: per frame the
  * controls are polled, the scene draws, the controls draw over it (OSD,
@@ -30,6 +31,7 @@ struct frame_loop {
 	double refresh_hz;       /* the display's, when known (else 0) */
 	bool timing;             /* the scene waits for the GPU and times update and draw (results) */
 	struct notify *notify;   /* NULL: none; told of every finished frame (notify.h) */
+	struct kiosk *kiosk;     /* NULL: none; SIGHUP reload, the playlist and its crossfade (kiosk.h) */
 	int frames;              /* out: frames finished */
 };
 /* Frames until p->count (0: until a sink stops), a quit from the controls
@@ -46,5 +48,8 @@ int render_to_image(const struct params *p, struct image *img, char *err, size_t
  * p->out, the display, the V4L2 device; the mesh to p->export_mesh.
  * Returns the process exit code. */
 int run_program(const struct params *p);
+/* The same, keeping the command line (not copied) for SIGHUP to parse
+ * again (kiosk.h). */
+int run_program_args(const struct params *p, int argc, char **argv);
 
 #endif

@@ -4,8 +4,8 @@
 #include <signal.h>
 #include <string.h>
 
-static volatile sig_atomic_t quit_signal, report_request;
-static struct sigaction old_int, old_term, old_usr1, old_pipe;
+static volatile sig_atomic_t quit_signal, report_request, reload_request;
+static struct sigaction old_int, old_term, old_usr1, old_pipe, old_hup;
 static bool installed, watching;
 
 static void on_quit(int sig)
@@ -19,10 +19,17 @@ static void on_usr1(int sig)
 	report_request = 1;
 }
 
+static void on_hup(int sig)
+{
+	(void)sig;
+	reload_request = 1;
+}
+
 int signals_install(void)
 {
 	quit_signal = 0;
 	report_request = 0;
+	reload_request = 0;
 	struct sigaction sa;
 	memset(&sa, 0, sizeof(sa));
 	sigemptyset(&sa.sa_mask);
@@ -38,6 +45,13 @@ int signals_install(void)
 	sigemptyset(&ign.sa_mask);
 	ign.sa_handler = SIG_IGN;
 	if (sigaction(SIGPIPE, &ign, installed ? NULL : &old_pipe) != 0)
+		return -1;
+	/* SIGHUP: reload the configuration (a kiosk's systemctl reload) */
+	struct sigaction hup;
+	memset(&hup, 0, sizeof(hup));
+	sigemptyset(&hup.sa_mask);
+	hup.sa_handler = on_hup;
+	if (sigaction(SIGHUP, &hup, installed ? NULL : &old_hup) != 0)
 		return -1;
 	installed = true;
 	return 0;
@@ -62,6 +76,7 @@ void signals_restore(void)
 		sigaction(SIGINT, &old_int, NULL);
 		sigaction(SIGTERM, &old_term, NULL);
 		sigaction(SIGPIPE, &old_pipe, NULL);
+		sigaction(SIGHUP, &old_hup, NULL);
 	}
 	if (watching)
 		sigaction(SIGUSR1, &old_usr1, NULL);
@@ -78,5 +93,13 @@ bool signals_take_report(void)
 	if (!report_request)
 		return false;
 	report_request = 0;
+	return true;
+}
+
+bool signals_take_reload(void)
+{
+	if (!reload_request)
+		return false;
+	reload_request = 0;
 	return true;
 }

@@ -2,7 +2,8 @@
  *
  * SIGINT and SIGTERM ask the frame loop to stop cleanly (files closed, the
  * display restored); a second one kills at once (SA_RESETHAND).  SIGUSR1
- * asks a display for a frame-rate report.  SIGPIPE is ignored while the
+ * asks a display for a frame-rate report.  SIGHUP asks for the
+ * configuration to be read again (app/kiosk.c).  SIGPIPE is ignored while the
  * handlers are installed: a closed pipe is a write error (EPIPE).  The handlers only set flags; the
  * frame loop and the display sink read them.  No SA_RESTART: a blocking
  * wait returns EINTR and its caller sees the flag. */
@@ -23,5 +24,8 @@ void signals_restore(void);
 int signals_quit(void);
 /* True once per SIGUSR1 received since the last call. */
 bool signals_take_report(void);
+/* True once per SIGHUP received since the last call (installed with the
+ * SIGINT/SIGTERM handlers). */
+bool signals_take_reload(void);
 
 #endif

@@ -1,0 +1,438 @@
+/* isoterra — SIGHUP reload and the attract playlist (see kiosk.h). */
+#include "kiosk.h"
+#include "gpu.h"
+#include "log.h"
+#include "render.h"
+#include "signals.h"
+#include "cli.h"
+
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_SHOWS 32
+
+struct show {
+	char name[PARAM_STR_MAX]; /* a preset, or a config file */
+	bool file;
+	double seconds;
+};
+
+struct kiosk {
+	int argc;
+	char **argv;
+	struct params base;       /* the configuration as last read (start or reload) */
+	struct show shows[MAX_SHOWS];
+	int nshows;
+	int cur;                  /* the show on screen, -1 before the first */
+	long cycle;               /* completed passes through the playlist */
+	double show_end;          /* run time (s) the current show ends */
+	bool started;
+	/* the crossfade: the last frame of the show before */
+	double fade_start, fade_s;
+	bool fading;
+	GLuint tex, fbo, prog, vao;
+	int tw, th;
+	GLint u_alpha;
+	double alpha;             /* the last show's weight this frame */
+};
+
+/* ---- the playlist ------------------------------------------------------- */
+
+static char *trim(char *s)
+{
+	while (isspace((unsigned char)*s))
+		s++;
+	char *e = s + strlen(s);
+	while (e > s && isspace((unsigned char)e[-1]))
+		*--e = 0;
+	return s;
+}
+
+static bool is_preset(const char *name)
+{
+	for (size_t i = 0; i < preset_count; i++)
+		if (!strcmp(presets[i].name, name))
+			return true;
+	return false;
+}
+
+/* The show's parameters: the running configuration (the command line and
+ * its --config), its preset or file over it, the seed + cycle. */
+static int show_params(const struct show *s, const struct params *base, long cycle, struct params *q, char *err,
+		       size_t errlen)
+{
+	*q = *base;
+	int rc = s->file ? params_load_config_file(q, s->name, err, errlen)
+			 : params_apply_preset(q, s->name, err, errlen);
+	if (rc < 0)
+		return -1;
+	q->seed = (int)(((long)q->seed + cycle) % 2147483647L);
+	return 0;
+}
+
+static int parse_playlist(struct kiosk *k, const char *text, char *err, size_t errlen)
+{
+	k->nshows = 0;
+	char buf[PARAM_STR_MAX];
+	snprintf(buf, sizeof(buf), "%s", text);
+	char *save = NULL;
+	for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+		char *e = trim(tok);
+		if (!*e)
+			continue;
+		char *colon = strrchr(e, ':');
+		char *end = NULL;
+		double sec = colon ? strtod(colon + 1, &end) : 0;
+		if (!colon || end == colon + 1 || *trim(end) || !(sec > 0) || sec > 86400) {
+			snprintf(err, errlen, "playlist: '%s' is not NAME:SECONDS (seconds > 0)", e);
+			return -1;
+		}
+		*colon = 0;
+		char *name = trim(e);
+		if (k->nshows == MAX_SHOWS) {
+			snprintf(err, errlen, "playlist: more than %d shows", MAX_SHOWS);
+			return -1;
+		}
+		struct show *s = &k->shows[k->nshows];
+		snprintf(s->name, sizeof(s->name), "%s", name);
+		size_t n = strlen(name);
+		s->file = strchr(name, '/') || (n > 5 && !strcmp(name + n - 5, ".conf"));
+		s->seconds = sec;
+		if (!s->file && !is_preset(name)) {
+			char e2[512];
+			struct params q;
+			params_apply_preset(&q, name, e2, sizeof(e2));
+			snprintf(err, errlen, "playlist: %s", e2);
+			return -1;
+		}
+		struct params q;
+		char e2[512];
+		if (show_params(s, &k->base, 0, &q, e2, sizeof(e2)) < 0) {
+			snprintf(err, errlen, "playlist: %s", e2);
+			return -1;
+		}
+		k->nshows++;
+	}
+	return 0;
+}
+
+/* A show's q into p: what can change live, the terrain (P_SHADER) and the
+ * live settings (P_LIVE: the camera ...), not the animation time. */
+static void apply_terrain(struct params *p, const struct params *q)
+{
+	for (size_t i = 0; i < param_count; i++) {
+		const struct param_info *pi = &param_table[i];
+		if ((pi->flags & (P_SHADER | P_LIVE)) && pi->type != PT_STRING && strcmp(pi->name, "time"))
+			params_set_number(p, pi, params_get_number(q, pi));
+	}
+}
+
+static void start_show(struct kiosk *k, struct params *p, int i, double t)
+{
+	const struct show *s = &k->shows[i];
+	struct params q;
+	char err[512];
+	k->cur = i;
+	/* from the last show's end (no drift), unless the run fell far behind */
+	k->show_end = (k->started && t - k->show_end < s->seconds ? k->show_end : t) + s->seconds;
+	if (show_params(s, &k->base, k->cycle, &q, err, sizeof(err)) < 0) {
+		log_warn("playlist: %s; skipped", err); /* a file changed since the start */
+		return;
+	}
+	apply_terrain(p, &q);
+	log_info("playlist: show %d of %d, %s %s for %g s, cycle %ld, seed %d", i + 1, k->nshows,
+		 s->file ? "config" : "preset", s->name, s->seconds, k->cycle + 1, q.seed);
+}
+
+/* ---- the crossfade ---------------------------------------------------------- */
+
+static const char *const fade_vs =
+	"#version 310 es\n"
+	"out vec2 v_uv;\n"
+	"void main() {\n"
+	"  vec2 c = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
+	"  v_uv = c;\n"
+	"  gl_Position = vec4(c * 2.0 - 1.0, 0.0, 1.0);\n"
+	"}\n";
+static const char *const fade_fs =
+	"#version 310 es\n"
+	"precision mediump float;\n"
+	"uniform sampler2D u_last;\n"
+	"uniform float u_alpha;\n"
+	"in vec2 v_uv;\n"
+	"out vec4 o;\n"
+	"void main() { o = vec4(texture(u_last, v_uv).rgb, u_alpha); }\n";
+
+static GLuint shader(GLenum type, const char *src, char *err, size_t errlen)
+{
+	GLuint s = glCreateShader(type);
+	glShaderSource(s, 1, &src, NULL);
+	glCompileShader(s);
+	GLint ok = 0;
+	glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+	if (!ok) {
+		char log[512] = "";
+		glGetShaderInfoLog(s, sizeof(log), NULL, log);
+		snprintf(err, errlen, "playlist crossfade shader: %s", log);
+		glDeleteShader(s);
+		return 0;
+	}
+	return s;
+}
+
+static int fade_gl(struct kiosk *k, int w, int h, char *err, size_t errlen)
+{
+	if (!k->prog) {
+		GLuint vs = shader(GL_VERTEX_SHADER, fade_vs, err, errlen);
+		GLuint fs = vs ? shader(GL_FRAGMENT_SHADER, fade_fs, err, errlen) : 0;
+		if (!fs) {
+			glDeleteShader(vs);
+			return -1;
+		}
+		k->prog = glCreateProgram();
+		glAttachShader(k->prog, vs);
+		glAttachShader(k->prog, fs);
+		glLinkProgram(k->prog);
+		glDeleteShader(vs);
+		glDeleteShader(fs);
+		GLint ok = 0;
+		glGetProgramiv(k->prog, GL_LINK_STATUS, &ok);
+		if (!ok) {
+			snprintf(err, errlen, "playlist crossfade program does not link");
+			return -1;
+		}
+		k->u_alpha = glGetUniformLocation(k->prog, "u_alpha");
+		glUseProgram(k->prog);
+		glUniform1i(glGetUniformLocation(k->prog, "u_last"), 0);
+		glUseProgram(0);
+		glGenVertexArrays(1, &k->vao);
+	}
+	if (k->tex && (k->tw != w || k->th != h)) {
+		glDeleteFramebuffers(1, &k->fbo);
+		glDeleteTextures(1, &k->tex);
+		k->fbo = k->tex = 0;
+	}
+	if (!k->tex) {
+		glGenTextures(1, &k->tex);
+		glBindTexture(GL_TEXTURE_2D, k->tex);
+		glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+		glBindTexture(GL_TEXTURE_2D, 0);
+		glGenFramebuffers(1, &k->fbo);
+		glBindFramebuffer(GL_FRAMEBUFFER, k->fbo);
+		glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, k->tex, 0);
+		GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+		glBindFramebuffer(GL_FRAMEBUFFER, 0);
+		if (st != GL_FRAMEBUFFER_COMPLETE) {
+			snprintf(err, errlen, "playlist crossfade framebuffer incomplete (0x%04x)", st);
+			return -1;
+		}
+		k->tw = w;
+		k->th = h;
+	}
+	return 0;
+}
+
+/* The frame on the target now (the last show's last frame) into k->tex. */
+static void keep_last_frame(struct kiosk *k, struct renderer *r, double fade_s, double t)
+{
+	unsigned fbo;
+	int w, h;
+	char err[256];
+	k->fading = false;
+	if (fade_s <= 0 || !r)
+		return;
+	renderer_target(r, &fbo, &w, &h);
+	if (fade_gl(k, w, h, err, sizeof(err)) < 0) {
+		log_warn("%s: shows change with a cut", err);
+		return;
+	}
+	glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+	glBindFramebuffer(GL_DRAW_FRAMEBUFFER, k->fbo);
+	glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	if (gpu_check("playlist: keeping the last frame") < 0)
+		return;
+	k->fading = true;
+	k->fade_start = t;
+	k->fade_s = fade_s;
+	k->alpha = 1.0;
+}
+
+int kiosk_frame_end(struct kiosk *k, struct renderer *r, char *err, size_t errlen)
+{
+	if (!k || !k->fading || !r)
+		return 0;
+	unsigned fbo;
+	int w, h;
+	renderer_target(r, &fbo, &w, &h);
+	if (w != k->tw || h != k->th) { /* a display's resize: no fade */
+		k->fading = false;
+		return 0;
+	}
+	(void)err;
+	(void)errlen;
+	GLboolean depth = glIsEnabled(GL_DEPTH_TEST), cull = glIsEnabled(GL_CULL_FACE),
+		  blend = glIsEnabled(GL_BLEND), scissor = glIsEnabled(GL_SCISSOR_TEST);
+	GLint vp[4];
+	glGetIntegerv(GL_VIEWPORT, vp);
+	glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+	glViewport(0, 0, w, h);
+	glDisable(GL_DEPTH_TEST);
+	glDisable(GL_CULL_FACE);
+	glDisable(GL_SCISSOR_TEST);
+	glEnable(GL_BLEND);
+	glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+	glUseProgram(k->prog);
+	glUniform1f(k->u_alpha, (GLfloat)k->alpha);
+	glActiveTexture(GL_TEXTURE0);
+	glBindTexture(GL_TEXTURE_2D, k->tex);
+	glBindVertexArray(k->vao);
+	glDrawArrays(GL_TRIANGLES, 0, 3);
+	glBindVertexArray(0);
+	glBindTexture(GL_TEXTURE_2D, 0);
+	glUseProgram(0);
+	(depth ? glEnable : glDisable)(GL_DEPTH_TEST);
+	(cull ? glEnable : glDisable)(GL_CULL_FACE);
+	(blend ? glEnable : glDisable)(GL_BLEND);
+	(scissor ? glEnable : glDisable)(GL_SCISSOR_TEST);
+	glViewport(vp[0], vp[1], vp[2], vp[3]);
+	return gpu_check("playlist crossfade");
+}
+
+/* ---- reload ------------------------------------------------------------------ */
+
+static bool differs(const struct params *a, const struct params *b, const struct param_info *pi)
+{
+	if (pi->type == PT_STRING)
+		return strcmp((const char *)a + pi->offset, (const char *)b + pi->offset) != 0;
+	return params_get_number(a, pi) != params_get_number(b, pi);
+}
+
+static void copy_param(struct params *to, const struct params *from, const struct param_info *pi)
+{
+	if (pi->type == PT_STRING)
+		memcpy((char *)to + pi->offset, (const char *)from + pi->offset, PARAM_STR_MAX);
+	else
+		params_set_number(to, pi, params_get_number(from, pi));
+}
+
+static void reload(struct kiosk *k, struct params *p, double t)
+{
+	if (k->argc <= 0) {
+		log_warn("config reload (SIGHUP): no command line kept: nothing to read again");
+		return;
+	}
+	struct params q;
+	char err[1024];
+	enum cli_result rc = cli_parse(k->argc, k->argv, &q, err, sizeof(err));
+	if (rc != CLI_RUN) {
+		log_error("config reload (SIGHUP): %s; the running configuration is kept",
+			  rc == CLI_ERROR ? err : "the command line now asks to exit");
+		return;
+	}
+	struct kiosk trial = *k; /* the new playlist, checked before anything is applied */
+	trial.base = q;
+	if (differs(&k->base, &q, params_find("playlist")) &&
+	    parse_playlist(&trial, q.playlist, err, sizeof(err)) < 0) {
+		log_error("config reload (SIGHUP): %s; the running configuration is kept", err);
+		return;
+	}
+	int applied = 0, restart = 0;
+	bool playlist = false;
+	struct params nb = q;
+	for (size_t i = 0; i < param_count; i++) {
+		const struct param_info *pi = &param_table[i];
+		if (!strcmp(pi->name, "time") || !differs(&k->base, &q, pi))
+			continue;
+		char was[PARAM_STR_MAX], now[PARAM_STR_MAX];
+		params_format(&k->base, pi, was, sizeof(was));
+		params_format(&q, pi, now, sizeof(now));
+		bool is_playlist = !strcmp(pi->name, "playlist") || !strcmp(pi->name, "playlist_fade");
+		if ((pi->flags & (P_SHADER | P_LIVE)) || is_playlist) {
+			copy_param(p, &q, pi);
+			playlist |= is_playlist;
+			applied++;
+			log_info("config reload: %s = %s", pi->name, now);
+		} else {
+			copy_param(&nb, &k->base, pi);
+			restart++;
+			log_warn("config reload: %s '%s' -> '%s' needs a restart; '%s' kept", pi->name, was, now, was);
+		}
+	}
+	k->base = nb;
+	if (playlist) {
+		memcpy(k->shows, trial.shows, sizeof(k->shows));
+		k->nshows = trial.nshows;
+		k->cycle = 0;
+		k->started = false;
+		if (k->nshows) {
+			start_show(k, p, 0, t);
+			k->started = true;
+		}
+	}
+	log_info("config reload (SIGHUP): %d parameter%s applied, %d need%s a restart", applied,
+		 applied == 1 ? "" : "s", restart, restart == 1 ? "s" : "");
+}
+
+/* ---- the kiosk --------------------------------------------------------------- */
+
+struct kiosk *kiosk_create(struct params *p, int argc, char **argv, char *err, size_t errlen)
+{
+	struct kiosk *k = calloc(1, sizeof(*k));
+	if (!k) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	k->argc = argc;
+	k->argv = argv;
+	k->base = *p;
+	k->cur = -1;
+	if (parse_playlist(k, p->playlist, err, errlen) < 0) {
+		free(k);
+		return NULL;
+	}
+	if (k->nshows) {
+		start_show(k, p, 0, 0.0);
+		k->started = true;
+	}
+	return k;
+}
+
+void kiosk_destroy(struct kiosk *k)
+{
+	if (!k)
+		return;
+	if (k->fbo)
+		glDeleteFramebuffers(1, &k->fbo);
+	if (k->tex)
+		glDeleteTextures(1, &k->tex);
+	if (k->vao)
+		glDeleteVertexArrays(1, &k->vao);
+	if (k->prog)
+		glDeleteProgram(k->prog);
+	free(k);
+}
+
+void kiosk_frame_begin(struct kiosk *k, struct params *p, struct renderer *r, double t)
+{
+	if (!k)
+		return;
+	if (signals_take_reload())
+		reload(k, p, t);
+	if (k->fading) {
+		k->alpha = 1.0 - (t - k->fade_start) / k->fade_s;
+		k->fading = k->alpha > 0.0;
+	}
+	if (k->nshows && k->started && t + 1e-9 >= k->show_end) {
+		int next = k->cur + 1;
+		if (next >= k->nshows) {
+			next = 0;
+			k->cycle++;
+		}
+		keep_last_frame(k, r, p->playlist_fade, t);
+		start_show(k, p, next, t);
+	}
+}
