@@ -522,13 +522,12 @@ static void gbm_close(struct platform *p)
 	p->priv = NULL;
 }
 
+/* The card first (a missing or wrong --drm-device is named whatever the
+ * EGL), then whether this EGL renders to GBM at all, before anything is
+ * changed on the card (DRM master, modeset). */
 static int gbm_open(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
 {
 	const char *cexts = egl_common_client_exts();
-	if (!egl_common_has_ext(cexts, "EGL_KHR_platform_gbm") && !egl_common_has_ext(cexts, "EGL_MESA_platform_gbm")) {
-		snprintf(err, errlen, "EGL_KHR_platform_gbm not supported by this EGL");
-		return -1;
-	}
 	struct gbm_state *g = calloc(1, sizeof(*g));
 	if (!g) {
 		snprintf(err, errlen, "out of memory");
@@ -546,6 +545,10 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	snprintf(g->want_mode, sizeof(g->want_mode), "%s", opt->mode ? opt->mode : "");
 	if (kms_output_open(&g->kms, opt->drm_device, opt->mode, err, errlen) < 0)
 		goto fail;
+	if (!egl_common_has_ext(cexts, "EGL_KHR_platform_gbm") && !egl_common_has_ext(cexts, "EGL_MESA_platform_gbm")) {
+		snprintf(err, errlen, "EGL_KHR_platform_gbm not supported by this EGL");
+		goto fail;
+	}
 	if (!drmIsMaster(g->kms.fd) && drmSetMaster(g->kms.fd) != 0) {
 		snprintf(err, errlen, "%s: cannot become DRM master (%s): another program (a compositor, "
 		         "an X server) drives the display", g->kms.path, strerror(errno));

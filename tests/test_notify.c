@@ -21,6 +21,7 @@
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #define FRAME_BYTES (6 + 64 * 48 * 3 / 2) /* "FRAME\n" + 4:2:0 at 64x48 */
@@ -76,13 +77,24 @@ static int step(struct watch *w, int timeout_ms)
 	return 1;
 }
 
+/* Milliseconds on the monotonic clock.  Every wait below is by time, never
+ * by the number of poll rounds: with a fast GPU the program's stdout is
+ * readable almost always, and a round then lasts microseconds, not the
+ * 100 ms of its timeout. */
+static double now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
 /* Until at least min_pings pings reporting more than min_frames frames, or
- * limit_ms: whether they came. */
+ * limit_ms of wall time: whether they came. */
 static bool wait_for(struct watch *w, int min_pings, int min_frames, int limit_ms)
 {
-	for (int t = 0; t < limit_ms && step(w, 100) >= 0; t += 100)
-		if (w->pings >= min_pings && w->frames > min_frames)
-			return true;
+	double end = now_ms() + limit_ms;
+	while (!(w->pings >= min_pings && w->frames > min_frames) && now_ms() < end && step(w, 100) >= 0)
+		;
 	return w->pings >= min_pings && w->frames > min_frames;
 }
 
@@ -129,12 +141,12 @@ int main(int argc, char **argv)
 
 	/* stall: stop reading; the pings that were on their way arrive, then none */
 	w.reading = false;
-	int before = w.msgs, quiet = 0;
-	for (int t = 0; t < 120000 && quiet < 2000; t += 100) {
-		int r = step(&w, 100);
-		quiet = r > 0 ? 0 : quiet + 100;
-	}
-	CHECK(quiet >= 2000, "no ping for 2 s (10 watchdog intervals) while the frame loop is stalled");
+	int before = w.msgs;
+	double end = now_ms() + 120000, last_msg = now_ms();
+	while (now_ms() - last_msg < 2000 && now_ms() < end)
+		if (step(&w, 100) > 0)
+			last_msg = now_ms();
+	CHECK(now_ms() - last_msg >= 2000, "no ping for 2 s (10 watchdog intervals) while the frame loop is stalled");
 	/* what was read, the pipe and a stdio buffer (up to 1 MiB) can hold */
 	long long most = (w.bytes + cap + (1 << 20)) / FRAME_BYTES + 1;
 	CHECK(w.frames <= most, "the pings report only frames that were written (%d, at most %lld; %d messages)",
@@ -147,11 +159,13 @@ int main(int argc, char **argv)
 	CHECK(wait_for(&w, pings + 2, stalled_at, 120000), "pings again once frames complete");
 
 	kill(pid, SIGTERM);
-	int status = 0, t = 0;
-	for (; waitpid(pid, &status, WNOHANG) == 0 && t < 120000; t += 100)
+	int status = 0;
+	pid_t ended = 0;
+	end = now_ms() + 120000;
+	while ((ended = waitpid(pid, &status, WNOHANG)) == 0 && now_ms() < end)
 		step(&w, 100);
-	CHECK(t < 120000, "SIGTERM ends the run");
-	if (t >= 120000) {
+	CHECK(ended == pid, "SIGTERM ends the run");
+	if (ended != pid) {
 		kill(pid, SIGKILL);
 		waitpid(pid, &status, 0);
 	}
