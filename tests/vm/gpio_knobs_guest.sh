@@ -135,6 +135,18 @@ waitframes() { # at least $1 frames, at most $2 s
 t0=$(up)
 waitframes 2 ${WAIT_FIRST:-600} && ok "first frames rendered ($(($(up) - t0)) s)" ||
 	die "no frames in ${WAIT_FIRST:-600} s: $(tail -3 $R/app.log)"
+# isoterra --probe of the same job (its programs from the cache the app just
+# filled), with the device in three states: busy (the app holds the lines),
+# free, gone.  probe EXPECTED_RC NAME "regex of the last line"
+PROBE_ARGS="--platform surfaceless --size 64x48 --grid 8 --cam-spin 0 --no-water --config $R/knobs.conf"
+probe() {
+	$INROOT "$BIN" --probe $PROBE_ARGS --results $R/probe_$2.json >$R/probe_$2.txt 2>$R/probe_$2.err
+	prc=$?
+	last=$(tail -n 1 $R/probe_$2.txt)
+	[ $prc -eq $1 ] && echo "$last" | grep -q "$3" && ok "--probe ($2): exit $prc, $last" ||
+		bad "--probe ($2): exit $prc, want $1 and '$3': $last $(tail -n 2 $R/probe_$2.err)"
+}
+probe 1 busy "NOT run.*enc1_a: $CHIP line 0 cannot be requested: Device or resource busy"
 
 step "cw 2 3" "ambient 0.29"
 step "cw 2 3" "ambient 0.3"
@@ -226,5 +238,12 @@ rc=$?
 [ $rc -eq 143 ] && grep -q "stopped by SIGTERM" $R/app.log && ok "app exits 143 on SIGTERM before its last frame" ||
 	bad "app exit status $rc: $(tail -3 $R/app.log)"
 [ "$(nlog)" -eq $n ] && ok "no unexpected knob changes ($n)" || bad "$(nlog) knob log lines, want $n: $(cat $LOG)"
+# the probe with the chip free: every knob line can be requested
+probe 0 free "the job would run"
+grep -q "enc2_b: knobs line 3: can be requested" $R/probe_free.txt && grep -q "$CHIP, label 'knobs', 8 lines" $R/probe_free.txt &&
+	ok "--probe lists the chip and its lines" || bad "--probe (free): $(grep -A12 '^GPIO' $R/probe_free.txt)"
+# ... and with the chip gone: the first blocking reason names it
+echo 0 >$D/live && rmdir $D/bank0 $D || bad "rmdir failed"
+probe 1 gone "NOT run.*enc1_a: gpiochip 'knobs' not found"
 echo "guest: $fails failures"
 [ $fails -eq 0 ]
