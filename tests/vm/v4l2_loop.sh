@@ -43,7 +43,7 @@ BIN=$BIN
 ENV
 halvm_env "$RES"
 t0=$(date +%s)
-halvm_boot "$RES" "$HERE/v4l2_loop_guest.sh" "${ISOTERRA_VM_TIMEOUT:-560}"
+halvm_boot "$RES" "$HERE/v4l2_loop_guest.sh" "${ISOTERRA_VM_TIMEOUT:-760}"
 echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none})"
 grep -aE "^(ok|FAIL|guest)" "$RES/console.log" | tr -d '\r'
 fails=$(grep -ac '^FAIL' "$RES/console.log")

@@ -67,6 +67,25 @@ else
 	bad "busy output: rc $rc: $(cat $R/busy.log)"
 fi
 
+# isoterra --probe (the same job's programs, from the cache the run above
+# filled): the output and its formats; the capture node and a missing
+# device block the job.  probe EXPECTED_RC NAME "regex of the last line" args
+probe() {
+	want=$1 name=$2 pat=$3
+	shift 3
+	"$BIN" --probe --platform surfaceless --size 64x48 --grid 8 --cam-spin 0 --no-water --keyboard off "$@" \
+		--results $R/probe_$name.json >$R/probe_$name.txt 2>$R/probe_$name.err
+	prc=$?
+	last=$(tail -n 1 $R/probe_$name.txt)
+	[ $prc -eq $want ] && echo "$last" | grep -q "$pat" && ok "--probe ($name): exit $prc, $last" ||
+		bad "--probe ($name): exit $prc, want $want and '$pat': $last $(tail -n 2 $R/probe_$name.err)"
+}
+probe 0 output "the job would run" --v4l2 $OUT --v4l2-format YUYV
+grep -q "^  $OUT: .*video output, formats .*YUYV" $R/probe_output.txt && grep -q -- "--v4l2 $OUT: writes YUYV" $R/probe_output.txt &&
+	ok "--probe lists $OUT and its formats" || bad "--probe (output): $(grep -A4 '^V4L2' $R/probe_output.txt)"
+probe 1 capture "NOT run.*--v4l2 $CAP .*is not a video output device" --v4l2 $CAP
+probe 1 missing "NOT run.*--v4l2 /dev/video99: cannot open" --v4l2 /dev/video99
+
 # the app streams to the output node until SIGTERM
 "$BIN" --platform surfaceless --size ${SW}x$SH --grid 16 --count 1000000 --cam-spin 0 --no-water --keyboard off \
 	--v4l2 $OUT --v4l2-format YUYV --v4l2-matrix bt601 --v4l2-fps 0 --out "$R/frame%d.png" >$R/app.log 2>&1 &
