@@ -130,7 +130,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	const struct params *p = &rn->p;
 	struct platform_options po = { .name = p->platform, .width = rn->w, .height = rn->h, .debug = p->verbose,
 		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .drm_device = p->drm_device,
-		.mode = p->mode, .kms_legacy = p->kms_legacy };
+		.mode = p->mode, .kms_legacy = p->kms_legacy, .device = p->device };
 	rn->plat = platform_open(&po, err, errlen);
 	if (!rn->plat)
 		return 1;

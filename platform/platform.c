@@ -126,7 +126,9 @@ struct platform *platform_open(const struct platform_options *opt, char *err, si
 	}
 	const char *name = opt->name && opt->name[0] ? opt->name : "auto";
 	const struct platform_backend *b = NULL;
-	if (strcmp(name, "auto") != 0) {
+	if (strcmp(name, "auto") == 0 && opt->device && opt->device[0]) {
+		b = &platform_backend_device; /* a device asked for: that EGL device */
+	} else if (strcmp(name, "auto") != 0) {
 		b = find_backend(name);
 		if (!b) {
 			snprintf(err, errlen, "unknown platform '%s' (compiled in: %s)", name, platform_backend_names());

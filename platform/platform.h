@@ -10,6 +10,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -26,6 +27,14 @@ struct platform_options {
 	const char *drm_device;  /* gbm: "/dev/dri/cardN"; NULL or "" = first card with a connected output */
 	const char *mode;        /* gbm: "WxH" or "WxH@Hz"; NULL or "" = the connector's preferred mode */
 	bool kms_legacy;         /* gbm: legacy SetCrtc/PageFlip even where atomic works */
+	/* device: which EGL device, "N" (an index in eglQueryDevicesEXT's
+	 * order, as --list-devices shows them) or a DRM node path
+	 * ("/dev/dri/renderD128", matched by EGL_EXT_device_drm's device file
+	 * or EGL_EXT_device_drm_render_node's render node, symbolic links
+	 * followed); NULL or "" = $ISOTERRA_DEVICE when set, else the first
+	 * device that opens, real GPUs first.  With "auto" a device set here
+	 * selects the device backend. */
+	const char *device;
 };
 
 struct platform_backend {
@@ -73,6 +82,14 @@ int platform_present(struct platform *p);
 int platform_dispatch(struct platform *p);
 /* Names of the backends compiled in, space-separated. */
 const char *platform_backend_names(void);
+/* --list-devices: every EGL device in eglQueryDevicesEXT's order, its
+ * index, kind, DRM node(s), the GL renderer a context on it reports (or
+ * why none opens) and its extensions, to f.  0 (also with no device), or
+ * -1 with err when EGL cannot enumerate devices.  No platform may be open. */
+int platform_list_devices(FILE *f, char *err, size_t errlen);
+/* A device option's form: "" (none), a decimal index or an absolute path.
+ * 0, or -1 with err (which device it names is only known at open). */
+int platform_device_check(const char *spec, char *err, size_t errlen);
 
 /* ---- for the backends only (files under platform/) -------------------------------- */
 

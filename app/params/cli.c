@@ -18,7 +18,8 @@
 #define ISOTERRA_VERSION "0.1.0"
 #endif
 
-enum opt_kind { OPT_PARAM, OPT_NO_BOOL, OPT_SET, OPT_PRESET, OPT_CONFIG, OPT_HELP, OPT_VERSION, OPT_LIST_PRESETS };
+enum opt_kind { OPT_PARAM, OPT_NO_BOOL, OPT_SET, OPT_PRESET, OPT_CONFIG, OPT_HELP, OPT_VERSION, OPT_LIST_PRESETS,
+	OPT_LIST_DEVICES };
 
 struct opt {
 	enum opt_kind kind;
@@ -78,6 +79,7 @@ static bool classify(const char *key, struct opt *o, bool *takes_value, bool *op
 		bool value;
 	} words[] = {
 		{ "help", OPT_HELP, false },	 { "version", OPT_VERSION, false }, { "list_presets", OPT_LIST_PRESETS, false },
+		{ "list_devices", OPT_LIST_DEVICES, false },
 		{ "set", OPT_SET, true },	 { "preset", OPT_PRESET, true },    { "config", OPT_CONFIG, true },
 	};
 	*takes_value = true;
@@ -296,6 +298,13 @@ static int validate(const struct params *p, char *err, size_t errlen)
 		snprintf(err, errlen, "export_mesh: '%s' must end in .ply", p->export_mesh);
 		return -1;
 	}
+	if (platform_device_check(p->device, err, errlen) < 0)
+		return -1;
+	if (p->device[0] && strcmp(p->platform, "device") && strcmp(p->platform, "auto")) {
+		snprintf(err, errlen, "device: '%s' names an EGL device of --platform device, not of '%s'%s", p->device,
+			 p->platform, !strcmp(p->platform, "gbm") ? " (gbm's card: --drm-device)" : "");
+		return -1;
+	}
 	return 0;
 }
 
@@ -324,11 +333,12 @@ void cli_print_help(const char *argv0)
 	       "  --platform NAME        auto|gbm|wayland|x11|device|surfaceless (built: %s)\n"
 	       "  --fullscreen           wayland/x11 fullscreen; --hide-cursor (wayland/x11)\n"
 	       "  -D, --drm-device CARD  gbm: /dev/dri/cardN; --mode WxH[@Hz] the display mode\n"
+	       "  --device N|PATH        device: the EGL device by index or DRM node (see --list-devices)\n"
 	       "  --count 0              display platforms: run until closed / SIGINT / SIGTERM\n"
 	       "  --fps-report SECONDS   print the frame rate every SECONDS (and on SIGUSR1)\n"
 	       "  --shader-dir DIR       load shaders from DIR instead of the built-in copies\n"
 	       "  --set NAME=VALUE       set any parameter below\n"
-	       "  --help, --version, --list-presets\n"
+	       "  --help, --version, --list-presets, --list-devices (the EGL devices, then exit)\n"
 	       "\n"
 	       "Every parameter is --name VALUE or --name=VALUE ('-' or '_' in names);\n"
 	       "booleans also --name / --no-name.  --preset and --config apply first, then\n"
@@ -359,6 +369,10 @@ enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, si
 			return CLI_EXIT_OK;
 		case OPT_LIST_PRESETS:
 			list_presets();
+			return CLI_EXIT_OK;
+		case OPT_LIST_DEVICES:
+			if (platform_list_devices(stdout, err, errlen) < 0)
+				return CLI_ERROR;
 			return CLI_EXIT_OK;
 		default:
 			break;

@@ -11,7 +11,7 @@ enum cli_result { CLI_RUN, CLI_EXIT_OK, CLI_ERROR };
  * that order), then every other option in command-line order, so explicit
  * flags win.  Options: every table entry as --name VALUE or --name=VALUE
  * (bools also as --name / --no-name), --set name=value, --help, --version,
- * --list-presets.  Validates cross-field constraints (size WxH, file
+ * --list-presets, --list-devices.  Validates cross-field constraints (size WxH, file
  * extensions).  On CLI_ERROR err holds one clear line. */
 enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, size_t errlen);
 /* Parses "WxH"; 0 or -1. */
