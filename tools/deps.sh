@@ -14,6 +14,11 @@ $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
 	libegl-dev libgles-dev libpng-dev \
 	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
+# a second GL driver for the GPU tests: zink (Mesa's OpenGL on Vulkan, in
+# libgl1-mesa-dri) on lavapipe, the Vulkan software rasterizer of this package
+# (tools/test-all.sh's zink suite: LIBGL_ALWAYS_SOFTWARE=1
+# MESA_LOADER_DRIVER_OVERRIDE=zink)
+$SUDO apt-get install -y -q --no-install-recommends mesa-vulkan-drivers
 # the hardware layer (hal/): GPIO controls (libgpiod); the VM tests (tests/vm/,
 # suite 'vm'): QEMU, Debian's kernel with headers and source (gpio-sim is
 # built out of tree), busybox + cpio for the initramfs, v4l-utils (vivid)
