@@ -75,7 +75,7 @@ wunit() { # NAME EXECSTART
 		-e 's/^MemoryDenyWriteExecute=yes/MemoryDenyWriteExecute=no/' -e "s|^ExecStart=.*|ExecStart=$2|" \
 		"$ROOT/usr/lib/systemd/system/isoterra-kiosk.service" >"$ROOT/etc/systemd/system/$1.service"
 }
-for t in 1:/var/lib/isoterra/w.png 2:/etc/isoterra/w.png; do
+for t in 1:/var/lib/isoterra/w.png 2:/etc/isoterra-open/w.png; do
 	wunit "isoterra-wtest-${t%%:*}" "/usr/bin/isoterra --platform surfaceless --size 32x24 --grid 8 --count 1 --out ${t#*:}"
 	rm -f "$ROOT${t#*:}"
 done
@@ -109,9 +109,13 @@ rm -rf "$ROOT/vmtest" && mkdir -p "$ROOT/vmtest"
 # Mesa's shader cache for the guest's CPU, kept between runs (a cold one
 # costs minutes under TCG): copied into the unit's cache folder and back
 MESA_KEEP=${ISOTERRA_VM_MESA_CACHE:-$HALVM_CACHE/kiosk-mesa}
+# (mesa_shader_cache: Mesa 22's folder; mesa_shader_cache_db: Mesa 25's;
+# systemd gives them to the unit's user at its start)
 mkdir -p "$MESA_KEEP" "$ROOT/var/cache/isoterra"
-rm -rf "$ROOT/var/cache/isoterra/mesa_shader_cache"
-cp -a "$MESA_KEEP" "$ROOT/var/cache/isoterra/mesa_shader_cache"
+rm -rf "$ROOT/var/cache/isoterra/"mesa_shader_cache*
+for d in "$MESA_KEEP"/mesa_shader_cache*; do
+	[ -d "$d" ] && cp -a "$d" "$ROOT/var/cache/isoterra/"
+done
 
 # ---- the VM ----------------------------------------------------------------------
 INITRD=$HALVM_CACHE/kiosk-initramfs-$HALVM_REL.cpio.gz
@@ -151,7 +155,8 @@ done
 wait "$QPID" 2>/dev/null
 echo "VM ran $(($(date +%s) - t0)) s"
 cp "$ROOT/vmtest/"*.log "$T/" 2>/dev/null
-rm -rf "$MESA_KEEP.new" && cp -a "$ROOT/var/cache/isoterra/mesa_shader_cache" "$MESA_KEEP.new" 2>/dev/null &&
+rm -rf "$MESA_KEEP.new" && mkdir -p "$MESA_KEEP.new" &&
+	cp -a "$ROOT/var/cache/isoterra/"mesa_shader_cache* "$MESA_KEEP.new/" 2>/dev/null &&
 	rm -rf "$MESA_KEEP" && mv "$MESA_KEEP.new" "$MESA_KEEP"
 
 # ---- checks ----------------------------------------------------------------------
