@@ -116,7 +116,6 @@ nprog=$(find /var/cache/isoterra/isoterra -type f 2>/dev/null | wc -l)
 [ "$nprog" -gt 0 ] && ok "program cache: $nprog files in /var/cache/isoterra/isoterra" ||
 	bad "nothing in the program cache /var/cache/isoterra/isoterra"
 journalctl -b -u "$U" --no-pager -o short-monotonic | tail -40 >"$R/kiosk-journal.log"
-systemd-analyze blame --no-pager 2>/dev/null | head -12 >"$R/blame.log"
 echo "guest: done at $(cut -d. -f1 /proc/uptime) s"
 : >"$R/done"
 sync

@@ -134,7 +134,8 @@ qemu-system-x86_64 -machine pc -cpu max -smp 2 -m 1536 -no-reboot \
 	-append "console=ttyS0 panic=-1 loglevel=3 consoleblank=0 vt.global_cursor_default=0 systemd.firstboot=0 systemd.show_status=0" \
 	>"$T/qemu.log" 2>&1 &
 QPID=$!
-LIMIT=${ISOTERRA_VM_TIMEOUT:-900}
+# a cold Mesa shader cache on a loaded 2-core machine: ~15 min seen
+LIMIT=${ISOTERRA_VM_TIMEOUT:-1500}
 while alive "$QPID"; do
 	for req in "$ROOT/vmtest"/req-*; do
 		[ -e "$req" ] || continue
