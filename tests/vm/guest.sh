@@ -153,9 +153,16 @@ say "hotplug and resize run rc $(cat "$R/hotplug.rc") in $(awk "BEGIN { print $(
 #    line, auto falls back to headless
 # (--out in the results folder: the working folder is read-only, and the
 # outputs are checked before the platform)
+# isoterra --probe of the kiosk's job (the preferred mode, which the resize
+# above changed): the card, its connector and modes,
+# DRM master; 0 with the display connected, 1 with it off (below)
+"$BIN" --probe --platform gbm $NOMODE --count 0 --results "$R/probe-on.json" >"$R/probe-on.txt" 2>"$R/probe-on.err"
+echo $? >"$R/probe-on.rc"
 "$BIN" --platform gbm --mode 123x45 $(echo "$ARGS" | sed 's/--mode [^ ]*//') --out "$R/badmode.png" >"$R/badmode.log" 2>&1
 echo $? >"$R/badmode.rc"
 echo off >"$st"
+"$BIN" --probe --platform gbm $NOMODE --count 0 --results "$R/probe-off.json" >"$R/probe-off.txt" 2>"$R/probe-off.err"
+echo $? >"$R/probe-off.rc"
 "$BIN" --platform gbm $ARGS --out "$R/nodisplay.png" >"$R/nodisplay.log" 2>&1
 echo $? >"$R/nodisplay.rc"
 # (--count 0 makes a headless pick fail before any rendering, naming it)

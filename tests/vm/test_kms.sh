@@ -229,6 +229,21 @@ else
 fi
 
 # clear errors (no rendering involved)
+# isoterra --probe: the card, the connector with its modes, DRM master, the
+# platform gbm would open; with the connector off the job is blocked
+if [ "$(cat "$T/probe-on.rc" 2>/dev/null)" = 0 ] && grep -q "^  /dev/dri/card0 (virtio_gpu): KMS, DRM master can be taken" "$T/probe-on.txt" &&
+	grep -q "^    Virtual-1: connected, modes [0-9]*x[0-9]*@" "$T/probe-on.txt" && grep -q "platform gbm: " "$T/probe-on.txt" &&
+	python3 -m json.tool "$T/probe-on.json" >/dev/null; then
+	ok "--probe with the display: exit 0, $(grep -m1 'Virtual-1' "$T/probe-on.txt" | cut -c1-80)"
+else
+	bad "--probe with the display: rc $(cat "$T/probe-on.rc" 2>/dev/null): $(grep -A4 '^DRM' "$T/probe-on.txt" 2>/dev/null) $(tail -n 3 "$T/probe-on.txt" "$T/probe-on.err" 2>/dev/null)"
+fi
+if [ "$(cat "$T/probe-off.rc" 2>/dev/null)" = 1 ] &&
+	tail -n 1 "$T/probe-off.txt" | grep -q "NOT run.*--platform gbm: no DRM card with a connected display"; then
+	ok "--probe with the connector off: exit 1, $(tail -n 1 "$T/probe-off.txt" | cut -c1-100)"
+else
+	bad "--probe with the connector off: rc $(cat "$T/probe-off.rc" 2>/dev/null): $(tail -n 2 "$T/probe-off.txt" 2>/dev/null)"
+fi
 if [ "$(cat "$T/badmode.rc" 2>/dev/null)" != 0 ] && grep -q "mode 123x45 not offered by Virtual-1 on /dev/dri/card0" "$T/badmode.log" &&
 	[ "$(grep -c . "$T/badmode.log")" -le 2 ]; then
 	ok "--mode 123x45: exit $(cat "$T/badmode.rc"), one clear line"
