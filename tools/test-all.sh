@@ -88,10 +88,12 @@ run_suite "release (-Werror)" build-ci -Dwerror=true -Dbuildtype=debugoptimized 
 # notify 5, gl_limits 17, gl_limits_cli 51, program_cache 2,
 # render_scale 1, cull 1, antialias 2, results 6, devices 4 (13 at load
 # 5), gallery 124 (load 5), probe 6 (44 at load 10): about 7.5 minutes
-# in all, every one passing.  Left out: rss_world (9 s, fails: its
-# 185 MiB ceiling is llvmpipe's, docs/RELIABILITY.md; zink on lavapipe
-# holds about 300 MiB from the world's first frames, where llvmpipe holds
-# 121), kiosk (97 s at load 10, 66 on llvmpipe: the program's reloads and
+# in all, every one passing (yuv's paced sink drops frames under zink
+# when the machine is loaded, 4 runs of 10 at a load average of 9-10,
+# none at 2: docs/PLATFORMS.md, "Measured per driver").  Left out:
+# rss_world (9 s, fails: its 185 MiB ceiling is llvmpipe's,
+# docs/RELIABILITY.md; zink on lavapipe holds about 290 MiB from the
+# world's first frames, where llvmpipe holds 118), kiosk (97 s at load 10, 66 on llvmpipe: the program's reloads and
 # playlists, not the driver; over the ~8 minutes this suite may take),
 # the CPU-only tests (params, io, mc_tables, shader_log, autopilot, hal,
 # rotary, governor, heap: no GL, the same under any driver; autopilot
