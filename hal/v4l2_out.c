@@ -47,6 +47,7 @@ struct v4l2_out {
 	/* device state */
 	int fd;
 	bool use_mmap, streaming, gave_up;
+	bool worked; /* it took our frames once: a refusal later may be a device coming back unconfigured */
 	struct mbuf bufs[NBUF];
 	int nbufs;
 	char problem[256];     /* the last reported problem (report once) */
@@ -229,13 +230,17 @@ static bool dev_negotiate(struct v4l2_out *v)
 	if (r == 0) {
 		char list[160];
 		offered(v->fd, list, sizeof(list));
+		/* at start a refusal will not change by retrying; a device that
+		 * took our frames before and refuses them after coming back may
+		 * still be being set up (by udev, by its own tool): retried */
+		const char *then = v->worked ? ", retrying" : "";
 		if (v->want_fmt >= 0)
-			report(v, "device refuses %s at %dx%d (it offers: %s); no video output", conv_fmt_name(v->want_fmt),
-			       v->width, v->height, list);
+			report(v, "device refuses %s at %dx%d (it offers: %s); no video output%s", conv_fmt_name(v->want_fmt),
+			       v->width, v->height, list, then);
 		else
-			report(v, "device takes none of YUYV NV12 UYVY YU12 NV21 RGB24 BGR24 (it offers: %s); no video output",
-			       list);
-		v->gave_up = true; /* a refusal will not change by retrying */
+			report(v, "device takes none of YUYV NV12 UYVY YU12 NV21 RGB24 BGR24 (it offers: %s); no video output%s",
+			       list, then);
+		v->gave_up = !v->worked;
 	}
 	dev_close(v);
 	return false;
@@ -293,6 +298,7 @@ static bool dev_open(struct v4l2_out *v, bool first, char *err, size_t errlen)
 		 conv_fmt_is_yuv(v->f.fmt) ? (v->matrix == CM_BT709 ? "BT.709 limited" : "BT.601 limited") : "sRGB",
 		 v->problem[0] ? " (recovered)" : "");
 	v->problem[0] = 0;
+	v->worked = true;
 	return true;
 }
 
