@@ -1,12 +1,11 @@
 /* isoterra — SIGHUP reload and the attract playlist (see kiosk.h). */
 #include "kiosk.h"
-#include "gpu.h"
 #include "log.h"
 #include "render.h"
 #include "signals.h"
 #include "cli.h"
+#include "util.h"
 
-#include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,34 +27,14 @@ struct kiosk {
 	long cycle;               /* completed passes through the playlist */
 	double show_end;          /* run time (s) the current show ends */
 	bool started;
-	/* the crossfade: the last frame of the show before */
+	/* the crossfade from the last frame of the show before (kept by the renderer) */
 	double fade_start, fade_s;
 	bool fading;
-	GLuint tex, fbo, prog, vao;
-	int tw, th;
-	GLint u_alpha;
+	const struct renderer *fade_r; /* the renderer that kept it */
 	double alpha;             /* the last show's weight this frame */
 };
 
 /* ---- the playlist ------------------------------------------------------- */
-
-static char *trim(char *s)
-{
-	while (isspace((unsigned char)*s))
-		s++;
-	char *e = s + strlen(s);
-	while (e > s && isspace((unsigned char)e[-1]))
-		*--e = 0;
-	return s;
-}
-
-static bool is_preset(const char *name)
-{
-	for (size_t i = 0; i < preset_count; i++)
-		if (!strcmp(presets[i].name, name))
-			return true;
-	return false;
-}
 
 /* The show's parameters: the running configuration (the command line and
  * its --config), its preset or file over it, the seed + cycle. */
@@ -78,18 +57,18 @@ static int parse_playlist(struct kiosk *k, const char *text, char *err, size_t e
 	snprintf(buf, sizeof(buf), "%s", text);
 	char *save = NULL;
 	for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-		char *e = trim(tok);
+		char *e = str_trim(tok);
 		if (!*e)
 			continue;
 		char *colon = strrchr(e, ':');
 		char *end = NULL;
 		double sec = colon ? strtod(colon + 1, &end) : 0;
-		if (!colon || end == colon + 1 || *trim(end) || !(sec > 0) || sec > 86400) {
+		if (!colon || end == colon + 1 || *str_trim(end) || !(sec > 0) || sec > 86400) {
 			snprintf(err, errlen, "playlist: '%s' is not NAME:SECONDS (seconds > 0)", e);
 			return -1;
 		}
 		*colon = 0;
-		char *name = trim(e);
+		char *name = str_trim(e);
 		if (k->nshows == MAX_SHOWS) {
 			snprintf(err, errlen, "playlist: more than %d shows", MAX_SHOWS);
 			return -1;
@@ -99,14 +78,7 @@ static int parse_playlist(struct kiosk *k, const char *text, char *err, size_t e
 		size_t n = strlen(name);
 		s->file = strchr(name, '/') || (n > 5 && !strcmp(name + n - 5, ".conf"));
 		s->seconds = sec;
-		if (!s->file && !is_preset(name)) {
-			char e2[512];
-			struct params q;
-			params_apply_preset(&q, name, e2, sizeof(e2));
-			snprintf(err, errlen, "playlist: %s", e2);
-			return -1;
-		}
-		struct params q;
+		struct params q; /* the preset or file applies (unknown preset: its list named) */
 		char e2[512];
 		if (show_params(s, &k->base, 0, &q, e2, sizeof(e2)) < 0) {
 			snprintf(err, errlen, "playlist: %s", e2);
@@ -147,115 +119,20 @@ static void start_show(struct kiosk *k, struct params *p, int i, double t)
 
 /* ---- the crossfade ---------------------------------------------------------- */
 
-static const char *const fade_vs =
-	"#version 310 es\n"
-	"out vec2 v_uv;\n"
-	"void main() {\n"
-	"  vec2 c = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
-	"  v_uv = c;\n"
-	"  gl_Position = vec4(c * 2.0 - 1.0, 0.0, 1.0);\n"
-	"}\n";
-static const char *const fade_fs =
-	"#version 310 es\n"
-	"precision mediump float;\n"
-	"uniform sampler2D u_last;\n"
-	"uniform float u_alpha;\n"
-	"in vec2 v_uv;\n"
-	"out vec4 o;\n"
-	"void main() { o = vec4(texture(u_last, v_uv).rgb, u_alpha); }\n";
-
-static GLuint shader(GLenum type, const char *src, char *err, size_t errlen)
-{
-	GLuint s = glCreateShader(type);
-	glShaderSource(s, 1, &src, NULL);
-	glCompileShader(s);
-	GLint ok = 0;
-	glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-	if (!ok) {
-		char log[512] = "";
-		glGetShaderInfoLog(s, sizeof(log), NULL, log);
-		snprintf(err, errlen, "playlist crossfade shader: %s", log);
-		glDeleteShader(s);
-		return 0;
-	}
-	return s;
-}
-
-static int fade_gl(struct kiosk *k, int w, int h, char *err, size_t errlen)
-{
-	if (!k->prog) {
-		GLuint vs = shader(GL_VERTEX_SHADER, fade_vs, err, errlen);
-		GLuint fs = vs ? shader(GL_FRAGMENT_SHADER, fade_fs, err, errlen) : 0;
-		if (!fs) {
-			glDeleteShader(vs);
-			return -1;
-		}
-		k->prog = glCreateProgram();
-		glAttachShader(k->prog, vs);
-		glAttachShader(k->prog, fs);
-		glLinkProgram(k->prog);
-		glDeleteShader(vs);
-		glDeleteShader(fs);
-		GLint ok = 0;
-		glGetProgramiv(k->prog, GL_LINK_STATUS, &ok);
-		if (!ok) {
-			snprintf(err, errlen, "playlist crossfade program does not link");
-			return -1;
-		}
-		k->u_alpha = glGetUniformLocation(k->prog, "u_alpha");
-		glUseProgram(k->prog);
-		glUniform1i(glGetUniformLocation(k->prog, "u_last"), 0);
-		glUseProgram(0);
-		glGenVertexArrays(1, &k->vao);
-	}
-	if (k->tex && (k->tw != w || k->th != h)) {
-		glDeleteFramebuffers(1, &k->fbo);
-		glDeleteTextures(1, &k->tex);
-		k->fbo = k->tex = 0;
-	}
-	if (!k->tex) {
-		glGenTextures(1, &k->tex);
-		glBindTexture(GL_TEXTURE_2D, k->tex);
-		glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-		glBindTexture(GL_TEXTURE_2D, 0);
-		glGenFramebuffers(1, &k->fbo);
-		glBindFramebuffer(GL_FRAMEBUFFER, k->fbo);
-		glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, k->tex, 0);
-		GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-		glBindFramebuffer(GL_FRAMEBUFFER, 0);
-		if (st != GL_FRAMEBUFFER_COMPLETE) {
-			snprintf(err, errlen, "playlist crossfade framebuffer incomplete (0x%04x)", st);
-			return -1;
-		}
-		k->tw = w;
-		k->th = h;
-	}
-	return 0;
-}
-
-/* The frame on the target now (the last show's last frame) into k->tex. */
+/* The frame on the target now (the last show's last frame), kept by the
+ * renderer for the crossfade. */
 static void keep_last_frame(struct kiosk *k, struct renderer *r, double fade_s, double t)
 {
-	unsigned fbo;
-	int w, h;
 	char err[256];
 	k->fading = false;
 	if (fade_s <= 0 || !r)
 		return;
-	renderer_target(r, &fbo, &w, &h);
-	if (fade_gl(k, w, h, err, sizeof(err)) < 0) {
-		log_warn("%s: shows change with a cut", err);
+	if (renderer_keep_frame(r, err, sizeof(err)) < 0) {
+		log_warn("playlist: %s: shows change with a cut", err);
 		return;
 	}
-	glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-	glBindFramebuffer(GL_DRAW_FRAMEBUFFER, k->fbo);
-	glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-	glBindFramebuffer(GL_FRAMEBUFFER, 0);
-	if (gpu_check("playlist: keeping the last frame") < 0)
-		return;
 	k->fading = true;
+	k->fade_r = r;
 	k->fade_start = t;
 	k->fade_s = fade_s;
 	k->alpha = 1.0;
@@ -265,41 +142,15 @@ int kiosk_frame_end(struct kiosk *k, struct renderer *r, char *err, size_t errle
 {
 	if (!k || !k->fading || !r)
 		return 0;
-	unsigned fbo;
-	int w, h;
-	renderer_target(r, &fbo, &w, &h);
-	if (w != k->tw || h != k->th) { /* a display's resize: no fade */
+	if (r != k->fade_r) { /* a display's resize made another renderer: no fade */
 		k->fading = false;
 		return 0;
 	}
-	(void)err;
-	(void)errlen;
-	GLboolean depth = glIsEnabled(GL_DEPTH_TEST), cull = glIsEnabled(GL_CULL_FACE),
-		  blend = glIsEnabled(GL_BLEND), scissor = glIsEnabled(GL_SCISSOR_TEST);
-	GLint vp[4];
-	glGetIntegerv(GL_VIEWPORT, vp);
-	glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-	glViewport(0, 0, w, h);
-	glDisable(GL_DEPTH_TEST);
-	glDisable(GL_CULL_FACE);
-	glDisable(GL_SCISSOR_TEST);
-	glEnable(GL_BLEND);
-	glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-	glUseProgram(k->prog);
-	glUniform1f(k->u_alpha, (GLfloat)k->alpha);
-	glActiveTexture(GL_TEXTURE0);
-	glBindTexture(GL_TEXTURE_2D, k->tex);
-	glBindVertexArray(k->vao);
-	glDrawArrays(GL_TRIANGLES, 0, 3);
-	glBindVertexArray(0);
-	glBindTexture(GL_TEXTURE_2D, 0);
-	glUseProgram(0);
-	(depth ? glEnable : glDisable)(GL_DEPTH_TEST);
-	(cull ? glEnable : glDisable)(GL_CULL_FACE);
-	(blend ? glEnable : glDisable)(GL_BLEND);
-	(scissor ? glEnable : glDisable)(GL_SCISSOR_TEST);
-	glViewport(vp[0], vp[1], vp[2], vp[3]);
-	return gpu_check("playlist crossfade");
+	if (renderer_fade_kept(r, (float)k->alpha) < 0) {
+		snprintf(err, errlen, "playlist crossfade failed");
+		return -1;
+	}
+	return 0;
 }
 
 /* ---- reload ------------------------------------------------------------------ */
@@ -403,16 +254,6 @@ struct kiosk *kiosk_create(struct params *p, int argc, char **argv, char *err, s
 
 void kiosk_destroy(struct kiosk *k)
 {
-	if (!k)
-		return;
-	if (k->fbo)
-		glDeleteFramebuffers(1, &k->fbo);
-	if (k->tex)
-		glDeleteTextures(1, &k->tex);
-	if (k->vao)
-		glDeleteVertexArrays(1, &k->vao);
-	if (k->prog)
-		glDeleteProgram(k->prog);
 	free(k);
 }
 

@@ -25,7 +25,7 @@ struct renderer;
  * and files) and applies its first show to p.  NULL with err on a bad
  * playlist. */
 struct kiosk *kiosk_create(struct params *p, int argc, char **argv, char *err, size_t errlen);
-void kiosk_destroy(struct kiosk *k); /* NULL is fine; needs the GL context */
+void kiosk_destroy(struct kiosk *k); /* NULL is fine */
 /* Before frame `index` is drawn: a pending SIGHUP reload, the playlist's
  * next show (the frame drawn last kept for the crossfade).  t: the run's
  * clock in seconds (wall clock on a display, index / fps headless). */

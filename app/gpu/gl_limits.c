@@ -51,6 +51,8 @@ static const struct gl_pass passes[] = {
 	/* the governor's upscale, and edge smoothing (--antialias fxaa) */
 	{ "upscale.vert + upscale.frag", NULL, "upscale.vert", "upscale.frag", NULL, false },
 	{ "upscale.vert + fxaa.frag", NULL, "upscale.vert", "fxaa.frag", NULL, false },
+	/* the attract playlist's crossfade (renderer_fade_kept) */
+	{ "upscale.vert + fade.frag", NULL, "upscale.vert", "fade.frag", NULL, false },
 	/* the tests' own passes */
 	{ "hp_test.comp", "hp_test.comp", NULL, NULL, NULL, true },
 	{ "curve_test.comp", "curve_test.comp", NULL, NULL, NULL, true },

@@ -395,16 +395,6 @@ int params_apply_preset(struct params *p, const char *name, char *err, size_t er
 	return -1;
 }
 
-static char *trim(char *s)
-{
-	while (isspace((unsigned char)*s))
-		s++;
-	char *e = s + strlen(s);
-	while (e > s && isspace((unsigned char)e[-1]))
-		*--e = 0;
-	return s;
-}
-
 int params_load_config_text(struct params *p, const char *text, const char *fname, char *err, size_t errlen)
 {
 	int lineno = 0;
@@ -425,7 +415,7 @@ int params_load_config_text(struct params *p, const char *text, const char *fnam
 		char *hash = strchr(buf, '#');
 		if (hash)
 			*hash = 0;
-		char *s = trim(buf);
+		char *s = str_trim(buf);
 		if (*s) {
 			char *eq = strchr(s, '=');
 			if (!eq) {
@@ -433,7 +423,7 @@ int params_load_config_text(struct params *p, const char *text, const char *fnam
 				return -1;
 			}
 			*eq = 0;
-			char *key = trim(s), *val = trim(eq + 1);
+			char *key = str_trim(s), *val = str_trim(eq + 1);
 			size_t vl = strlen(val);
 			if (vl >= 2 && val[0] == '"' && val[vl - 1] == '"') {
 				val[vl - 1] = 0;

@@ -53,6 +53,7 @@ struct renderer {
 	int sw, sh;   /* sw x sh in the lower-left corner, then upscaled */
 	struct upscale up;
 	struct upscale fx; /* --antialias fxaa: the pass at full size */
+	struct upscale kept; /* a frame kept for a crossfade (fade.frag), made on first use */
 };
 
 static const char *fbo_status(GLenum s)
@@ -179,6 +180,7 @@ void renderer_destroy(struct renderer *r)
 		glDeleteTextures(1, &r->surface);
 	upscale_free(&r->up);
 	upscale_free(&r->fx);
+	upscale_free(&r->kept);
 	parts_free(&r->pt);
 	GLuint fb[2] = { r->fbo, r->fbo_ms };
 	glDeleteFramebuffers(2, fb);
@@ -488,6 +490,26 @@ int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen
 	if (r->sh < 1)
 		r->sh = 1;
 	return 0;
+}
+
+int renderer_keep_frame(struct renderer *r, char *err, size_t errlen)
+{
+	if (!r->kept.prog && upscale_init(&r->kept, "fade.frag", r->w, r->h, err, errlen) < 0)
+		return -1;
+	upscale_grab(&r->kept, r->samples ? r->fbo_ms : r->fbo, r->w, r->h);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	if (gpu_check("keeping the frame") < 0) {
+		snprintf(err, errlen, "the frame could not be kept");
+		return -1;
+	}
+	return 0;
+}
+
+int renderer_fade_kept(struct renderer *r, float alpha)
+{
+	if (!r->kept.prog)
+		return 0;
+	return upscale_draw(&r->kept, r->samples ? r->fbo_ms : r->fbo, r->w, r->h, alpha);
 }
 
 void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h)

@@ -82,6 +82,11 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 /* The framebuffer the frame is drawn into (multisampled or not) and its
  * size: overlays (OSD) draw into it, the V4L2 output resolves from it. */
 void renderer_target(const struct renderer *r, unsigned *fbo, int *w, int *h);
+/* The finished frame on the target now, kept (the attract playlist's last
+ * frame of a show), and later drawn over the target's frame with weight
+ * alpha in 0..1 (its crossfade; fade.frag).  0, or -1 with err. */
+int renderer_keep_frame(struct renderer *r, char *err, size_t errlen);
+int renderer_fade_kept(struct renderer *r, float alpha);
 /* Resolves and reads the last frame (top row first).  0 or -1. */
 int renderer_read(struct renderer *r, struct image *img);
 

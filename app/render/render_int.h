@@ -14,7 +14,7 @@
 struct upscale {
 	GLuint prog, tex, fbo; /* the low-resolution copy, sampled */
 	int w, h;              /* the texture's size (the target's) */
-	GLint l_src_px, l_tex_px;
+	GLint l_src_px, l_tex_px, l_alpha;
 };
 
 /* At the target's size w x h, drawing with fragment shader fs
@@ -23,6 +23,11 @@ int upscale_init(struct upscale *u, const char *fs, int w, int h, char *err, siz
 /* Copies the lower-left sw x sh of target (resolving it if multisampled)
  * and draws it back over the whole w x h target, upscaled.  0 or -1. */
 int upscale_run(struct upscale *u, GLuint target, int sw, int sh);
+/* The two halves of upscale_run: the copy into the texture, and the
+ * texture drawn over the whole target, blended with weight alpha below 1
+ * (u_alpha of the fragment shader). */
+void upscale_grab(struct upscale *u, GLuint target, int sw, int sh);
+int upscale_draw(struct upscale *u, GLuint target, int sw, int sh, float alpha);
 void upscale_free(struct upscale *u);
 
 /* ---- a mesh drawn in parts (parts.c, shaders/draw_parts.comp) -------------

@@ -20,6 +20,7 @@ int upscale_init(struct upscale *u, const char *fs, int w, int h, char *err, siz
 	u->h = h;
 	u->l_src_px = glGetUniformLocation(u->prog, "u_src_px");
 	u->l_tex_px = glGetUniformLocation(u->prog, "u_tex_px");
+	u->l_alpha = glGetUniformLocation(u->prog, "u_alpha");
 	glUseProgram(u->prog);
 	glUniform1i(glGetUniformLocation(u->prog, "u_src"), TEX_FRAME);
 	glUseProgram(0);
@@ -44,23 +45,40 @@ int upscale_init(struct upscale *u, const char *fs, int w, int h, char *err, siz
 	return 0;
 }
 
-int upscale_run(struct upscale *u, GLuint target, int sw, int sh)
+void upscale_grab(struct upscale *u, GLuint target, int sw, int sh)
 {
 	glBindFramebuffer(GL_READ_FRAMEBUFFER, target);
 	glBindFramebuffer(GL_DRAW_FRAMEBUFFER, u->fbo);
 	glBlitFramebuffer(0, 0, sw, sh, 0, 0, sw, sh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+int upscale_draw(struct upscale *u, GLuint target, int sw, int sh, float alpha)
+{
 	glBindFramebuffer(GL_FRAMEBUFFER, target);
 	glViewport(0, 0, u->w, u->h);
 	glDisable(GL_DEPTH_TEST);
-	glDisable(GL_BLEND);
+	if (alpha < 1.0f) { /* over the frame there, its alpha kept */
+		glEnable(GL_BLEND);
+		glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+	} else {
+		glDisable(GL_BLEND);
+	}
 	glUseProgram(u->prog);
 	glUniform2f(u->l_src_px, (float)sw, (float)sh);
 	glUniform2f(u->l_tex_px, (float)u->w, (float)u->h);
+	glUniform1f(u->l_alpha, alpha);
 	glActiveTexture(GL_TEXTURE0 + TEX_FRAME);
 	glBindTexture(GL_TEXTURE_2D, u->tex);
 	glDrawArrays(GL_TRIANGLES, 0, 3);
 	glBindTexture(GL_TEXTURE_2D, 0);
-	return gpu_check("upscale");
+	glDisable(GL_BLEND);
+	return gpu_check("full-screen pass");
+}
+
+int upscale_run(struct upscale *u, GLuint target, int sw, int sh)
+{
+	upscale_grab(u, target, sw, sh);
+	return upscale_draw(u, target, sw, sh, 1.0f);
 }
 
 void upscale_free(struct upscale *u)
