@@ -108,19 +108,6 @@ struct mc_labels {
 	uint32_t nv, nt;
 };
 
-static int lab_inside(const struct grid *g, const float *d, float iso, int x, int y, int z)
-{
-	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
-	int m = grid_margin(g), n[3] = { g->nx, g->ny, g->nz }, count = 0;
-	for (int k = 0; k < 6; k++) {
-		int q[3] = { x + nb[k][0], y + nb[k][1], z + nb[k][2] };
-		if (q[0] < -m || q[1] < -m || q[2] < -m || q[0] > n[0] + m || q[1] > n[1] + m || q[2] > n[2] + m)
-			continue;
-		count += d[grid_dens_index(g, q[0], q[1], q[2])] > iso;
-	}
-	return d[grid_dens_index(g, x, y, z)] > iso ? count > 0 : count == 6;
-}
-
 static void labels_free(struct mc_labels *L)
 {
 	free(L->in);
@@ -152,7 +139,7 @@ static int labels_make(struct mc_labels *L, const struct mc_tables *t, const str
 	for (int z = 0; z < L->oz; z++)
 		for (int y = 0; y < L->oy; y++)
 			for (int x = 0; x < L->ox; x++)
-				L->in[x + (size_t)L->ox * (y + (size_t)L->oy * z)] = (uint8_t)lab_inside(g, d, iso, x, y, z);
+				L->in[x + (size_t)L->ox * (y + (size_t)L->oy * z)] = (uint8_t)mc_ref_inside(g, d, iso, x, y, z);
 	uint64_t nv = 0;
 	for (int z = 0; z < L->oz; z++)
 		for (int y = 0; y < L->oy; y++)

@@ -35,6 +35,11 @@ struct mc_tables {
 /* Builds the tables (a few microseconds; always the same result). */
 void mc_tables_build(struct mc_tables *t);
 
+/* Corner (x, y, z) of the margin density volume inside: above iso with one
+ * of its six neighbours above too, or below with all six above (the debris
+ * rule of shaders/mc_debris.comp); 1 or 0. */
+int mc_ref_inside(const struct grid *g, const float *dens, float iso, int x, int y, int z);
+
 /* CPU Marching Cubes over a margin density volume (see grid.h); output in
  * exactly the GPU's order.  0, or -1 when out of memory. */
 int mc_ref_extract(const struct grid *g, const float *dens, float iso, struct mesh *out);

@@ -23,7 +23,7 @@ static void gradient(const struct grid *g, const float *dens, int i, int j, int 
  * below it with all six above (a bubble in the rock, never seen, filled);
  * a neighbour beyond the stored samples counts as outside.  As the GPU's
  * debris filter (shaders/mc_debris.comp). */
-static int inside(const struct grid *g, const float *dens, float iso, int x, int y, int z)
+int mc_ref_inside(const struct grid *g, const float *dens, float iso, int x, int y, int z)
 {
 	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
 	int m = grid_margin(g), n[3] = { g->nx, g->ny, g->nz }, count = 0;
@@ -40,12 +40,12 @@ static int vmask(const struct grid *g, const float *dens, float iso, int x, int 
 {
 	if (x > g->nx || y > g->ny || z > g->nz)
 		return 0;
-	int in0 = inside(g, dens, iso, x, y, z), m = 0;
-	if (x < g->nx && y <= g->ny && z <= g->nz && in0 != inside(g, dens, iso, x + 1, y, z))
+	int in0 = mc_ref_inside(g, dens, iso, x, y, z), m = 0;
+	if (x < g->nx && y <= g->ny && z <= g->nz && in0 != mc_ref_inside(g, dens, iso, x + 1, y, z))
 		m |= 1;
-	if (y < g->ny && in0 != inside(g, dens, iso, x, y + 1, z))
+	if (y < g->ny && in0 != mc_ref_inside(g, dens, iso, x, y + 1, z))
 		m |= 2;
-	if (z < g->nz && in0 != inside(g, dens, iso, x, y, z + 1))
+	if (z < g->nz && in0 != mc_ref_inside(g, dens, iso, x, y, z + 1))
 		m |= 4;
 	return m;
 }
@@ -54,7 +54,7 @@ static int cell_case(const struct mc_tables *t, const struct grid *g, const floa
 {
 	int cs = 0;
 	for (int n = 0; n < 8; n++)
-		cs |= inside(g, dens, iso, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) << n;
+		cs |= mc_ref_inside(g, dens, iso, x + t->corner[n][0], y + t->corner[n][1], z + t->corner[n][2]) << n;
 	return cs;
 }
 

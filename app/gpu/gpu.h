@@ -41,6 +41,9 @@ void gpu_prefetch_drop(void);
  * or "" = $XDG_CACHE_HOME/isoterra (else ~/.cache/isoterra).  Call before
  * the first program is made; it also resets the counters. */
 void gpu_program_cache_config(bool enabled, const char *dir);
+/* The cache's directory when none is configured: $XDG_CACHE_HOME/isoterra,
+ * else $HOME/.cache/isoterra; false when neither is an absolute path. */
+bool gpu_program_cache_default_dir(char *out, size_t n);
 struct gpu_program_cache_stats {
 	unsigned hits, misses;  /* programs loaded from the cache / compiled */
 	unsigned rejected;      /* files ignored: foreign, truncated, corrupt or refused by the driver */

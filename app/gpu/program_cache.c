@@ -64,7 +64,7 @@ static void copy_gl_string(char *out, size_t n, GLenum name)
 	snprintf(out, n, "%s", s ? (const char *)s : "");
 }
 
-static bool default_dir(char *out, size_t n)
+bool gpu_program_cache_default_dir(char *out, size_t n)
 {
 	const char *x = getenv("XDG_CACHE_HOME");
 	const char *home = getenv("HOME");
@@ -107,7 +107,7 @@ static bool probe(void)
 		log_debug("program cache: the driver offers no program binary format");
 		return false;
 	}
-	if (!C.dir[0] && !default_dir(C.dir, sizeof(C.dir))) {
+	if (!C.dir[0] && !gpu_program_cache_default_dir(C.dir, sizeof(C.dir))) {
 		log_debug("program cache: neither XDG_CACHE_HOME nor HOME is an absolute path");
 		return false;
 	}

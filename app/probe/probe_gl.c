@@ -197,8 +197,8 @@ void probe_gl(struct probe_report *r, const struct params *p)
 	platform_close(plat);
 }
 
-/* The directory the program cache uses (program_cache.c's rule:
- * $XDG_CACHE_HOME/isoterra, else $HOME/.cache/isoterra), writable? */
+/* The directory the program cache uses (gpu_program_cache_default_dir),
+ * writable? */
 void probe_cache(struct probe_report *r, const struct params *p)
 {
 	pt(r, "Program cache");
@@ -209,12 +209,9 @@ void probe_cache(struct probe_report *r, const struct params *p)
 		pj_end(r);
 		return;
 	}
-	const char *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
 	char dir[600] = "";
-	if (x && x[0] == '/')
-		snprintf(dir, sizeof(dir), "%s/isoterra", x);
-	else if (home && home[0] == '/')
-		snprintf(dir, sizeof(dir), "%s/.cache/isoterra", home);
+	if (!gpu_program_cache_default_dir(dir, sizeof(dir)))
+		dir[0] = 0;
 	pj_str(r, "dir", dir);
 	if (!dir[0]) {
 		pj_bool(r, "writable", false);

@@ -1,6 +1,7 @@
 /* isoterra — the probe's report: plain text to a stream, the same facts as
  * a JSON document in memory (written at the end, probe.c). */
 #include "probe_int.h"
+#include "util.h"
 
 #include <inttypes.h>
 #include <stdarg.h>
@@ -131,27 +132,30 @@ void pt(struct probe_report *r, const char *fmt, ...)
 	fputc('\n', r->txt);
 }
 
-void probe_block(struct probe_report *r, const char *fmt, ...)
+/* One finding, in the text under its label and kept (the first n) for the
+ * summary and the JSON. */
+static void note(FILE *txt, const char *label, char (*kept)[512], int *n, int cap, const char *fmt, va_list ap)
 {
 	char msg[512];
+	vsnprintf(msg, sizeof(msg), fmt, ap);
+	fprintf(txt, "  %s: %s\n", label, msg);
+	if (*n < cap)
+		snprintf(kept[(*n)++], sizeof(kept[0]), "%s", msg);
+}
+
+void probe_block(struct probe_report *r, const char *fmt, ...)
+{
 	va_list ap;
 	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
+	note(r->txt, "BLOCKS", r->blocking, &r->nblocking, (int)ARRAY_SIZE(r->blocking), fmt, ap);
 	va_end(ap);
-	fprintf(r->txt, "  BLOCKS: %s\n", msg);
-	if (r->nblocking < (int)(sizeof(r->blocking) / sizeof(r->blocking[0])))
-		snprintf(r->blocking[r->nblocking++], sizeof(r->blocking[0]), "%s", msg);
 	r->nblocking_all++;
 }
 
 void probe_warn(struct probe_report *r, const char *fmt, ...)
 {
-	char msg[512];
 	va_list ap;
 	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
+	note(r->txt, "warning", r->warning, &r->nwarning, (int)ARRAY_SIZE(r->warning), fmt, ap);
 	va_end(ap);
-	fprintf(r->txt, "  warning: %s\n", msg);
-	if (r->nwarning < (int)(sizeof(r->warning) / sizeof(r->warning[0])))
-		snprintf(r->warning[r->nwarning++], sizeof(r->warning[0]), "%s", msg);
 }
