@@ -1,8 +1,8 @@
 /* isoterra — uniform locations per program, looked up once.  The passes
  * set the same uniforms on the same programs for every block of every
  * frame (the grid's, the pyramid's, the 90-odd shader parameters): by name
- * that was some 1 100 glGetUniformLocation calls a world block, 69 000 in
- * the world's first frame.  A location stays valid until the program is
+ * that was 69 309 glGetUniformLocation calls in the world's first frame at
+ * 320x180, about 840 in each frame after it (docs/PERFORMANCE.md).  A location stays valid until the program is
  * linked again, so the loader (shader.c) and the live editor's relink
  * (shader_watch.c) forget a program's entry whenever they (re)link one; a
  * deleted program's name comes back only through the loader. */
@@ -29,6 +29,7 @@ struct uc_entry {
 
 static struct uc_entry uc[UC_PROGRAMS];
 static uint64_t uc_clock;
+static struct uc_entry *uc_last; /* a pass sets several uniforms of one program in a row */
 
 static void entry_free(struct uc_entry *e)
 {
@@ -38,6 +39,7 @@ static void entry_free(struct uc_entry *e)
 
 void uniform_cache_forget(GLuint prog)
 {
+	uc_last = NULL;
 	for (int i = 0; i < UC_PROGRAMS; i++)
 		if (uc[i].prog == prog && prog)
 			entry_free(&uc[i]);
@@ -48,15 +50,20 @@ static struct uc_entry *entry(GLuint prog)
 {
 	struct uc_entry *victim = &uc[0];
 	uc_clock++;
+	if (uc_last && uc_last->prog == prog) {
+		uc_last->used = uc_clock;
+		return uc_last;
+	}
 	for (int i = 0; i < UC_PROGRAMS; i++) {
 		if (uc[i].prog == prog) {
 			uc[i].used = uc_clock;
-			return &uc[i];
+			return uc_last = &uc[i];
 		}
 		if (!uc[i].prog || (victim->prog && uc[i].used < victim->used))
 			victim = &uc[i];
 	}
 	entry_free(victim);
+	uc_last = NULL;
 	victim->param = malloc(param_count * sizeof(GLint));
 	if (!victim->param)
 		return NULL;
@@ -64,7 +71,7 @@ static struct uc_entry *entry(GLuint prog)
 		victim->param[i] = UC_UNKNOWN;
 	victim->prog = prog;
 	victim->used = uc_clock;
-	return victim;
+	return uc_last = victim;
 }
 
 GLint gpu_uniform(GLuint prog, const char *name)
@@ -72,8 +79,12 @@ GLint gpu_uniform(GLuint prog, const char *name)
 	struct uc_entry *e = entry(prog);
 	if (!e)
 		return glGetUniformLocation(prog, name);
+	/* by pointer first: a call site passes the same literal every time */
 	for (int i = 0; i < e->nnamed; i++)
-		if (e->name[i] == name || !strcmp(e->name[i], name))
+		if (e->name[i] == name)
+			return e->loc[i];
+	for (int i = 0; i < e->nnamed; i++)
+		if (!strcmp(e->name[i], name))
 			return e->loc[i];
 	GLint loc = glGetUniformLocation(prog, name);
 	/* names are the callers' string literals: kept by pointer */
