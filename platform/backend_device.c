@@ -93,18 +93,13 @@ static void device_drm_files(const struct device_api *api, EGLDeviceEXT dev, con
 	(void)eglGetError();
 }
 
-/* DRM node of the device ("/dev/dri/renderD128"), or NULL. */
+/* DRM node of the device, its render node first ("/dev/dri/renderD128"),
+ * or NULL. */
 static const char *device_node(const struct device_api *api, EGLDeviceEXT dev)
 {
-	const char *exts = api->query_string(dev, EGL_EXTENSIONS);
-	const char *node = NULL;
-	if (exts && egl_common_has_ext(exts, "EGL_EXT_device_drm_render_node"))
-		node = api->query_string(dev, EGL_DRM_RENDER_NODE_FILE_EXT);
-	if (!node && exts && egl_common_has_ext(exts, "EGL_EXT_device_drm"))
-		node = api->query_string(dev, EGL_DRM_DEVICE_FILE_EXT);
-	if (!node)
-		(void)eglGetError();
-	return node;
+	const char *card, *render;
+	device_drm_files(api, dev, &card, &render);
+	return render ? render : card;
 }
 
 static bool device_probe(void)
