@@ -8,6 +8,12 @@ int main(int argc, char **argv)
 	char err[512];
 	switch (cli_parse(argc, argv, &p, err, sizeof(err))) {
 	case CLI_EXIT_OK: return 0;
+	case CLI_LIST_DEVICES:
+		if (platform_list_devices(stdout, err, sizeof(err)) < 0) {
+			log_error("%s", err);
+			return 1;
+		}
+		return 0;
 	case CLI_ERROR:
 		log_error("%s", err);
 		return 2;

@@ -136,18 +136,6 @@ static int open_one(struct platform *p, const struct platform_options *opt,
 	return 0;
 }
 
-int platform_device_check(const char *spec, char *err, size_t errlen)
-{
-	if (!spec || !spec[0] || spec[0] == '/')
-		return 0;
-	size_t digits = strspn(spec, "0123456789");
-	if (digits == strlen(spec) && digits <= 9)
-		return 0;
-	snprintf(err, errlen, "device: '%.200s' is neither an EGL device index (0, 1, ...) nor a DRM node path "
-	         "such as /dev/dri/renderD128 (see --list-devices)", spec);
-	return -1;
-}
-
 /* Same DRM node: the same name, or (symbolic links, /dev/dri/by-path/...)
  * the same character device. */
 static bool same_node(const char *a, const char *b)

@@ -371,9 +371,7 @@ enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, si
 			list_presets();
 			return CLI_EXIT_OK;
 		case OPT_LIST_DEVICES:
-			if (platform_list_devices(stdout, err, errlen) < 0)
-				return CLI_ERROR;
-			return CLI_EXIT_OK;
+			return CLI_LIST_DEVICES;
 		default:
 			break;
 		}

@@ -5,7 +5,9 @@
 #include <stddef.h>
 #include "params.h"
 
-enum cli_result { CLI_RUN, CLI_EXIT_OK, CLI_ERROR };
+/* CLI_LIST_DEVICES: --list-devices was given (the caller lists them: the
+ * command line only reads text). */
+enum cli_result { CLI_RUN, CLI_EXIT_OK, CLI_LIST_DEVICES, CLI_ERROR };
 
 /* Parses argv over the defaults: --preset and --config are applied first (in
  * that order), then every other option in command-line order, so explicit
