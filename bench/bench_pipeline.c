@@ -158,7 +158,8 @@ void series_rounds(struct series *const *s, int ns, int runs)
 struct bench_stat series_stat(const struct series *s, int what)
 {
 	double v[MAX_RUNS];
-	for (int i = 0; i < s->n; i++) {
+	int n = s->n < MAX_RUNS ? s->n : MAX_RUNS;
+	for (int i = 0; i < n; i++) {
 		const struct run_sample *r = &s->r[i];
 		if (what == V_WALL)
 			v[i] = r->wall;
@@ -169,7 +170,7 @@ struct bench_stat series_stat(const struct series *s, int what)
 		else
 			v[i] = r->pass[what];
 	}
-	return bench_stat_of(v, s->n);
+	return bench_stat_of(v, n);
 }
 
 /* ---- reports -------------------------------------------------------------- */

@@ -4,6 +4,9 @@
 #
 #   sh tools/debian13.sh          build (-Werror) and run the tests there
 #   sh tools/debian13.sh clean    drop the cached chroots (build-d13/)
+#   sh tools/debian13.sh prepare  only make the chroot and its packages
+#                                 ready (tools/test-all.sh runs this in the
+#                                 background while the host's suites build)
 #
 # The chroot, its packages and the build folder are cached in build-d13/
 # (tools/chroot.sh) and reused when present: a warm run rebuilds only what
@@ -51,6 +54,10 @@ d13_mount "$D13_ROOT" || { d13_bad "mounts"; d13_summary native; exit 1; }
 d13_install "$D13_ROOT" $PACKAGES || { d13_bad "build dependencies"; d13_summary native; exit 1; }
 d13_log "chroot ready ($(($(date +%s) - t0)) s): $(d13_in "$D13_ROOT" dpkg-query -W -f '${Package} ${Version}, ' \
 	libegl-mesa0 libgpiod-dev gcc-14 meson 2>/dev/null)"
+if [ "${1:-}" = prepare ]; then
+	echo "== debian13 prepare: ok"
+	exit 0
+fi
 d13_copy_src "$D13_ROOT" || { d13_bad "source copy"; d13_summary native; exit 1; }
 
 # configure once, later only set the options (the build stays incremental)

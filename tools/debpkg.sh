@@ -2,13 +2,17 @@
 # isoterra — the Debian packages, built and installed on Debian 13 and 12.  As root:
 #
 #   sh tools/debpkg.sh
+#   sh tools/debpkg.sh prepare   only the chroots and base tarballs of parts
+#                                1-4, their packages installed (tools/test-all.sh
+#                                runs this in the background early on)
 #
 # 1. Build: `dpkg-buildpackage -b -us -uc` in a chroot that has only the
 #    base system and debian/control's Build-Depends (apt-get build-dep), so
 #    a missing build dependency fails here.  That chroot (build-d13/pkg-root)
 #    is cached and made again from the base tarball when debian/control
 #    changes.  The package's own tests run (debian/rules: every suite but
-#    vm and display); ISOTERRA_DEB_NOCHECK=1 skips them.
+#    vm and display); ISOTERRA_DEB_NOCHECK=1 skips them (tools/test-all.sh
+#    does: its Debian 13 suite ran them on these sources, on trixie).
 # 2. lintian, in the build chroot of tools/debian13.sh: errors and warnings
 #    fail (overrides, each with its reason, live in debian/).
 # 3. Install: a fresh minbase chroot, `apt-get install ./isoterra_*.deb`
@@ -52,6 +56,17 @@ pkg_checks() {
 	fi
 	d13_in "$r" ldd /usr/bin/isoterra | grep -q libgdal && d13_bad "isoterra itself links GDAL" ||
 		d13_ok "isoterra itself does not link GDAL"
+	# and it works: the installed program reads a GeoTIFF through the
+	# installed module and this distribution's GDAL (the package build runs
+	# no tests in CI, ISOTERRA_DEB_NOCHECK)
+	python3 "$D13_SRC/tests/mk_tiff.py" "$r/tmp/hill.tif" && rm -f "$r/tmp/hill.png"
+	if d13_in "$r" sh -c "cd /tmp && EGL_LOG_LEVEL=fatal isoterra --field heightmap --heightmap /tmp/hill.tif \
+		--heightmap-scale 2 --size 64x48 --grid 16 --out /tmp/hill.png" >"$D13_LOGS/pkg-geotiff.log" 2>&1 &&
+		[ -s "$r/tmp/hill.png" ]; then
+		d13_ok "a GeoTIFF heightmap through the installed module: $(tail -1 "$D13_LOGS/pkg-geotiff.log")"
+	else
+		d13_bad "a GeoTIFF heightmap through the installed module: $(tail -2 "$D13_LOGS/pkg-geotiff.log")"
+	fi
 	# the system user, from sysusers.d
 	pw=$(d13_in "$r" getent passwd isoterra)
 	groups=$(d13_in "$r" id -nG isoterra 2>/dev/null)
@@ -103,6 +118,18 @@ if [ "$(cat "$PKG_ROOT/.isoterra-control" 2>/dev/null)" != "$stamp" ]; then
 	d13_retry d13_in "$PKG_ROOT" apt-get build-dep -y -q "/pkg/isoterra-$VERSION" >"$D13_LOGS/pkg-build-dep.log" 2>&1 ||
 		{ tail -30 "$D13_LOGS/pkg-build-dep.log"; fail "apt-get build-dep"; }
 	echo "$stamp" >"$PKG_ROOT/.isoterra-control"
+fi
+if [ "${1:-}" = prepare ]; then
+	d13_cleanup
+	d13_mount "$D13_ROOT" && d13_install "$D13_ROOT" lintian || fail "lintian"
+	d13_cleanup
+	if [ "${ISOTERRA_DEB12:-1}" = 1 ]; then
+		D13_SUITE=bookworm D13_BASE=$D13/bookworm-minbase.tar
+		d13_base || fail "the bookworm base tarball"
+	fi
+	d13_log "package suite prepared ($(($(date +%s) - t0)) s)"
+	echo "== debian13 package prepare: ok"
+	exit 0
 fi
 t1=$(date +%s)
 opts="parallel=$(nproc)"

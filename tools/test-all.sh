@@ -5,11 +5,20 @@
 # GPU tests run on Mesa's llvmpipe through EGL_MESA_platform_surfaceless
 # unless ISOTERRA_PLATFORM names another backend.
 set -u
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/.." || exit 2
 total_pass=0
 total_fail=0
 failures=$(mktemp)
-trap 'rm -f "$failures"' EXIT
+timings=$(mktemp)
+trap 'rm -f "$failures" "$timings"' EXIT
+# the wall time of each part, printed at the end (CI's budget is 45 minutes)
+t_begin=$(date +%s)
+t_last=$t_begin
+part_done() { # NAME: the time since the previous part ended
+	now=$(date +%s)
+	printf '  %-44s %5d s\n' "$1" $((now - t_last)) >>"$timings"
+	t_last=$now
+}
 
 run_suite() { # name builddir meson-args...
 	name=$1
@@ -29,10 +38,15 @@ run_suite() { # name builddir meson-args...
 		# counted and named at the end like a failed test
 		total_fail=$((total_fail + 1))
 		echo "--- $name: the build failed (ninja -C $dir; its error is above)" >>"$failures"
+		part_done "$name: configure, build"
 		return 1
 	fi
+	part_done "$name: configure, build"
 	# shellcheck disable=SC2086 # TEST_ARGS is a word list on purpose
 	run_tests "$name" "$dir" testlog $TEST_ARGS
+	rc=$?
+	part_done "$name: tests"
+	return $rc
 }
 
 run_tests() { # name builddir logbase meson-test-args...: the tests of a built tree, counted
@@ -71,6 +85,37 @@ PY
 # is missing: tools/deps.sh installs them all
 export ISOTERRA_REQUIRE_DEVICE_TESTS=1
 status=0
+
+# The Debian 13 suites (at the end, as root) first make their chroots:
+# debootstrap, apt-get install of the build dependencies, GDAL's for the
+# package, the arm64 cross toolchain, the bookworm base: about 7 minutes
+# of downloads and unpacking on a fresh machine, mostly waiting on the
+# network and the disk.  They are started now, in the background, while
+# the host's builds and tests keep the CPUs busy; each script's lock
+# (tools/chroot.sh) makes the suites wait for them later.  Their output:
+# build-d13/logs/prepare.log, summed up before the suites run.
+chroot_suites=0
+AS_ROOT=""
+if [ "${ISOTERRA_SKIP_CHROOT_SUITES:-0}" != 1 ]; then
+	if [ "$(id -u)" -eq 0 ]; then
+		chroot_suites=1
+	elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+		chroot_suites=1
+		AS_ROOT="sudo -n"
+	fi
+fi
+prepare_pid=""
+if [ $chroot_suites = 1 ]; then
+	mkdir -p build-d13/logs
+	(
+		for s in debian13 arm64 debpkg; do
+			t=$(date +%s)
+			$AS_ROOT sh "tools/$s.sh" prepare
+			echo "== prepare $s: exit $?, $(($(date +%s) - t)) s"
+		done
+	) >build-d13/logs/prepare.log 2>&1 </dev/null &
+	prepare_pid=$!
+fi
 # Tests that boot a kernel under QEMU (meson suite "vm") and the gallery's
 # pictures run once, against the release build; the sanitizer build runs
 # everything else.
@@ -140,6 +185,7 @@ if [ -x build-ci/isoterra ]; then
 	unset LIBGL_ALWAYS_SOFTWARE MESA_LOADER_DRIVER_OVERRIDE
 	[ -z "$zink_xdg" ] || { rm -rf "$zink_xdg"; unset XDG_RUNTIME_DIR; }
 fi
+part_done "zink: tests"
 TEST_ARGS="--no-suite vm --no-suite gallery --no-suite soak"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
@@ -159,15 +205,19 @@ for d in /usr/lib/*/dri /usr/lib/dri; do
 		break
 	fi
 done
-run_suite "ASan+UBSan" build-asan -Dwerror=true -Dbuildtype=debug -Db_sanitize=address,undefined \
+run_suite "ASan+UBSan" build-asan -Dwerror=true -Dbuildtype=debugoptimized -Db_sanitize=address,undefined \
 	-Db_lundef=false -Dc_args=-fno-sanitize-recover=all || status=1
 if [ -n "$old_preload" ]; then export LD_PRELOAD="$old_preload"; else unset LD_PRELOAD; fi
 
 # the libFuzzer harnesses (tests/fuzz/, docs/RELIABILITY.md): 60 s each under
 # ASan+UBSan, built with clang in build-fuzz/ (tools/fuzz.sh)
-echo "=== fuzz: tests/fuzz, 60 s per harness (clang, ASan+UBSan)"
+# (30 s each, two at a time on 2 cores: the harnesses replay their seeds
+# and every input that once failed, then search briefly; long searches are
+# for `sh tools/fuzz.sh 3600`, docs/RELIABILITY.md)
+fuzz_secs=${ISOTERRA_FUZZ_SECONDS:-30}
+echo "=== fuzz: tests/fuzz, $fuzz_secs s per harness (clang, ASan+UBSan)"
 fuzz_log=$(mktemp)
-sh tools/fuzz.sh 60 >"$fuzz_log" 2>&1
+sh tools/fuzz.sh "$fuzz_secs" >"$fuzz_log" 2>&1
 rc=$?
 cat "$fuzz_log"
 line=$(grep -E '^== fuzz: [0-9]+ passed, [0-9]+ failed' "$fuzz_log" | tail -1)
@@ -176,6 +226,7 @@ total_pass=$((total_pass + $(echo "$line" | awk '{print $3+0}')))
 total_fail=$((total_fail + $(echo "$line" | awk '{print $5+0}')))
 [ -n "$line" ] || total_fail=$((total_fail + 1))
 [ $rc -eq 0 ] || status=1
+part_done "fuzz: build, ${fuzz_secs} s per harness"
 
 # Debian 13 (trixie) in a chroot, as root (tools/chroot.sh; cached in
 # build-d13/): the tests with Mesa 25 and GCC 14, the arm64 cross build run
@@ -187,6 +238,7 @@ run_chroot_suite() { # title script
 	mkdir -p build-d13/logs
 	log=build-d13/logs/suite-$2.log
 	{ $AS_ROOT sh "tools/$2.sh"; echo $? >"$log.rc"; } 2>&1 | tee "$log"
+	part_done "$1"
 	rc=$(cat "$log.rc" 2>/dev/null || echo 1)
 	line=$(grep -E '^== debian13 [a-z0-9]+: [0-9]+ passed, [0-9]+ failed' "$log" | tail -1)
 	p=$(echo "$line" | awk '{print $4+0}')
@@ -197,17 +249,19 @@ run_chroot_suite() { # title script
 	[ "$rc" -eq 0 ] || { [ "$f" -gt 0 ] || total_fail=$((total_fail + 1)); return 1; }
 }
 if [ "${ISOTERRA_SKIP_CHROOT_SUITES:-0}" != 1 ]; then
-	AS_ROOT=""
-	if [ "$(id -u)" -ne 0 ]; then
-		if command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
-			AS_ROOT="sudo -n"
-		else
-			echo "=== Debian 13 suites: need root (run as root, or ISOTERRA_SKIP_CHROOT_SUITES=1)"
-			total_fail=$((total_fail + 1))
-			status=1
-		fi
-	fi
-	if [ "$(id -u)" -eq 0 ] || [ -n "$AS_ROOT" ]; then
+	if [ $chroot_suites = 0 ]; then
+		echo "=== Debian 13 suites: need root (run as root, or ISOTERRA_SKIP_CHROOT_SUITES=1)"
+		total_fail=$((total_fail + 1))
+		status=1
+	else
+		echo "=== Debian 13 chroots, made in the background (build-d13/logs/prepare.log)"
+		wait "$prepare_pid"
+		grep -E '^(== prepare|\[[0-9:]+\] (FAIL|chroot ready|package suite prepared))' build-d13/logs/prepare.log
+		part_done "(waiting for the chroots)"
+		# the package build runs no tests by default here: the Debian 13
+		# suite ran them on the same sources with trixie's compiler and Mesa
+		ISOTERRA_DEB_NOCHECK=${ISOTERRA_DEB_NOCHECK:-1}
+		export ISOTERRA_DEB_NOCHECK
 		run_chroot_suite "Debian 13 (chroot): build -Werror, tests" debian13 || status=1
 		run_chroot_suite "arm64: cross build, qemu-user smoke run" arm64 || status=1
 		run_chroot_suite "Debian package: build, lintian, install" debpkg || status=1
@@ -217,5 +271,8 @@ if [ -s "$failures" ]; then
 	echo "=== failed tests"
 	cat "$failures"
 fi
+echo "=== wall time of each part"
+cat "$timings"
+echo "  total: $(($(date +%s) - t_begin)) s"
 echo "all suites: $total_pass passed, $total_fail failed"
 exit $status
