@@ -83,10 +83,11 @@ case "$gpiod" in
 esac
 
 t1=$(date +%s)
-# every test of the suites but vm, display and soak (the plain build of
-# tools/test-all.sh runs the VM tests and the soak once; the VM tests that
-# need Debian 13's libgpiod 2 run below)
-tests=$(d13_in "$D13_ROOT" sh -c "cd $B && meson test --no-rebuild --list --no-suite vm --no-suite display --no-suite soak" 2>/dev/null |
+# every test of the suites but vm, display, soak and gallery (the plain
+# build of tools/test-all.sh runs the VM tests, the soak and the README's
+# pictures once; the VM test that needs Debian 13's libgpiod 2 runs below)
+tests=$(d13_in "$D13_ROOT" sh -c "cd $B && meson test --no-rebuild --list --no-suite vm --no-suite display --no-suite soak \
+	--no-suite gallery" 2>/dev/null |
 	sed 's|.* / ||' | tr '\n' ' ')
 d13_in "$D13_ROOT" sh -c "cd $B && EGL_LOG_LEVEL=fatal meson test --no-rebuild --print-errorlogs --num-processes 1 \
 	$tests" >"$D13_LOGS/native-test.log" 2>&1
@@ -99,7 +100,7 @@ f=$(grep -hoE '[0-9]+ passed, [0-9]+ failed' "$D13_LOGS/native-testlog.txt" | aw
 d13_pass=$((d13_pass + p))
 d13_fail=$((d13_fail + f))
 if [ $rc -eq 0 ]; then
-	d13_ok "meson test, suites but vm, display and soak ($(($(date +%s) - t1)) s)"
+	d13_ok "meson test, suites but vm, display, soak and gallery ($(($(date +%s) - t1)) s)"
 else
 	sed -n '/Summary of Failures/,$p' "$D13_LOGS/native-test.log"
 	d13_bad "meson test (log: $D13_LOGS/native-testlog.txt)"
