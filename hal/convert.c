@@ -19,6 +19,18 @@ static const struct {
 	[CF_BGR24] = { "BGR24", V4L2_PIX_FMT_BGR24 },
 };
 
+void conv_shader_defines(enum conv_fmt fmt, char *buf, size_t len)
+{
+	size_t n = (size_t)snprintf(buf, len, "#define CONV_WG_SIZE %d\n#define FMT %du\n", CONV_WG_SIZE, (int)fmt);
+	for (int i = 0; i < CF_COUNT && n < len; i++)
+		n += (size_t)snprintf(buf + n, len - n, "#define F_%s %du\n", fmts[i].name, i);
+}
+
+void conv_shader_defines_yuyv(char *buf, size_t len)
+{
+	conv_shader_defines(CF_YUYV, buf, len);
+}
+
 const char *conv_fmt_name(enum conv_fmt f) { return f < CF_COUNT ? fmts[f].name : "?"; }
 uint32_t conv_fmt_fourcc(enum conv_fmt f) { return f < CF_COUNT ? fmts[f].fourcc : 0; }
 bool conv_fmt_is_yuv(enum conv_fmt f) { return f != CF_RGB24 && f != CF_BGR24; }
@@ -154,8 +166,8 @@ struct gpu_conv *gpu_conv_create(const struct frame_format *f, int nslots, const
 	c->gpu = *gpu;
 	c->mapped = -1;
 	c->nslots = nslots;
-	char defs[32];
-	snprintf(defs, sizeof(defs), "#define FMT %du\n", (int)f->fmt); /* one program per format */
+	char defs[CONV_DEFINES_MAX];
+	conv_shader_defines(f->fmt, defs, sizeof(defs)); /* one program per format */
 	c->prog = gpu->compile(gpu->user, "v4l2_convert.comp", defs, err, errlen);
 	if (!c->prog) {
 		free(c);
@@ -233,7 +245,7 @@ int gpu_conv_submit(struct gpu_conv *c, GLuint src_fbo, int sw, int sh)
 	glUniform1ui(c->l_out_w, OUT_W);
 	glUniform2f(c->l_k, (float)kr, (float)kb);
 	glBindImageTexture(c->gpu.img_out, c->out_tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-	glDispatchCompute((c->words + 63) / 64, 1, 1);
+	glDispatchCompute((c->words + CONV_WG_SIZE - 1) / CONV_WG_SIZE, 1, 1);
 	glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 	glBindTexture(GL_TEXTURE_2D, 0);
 	glActiveTexture(GL_TEXTURE0);

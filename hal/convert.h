@@ -12,8 +12,21 @@
 
 #include "hal.h"
 
+/* invocations of the conversion's work group (shaders/v4l2_convert.comp
+ * gets it, and the format names below, from convert.c's defines) */
+#define CONV_WG_SIZE 64
+
 enum conv_fmt { CF_YUYV, CF_UYVY, CF_NV12, CF_NV21, CF_YU12, CF_RGB24, CF_BGR24, CF_COUNT };
 enum conv_matrix { CM_BT601, CM_BT709 };
+
+/* The #defines shaders/v4l2_convert.comp is compiled with: CONV_WG_SIZE,
+ * F_<name> for every format of enum conv_fmt (from convert.c's table, so
+ * the shader holds no copy of the enum) and FMT, the one it converts to.
+ * At most CONV_DEFINES_MAX bytes. */
+#define CONV_DEFINES_MAX 512
+void conv_shader_defines(enum conv_fmt fmt, char *buf, size_t len);
+/* the same for YUYV (app/gpu/gl_limits.c's table of passes) */
+void conv_shader_defines_yuyv(char *buf, size_t len);
 
 struct frame_format {
 	enum conv_fmt fmt;

@@ -19,7 +19,10 @@ layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer BoundOut { uint
 uniform uint u_bound_count;
 
 #define BOUND_SUB 24
-shared float s_red[64]; // the reductions (256 bytes: app/gpu/gl_limits.c)
+shared float s_red[WG_SIZE]; // the reductions (WG_SIZE floats: app/gpu/gl_limits.c)
+#if (WG_SIZE & (WG_SIZE - 1)) != 0
+#error "group_reduce halves WG_SIZE: a power of two"
+#endif
 
 // the work group's minimum (sign 1) or maximum (sign -1) of v
 float group_reduce(float v, float sign)
@@ -28,7 +31,7 @@ float group_reduce(float v, float sign)
 	s_red[l] = v * sign;
 	memoryBarrierShared();
 	barrier();
-	for (uint h = 32u; h > 0u; h >>= 1u) {
+	for (uint h = uint(WG_SIZE) / 2u; h > 0u; h >>= 1u) {
 		if (l < h)
 			s_red[l] = min(s_red[l], s_red[l + h]);
 		memoryBarrierShared();
@@ -48,7 +51,7 @@ void main()
 	int keep = int(lo.w);
 	vec3 e = (hi.xyz - lo.xyz) * (0.5 / float(BOUND_SUB));
 	float mn = 3.0e38, mx = -3.0e38;
-	for (uint k = l; k < uint(BOUND_SUB * BOUND_SUB * BOUND_SUB); k += 64u) {
+	for (uint k = l; k < uint(BOUND_SUB * BOUND_SUB * BOUND_SUB); k += uint(WG_SIZE)) {
 		uvec3 s = uvec3(k % uint(BOUND_SUB), (k / uint(BOUND_SUB)) % uint(BOUND_SUB),
 				k / uint(BOUND_SUB * BOUND_SUB));
 		vec3 c = lo.xyz + (2.0 * vec3(s) + 1.0) * e;

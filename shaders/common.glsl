@@ -5,11 +5,11 @@
 
 // A field's program: its work group comes first (lin_id() needs it).
 #if defined(FIELD_PASS_DENSITY)
-layout(local_size_x = 64) in; // 64 samples of one z slab (see sign bits below)
+layout(local_size_x = WG_SIZE) in; // WG_SIZE sign words of one z slab (see sign bits below)
 #elif defined(FIELD_PASS_VERTICES)
-layout(local_size_x = 64) in; // mc_vertices.comp's
+layout(local_size_x = WG_SIZE) in; // mc_vertices.comp's
 #elif defined(FIELD_PASS_BOUND)
-layout(local_size_x = 64) in; // block_bound.glsl: one candidate block a group
+layout(local_size_x = WG_SIZE) in; // block_bound.glsl: one candidate block a group
 #endif
 
 uniform ivec3 u_cells;   // cells per axis
@@ -20,7 +20,7 @@ uniform int u_margin;    // density samples kept around the corners (>= 1)
 
 ivec3 dens_dims() { return u_cells + 1 + 2 * u_margin; }
 
-// 1D invocation index over a (possibly 2D-split) dispatch of 64-wide groups.
+// 1D invocation index over a (possibly 2D-split) dispatch of WG_SIZE-wide groups.
 uint lin_id()
 {
 	return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x +
@@ -55,13 +55,13 @@ ivec3 cell_of(int i, ivec3 o)
 // Sign bits: one bit per density sample, 1 = inside (d > u_iso), written
 // by the density pass beside the densities so classification reads 32
 // samples a word.  Slab z holds its dim.x * dim.y samples x fastest, padded
-// to a multiple of 64 bits (one density work group writes two whole words),
+// to a multiple of SIGN_SLAB_ALIGN (64) bits,
 // so sample (x, y, z) of the density grid is bit z * sign_slab_bits() +
 // x + dim.x * y.
 uint sign_slab_bits()
 {
 	ivec3 d = dens_dims();
-	return uint((d.x * d.y + 63) / 64 * 64);
+	return uint((d.x * d.y + SIGN_SLAB_ALIGN - 1) / SIGN_SLAB_ALIGN * SIGN_SLAB_ALIGN);
 }
 
 #ifdef FIELD_PASS_DENSITY
@@ -71,8 +71,8 @@ uint sign_slab_bits()
 // slab order, and writes the word itself: no shared memory and no barrier
 // (a barrier is a switch of every invocation's context on a CPU driver:
 // packing the bits through shared memory cost llvmpipe 10 ns a sample, more
-// than an octave of noise).  Dispatch: (ceil(words of a slab / 64), slabs)
-// groups of 64.
+// than an octave of noise).  Dispatch: (ceil(words of a slab / WG_SIZE),
+// slabs) groups of WG_SIZE.
 float density(vec3 ws); // the field's
 layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float dens_out[]; };
 layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer SignOut { uint sign_out[]; };
@@ -102,7 +102,7 @@ void main()
 	ivec3 dim = dens_dims();
 	int n = dim.x * dim.y;
 	uint words = sign_slab_bits() / 32u; // a slab's words, padding included
-	uint wv = gl_WorkGroupID.x * 64u + gl_LocalInvocationID.x;
+	uint wv = gl_WorkGroupID.x * uint(WG_SIZE) + gl_LocalInvocationID.x;
 	if (wv >= words)
 		return;
 	int z = int(gl_WorkGroupID.y) + u_z0;

@@ -3,7 +3,7 @@
 //           -> out[i] = curve_closest-style (signed d, t, h, I)
 //   mode 1: in[i] = (x, z, y, d) -> out[i] = (curve_eval(xz).xyz, carve_density)
 //   mode 2: in[i] = (x, z, -, -) -> out[i] = (hm_height(xz, true), hm_height(xz, false), 0, 0)
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #include "carve.glsl"
 layout(std430, binding = BIND_AUX_IN) restrict readonly buffer TestIn { vec4 test_in[]; };
 layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer TestOut { vec4 test_out[]; };

@@ -50,8 +50,7 @@ uniform vec2 u_curve_hash_origin; // x, z of the grid's corner
 uniform vec2 u_curve_hash_size;   // extent in x, z
 uniform vec2 u_curve_hash_cell;   // cell size in x, z
 
-// curve_kind in app/edit/curves.h: CURVE_TUNNEL (a _Static_assert there)
-#define CURVE_KIND_TUNNEL 3.0
+// CURVE_KIND_TUNNEL: abi.h, enum curve_kind's CURVE_TUNNEL (a _Static_assert in app/edit/curves.h)
 
 #ifndef CURVE_SEGMENTS
 #define CURVE_SEGMENTS 32
@@ -246,7 +245,7 @@ vec4 curve_accumulate(vec2 pos, int start, int count)
 		int f = curve_index(i);
 		i++;
 		vec4 prm = curve_prm(f);
-		if (prm.z == CURVE_KIND_TUNNEL) // not a surface: tunnel_eval
+		if (prm.z == float(CURVE_KIND_TUNNEL)) // not a surface: tunnel_eval
 			continue;
 		vec4 cl = CURVE_CLOSEST(f, pos);
 		float ad = abs(cl.x);
@@ -301,7 +300,7 @@ vec2 tunnel_accumulate(vec3 ws, int start, int count)
 	for (int i = start; i < start + count; i++) {
 		int f = curve_index(i);
 		vec4 prm = curve_prm(f);
-		if (prm.z != CURVE_KIND_TUNNEL || !curve_near(f, ws.xz))
+		if (prm.z != float(CURVE_KIND_TUNNEL) || !curve_near(f, ws.xz))
 			continue;
 		vec4 cl = CURVE_CLOSEST(f, ws.xz);
 		float ad = abs(cl.x), below = cl.z - ws.y, dy = ws.y - (cl.z + 0.5 * prm.x);

@@ -5,7 +5,7 @@
 // it draws the next, so only one part's bins are held at a time.  The
 // parts draw the same triangles in the same order; those past the end of
 // the mesh draw nothing.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 layout(std430, binding = BIND_STATUS) readonly restrict buffer Src { uint src[]; };
 layout(std430, binding = BIND_AUX_OUT) writeonly restrict buffer Parts { uint parts[]; };
 uniform uint u_src;    // the command's first word in Src

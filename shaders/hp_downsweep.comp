@@ -3,7 +3,7 @@
 // pre(node) = pre(parent) + counts of its left siblings.  Stored after the
 // pyramid (offset u_pre_base) so the index pass finds a cell's first vertex
 // with a few loads instead of a walk up every level.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #include "common.glsl"
 #include "hp.glsl"
 uniform int u_level;   // level being written (top-1 .. 2)

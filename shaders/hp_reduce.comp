@@ -1,7 +1,7 @@
 // isoterra — one HistoPyramid reduction: each node is the sum of four
 // children (triangles and vertices at once).  Nodes past the level's real
 // size (padding up to a multiple of four) are zero.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #include "common.glsl"
 #include "hp.glsl"
 uniform int u_level;      // level being written (>= 2)

@@ -1,6 +1,6 @@
 // isoterra — HistoPyramid test hooks (used by the tests only): build level 1
 // from given level-0 words, traverse keys, compute prefix sums.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #include "common.glsl"
 #include "hp.glsl"
 layout(std430, binding = BIND_AUX_OUT) restrict buffer TestOut { uvec2 test_out[]; };

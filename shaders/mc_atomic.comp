@@ -1,7 +1,7 @@
 // isoterra — comparison method: stream compaction by atomic-counter append.
 // Each cell reserves its triangles with one atomicAdd and writes unshared
 // vertices (3 per triangle, non-indexed); order is not deterministic.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #include "common.glsl"
 #include "mc_status.glsl"
 #include "vertex.glsl"

@@ -7,7 +7,7 @@
 // z+1, one or two words each: at most one word per cell for rows of 16 cells
 // or more.  Cells whose eight corners agree are skipped with a few bit
 // operations per piece.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #define PASS_READS_SIGNS 1
 #include "common.glsl"
 #include "hp.glsl"

@@ -12,8 +12,8 @@
 // a flipped sample has both ends on one side now, so the vertex pass (which
 // interpolates the densities of crossing edges) needs no change.  Mirrored
 // in app/extract/mc_ref.c (inside()).  Dispatch: (ceil(words of a slab /
-// 64), slabs) groups of 64.
-layout(local_size_x = 64) in;
+// WG_SIZE), slabs) groups of WG_SIZE.
+layout(local_size_x = WG_SIZE) in;
 #define PASS_READS_SIGNS 1 // common.glsl's Signs (BIND_SIGNS): here the raw bits
 #include "common.glsl"
 layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer Filtered { uint filtered[]; };
@@ -41,7 +41,7 @@ void main()
 	ivec3 dim = dens_dims();
 	int n = dim.x * dim.y; // samples of a slab
 	uint words = sign_slab_bits() / 32u;
-	uint wv = gl_WorkGroupID.x * 64u + gl_LocalInvocationID.x;
+	uint wv = gl_WorkGroupID.x * uint(WG_SIZE) + gl_LocalInvocationID.x;
 	if (wv >= words)
 		return;
 	int z = int(gl_WorkGroupID.y);

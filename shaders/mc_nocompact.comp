@@ -1,6 +1,6 @@
 // isoterra — comparison method: no compaction.  Every cell writes its 15
 // vertex slots (5 triangles); unused slots become degenerate triangles.
-layout(local_size_x = 64) in;
+layout(local_size_x = WG_SIZE) in;
 #include "common.glsl"
 #include "mc_status.glsl"
 #include "vertex.glsl"

@@ -9,7 +9,7 @@ uniform uint u_base_vertex; // added to its indices when drawn
 
 uvec3 groups_for(uint n)
 {
-	uint g = (n + 63u) / 64u;
+	uint g = (n + uint(WG_SIZE) - 1u) / uint(WG_SIZE);
 	if (g == 0u)
 		return uvec3(0u, 1u, 1u);
 	uint gx = min(g, u_max_groups);

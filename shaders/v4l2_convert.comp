@@ -4,23 +4,16 @@
 // bytes of the frame: word i goes to texel (i % OUT_W, i / OUT_W) of an
 // RGBA8 image that glReadPixels copies, byte for byte, into a pixel buffer.
 //
-// The host compiles one program per format (FMT = one of the F_* below), so
-// the per-byte format switch below is resolved at compile time.  The common
+// The host (hal/convert.c) compiles one program per format: it defines
+// CONV_WG_SIZE, the F_* format names (from its enum conv_fmt's table) and FMT,
+// one of them, so the per-byte format switch below is resolved at compile time.  The common
 // case of packed 4:2:2 with 4-byte aligned lines (a word = one macropixel:
 // two texel fetches) has its own path.
-layout(local_size_x = 64) in;
-precision highp image2D;
-
-#define F_YUYV 0u
-#define F_UYVY 1u
-#define F_NV12 2u
-#define F_NV21 3u
-#define F_YU12 4u
-#define F_RGB24 5u
-#define F_BGR24 6u
-#ifndef FMT
-#error "FMT (the output format) must be defined by the host"
+#if !defined(FMT) || !defined(CONV_WG_SIZE) || !defined(F_YUYV) || !defined(F_BGR24)
+#error "FMT, CONV_WG_SIZE and the F_* formats must be defined by the host (hal/convert.c)"
 #endif
+layout(local_size_x = CONV_WG_SIZE) in;
+precision highp image2D;
 
 layout(binding = TEX_FRAME) uniform highp sampler2D u_src; // the rendered frame (GL rows: bottom first)
 layout(rgba8, binding = IMG_CONVERT_OUT) writeonly uniform highp image2D u_out;

@@ -15,13 +15,14 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include "abi.h"
 
 /* Road, river and railway are surfaces: the ground is pulled to the curve's
  * height across its profile.  A tunnel is a tube through the rock with its
  * floor on the curve (the rock above stays), on an embankment in the open. */
 enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_TUNNEL, CURVE_KIND_COUNT };
-/* shaders/curves.glsl compares the kind with CURVE_KIND_TUNNEL 3.0 */
-_Static_assert(CURVE_TUNNEL == 3, "CURVE_KIND_TUNNEL in shaders/curves.glsl");
+/* shaders/curves.glsl compares the kind with abi.h's CURVE_KIND_TUNNEL */
+_Static_assert(CURVE_TUNNEL == CURVE_KIND_TUNNEL, "abi.h CURVE_KIND_TUNNEL is enum curve_kind's CURVE_TUNNEL");
 extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway", "tunnel" */
 
 /* What a file says of its coordinates (GeoJSON's "crs" member). */

@@ -445,7 +445,7 @@ int curves_gpu_test(struct edits *ed, const struct params *p, int mode, const fl
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_IN, G->b_in);
 	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G->b_out);
 	glUseProgram(G->p_test);
-	glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
+	glDispatchCompute((GLuint)(n + WG_SIZE - 1) / WG_SIZE, 1, 1);
 	glUseProgram(0);
 	if (gpu_check("curve test") < 0 || gpu_read_buffer(G->b_out, 0, out_bytes, out) < 0) {
 		snprintf(err, errlen, "curve test dispatch failed");

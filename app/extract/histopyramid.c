@@ -50,7 +50,7 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 
 void hp_dispatch_1d(uint64_t items, int max_groups)
 {
-	uint32_t groups = div_up(items, 64);
+	uint32_t groups = div_up(items, WG_SIZE);
 	if (!groups)
 		return;
 	uint32_t gx = groups < (uint32_t)max_groups ? groups : (uint32_t)max_groups;

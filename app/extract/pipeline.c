@@ -344,11 +344,11 @@ static int create_programs(struct pipeline *pl, const struct params *p, char *er
 }
 
 /* The sign buffer's words: a bit per density sample, every z slab padded
- * to a multiple of 64 bits (shaders/common.glsl, sign_slab_bits). */
+ * to a multiple of SIGN_SLAB_ALIGN bits (shaders/common.glsl, sign_slab_bits). */
 static uint32_t sign_words(const struct grid *g)
 {
 	int m2 = 1 + 2 * grid_margin(g);
-	uint64_t slab_bits = (uint64_t)div_up((uint64_t)(g->nx + m2) * (g->ny + m2), 64) * 64;
+	uint64_t slab_bits = (uint64_t)div_up((uint64_t)(g->nx + m2) * (g->ny + m2), SIGN_SLAB_ALIGN) * SIGN_SLAB_ALIGN;
 	return (uint32_t)(slab_bits / 32 * (uint64_t)(g->nz + m2));
 }
 
@@ -423,7 +423,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	uint64_t owners = (uint64_t)(g->nx + 1) * (g->ny + 1) * (g->nz + 1);
 	uint64_t dens = (uint64_t)grid_dens_count(g);
 	int m2 = 1 + 2 * grid_margin(g);
-	uint64_t slab_groups = div_up((uint64_t)(g->nx + m2) * (g->ny + m2), 64);
+	uint64_t slab_groups = div_up(div_up((uint64_t)(g->nx + m2) * (g->ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32), WG_SIZE);
 	if (dens * 4 > (uint64_t)pl->max_ssbo || owners > 0x3fffffffu || slab_groups > (uint64_t)pl->max_groups) {
 		snprintf(err, errlen, "grid %dx%dx%d needs a %llu MB density buffer, over the GL limit (%d MB)", g->nx, g->ny,
 			 g->nz, (unsigned long long)(dens * 4 >> 20), pl->max_ssbo >> 20);
@@ -532,11 +532,11 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 	glProgramUniform1ui(pl->p_density, gpu_uniform(pl->p_density, "u_sign_words"), pl->sign_words);
 	glProgramUniform1i(pl->p_density, gpu_uniform(pl->p_density, "u_z0"), z0);
 	/* one z slab per row of groups; an invocation per sign word, 32
-	 * samples, a slab's words padded to a multiple of two (common.glsl) */
+	 * samples, a slab padded to SIGN_SLAB_ALIGN bits (common.glsl) */
 	int m2 = 1 + 2 * grid_margin(&pl->g);
-	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64) * 2;
+	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32);
 	if (z1 > z0)
-		glDispatchCompute((GLuint)div_up(slab_words, 64), (GLuint)(z1 - z0), 1);
+		glDispatchCompute((GLuint)div_up(slab_words, WG_SIZE), (GLuint)(z1 - z0), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_DENSITY, &t);
 	return gpu_check("density pass");
@@ -609,8 +609,8 @@ static void debris_pass(struct pipeline *pl)
 	bind(BIND_SIGNS_OUT, pl->b_signs);
 	glUseProgram(pl->p_debris);
 	int m2 = 1 + 2 * grid_margin(&pl->g);
-	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), 64) * 2;
-	glDispatchCompute((GLuint)div_up(slab_words, 64), (GLuint)(pl->g.nz + m2), 1);
+	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32);
+	glDispatchCompute((GLuint)div_up(slab_words, WG_SIZE), (GLuint)(pl->g.nz + m2), 1);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

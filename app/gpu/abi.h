@@ -31,6 +31,12 @@
 #define BIND_AUX_IN BIND_HP      /* pass-specific input: the pre-pass's boxes, bake tiles, test input */
 #define BIND_AUX_OUT BIND_OUT    /* pass-specific output: the pre-pass's verdicts, the bake, the parts, tests */
 
+/* ---- compute work groups -------------------------------------------------- */
+#define WG_SIZE 64         /* invocations of every 1D compute pass's work group (local_size_x); the host
+			    * divides its dispatch sizes by it */
+#define SIGN_SLAB_ALIGN 64 /* bits: a z slab of the sign buffer is padded to a multiple of this (two
+			    * words; common.glsl sign_slab_bits, extract/pipeline.c sign_words) */
+
 /* ---- uniform buffers --------------------------------------------------- */
 #define UBIND_NOISE 0      /* noise rotations and seed keys (terrain/noise_gl.c) */
 #define UBIND_MC_TABLES 1  /* Marching Cubes tables, packed (extract/pipeline.c, common.glsl) */
@@ -48,6 +54,10 @@
 
 /* ---- image units ---------------------------------------------------------- */
 #define IMG_CONVERT_OUT 0  /* the V4L2 conversion's output image */
+
+/* ---- curves ------------------------------------------------------------- */
+#define CURVE_KIND_TUNNEL 3 /* the kind (a curve's params .z) that bores instead of shaping the surface
+			     * (edit/curves.h enum curve_kind, curves.glsl) */
 
 /* ---- shading ------------------------------------------------------------ */
 #define DETAIL_RANGE 25.0  /* world units: the detail normals fade out there (render.frag); farther meshes

@@ -3,6 +3,7 @@
  * See gl_limits.h. */
 #include "gl_limits.h"
 #include "abi.h"
+#include "convert.h" /* hal: the V4L2 conversion's defines */
 
 #include <GLES3/gl31.h>
 #include <errno.h>
@@ -20,42 +21,42 @@ static const struct gl_pass passes[] = {
 	/* the terrain field's programs (app/terrain/terrain.c): the density
 	 * pass, and the vertex pass with ambient occlusion (its rays sample
 	 * the field: + curves, noise) */
-	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n#define HAS_CONTROL_MAP 1\n", false },
+	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
 	/* the streaming world's coarse pre-pass (shaders/block_bound.glsl) */
 	{ "density.comp (FIELD_PASS_BOUND)", "density.comp", NULL, NULL,
-	  "#define FIELD_PASS_BOUND 1\n#define HAS_CONTROL_MAP 1\n", false },
-	{ "mc_debris.comp", "mc_debris.comp", NULL, NULL, NULL, false },
-	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false },
-	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false },
-	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false },
-	{ "mc_setup.comp", "mc_setup.comp", NULL, NULL, NULL, false },
-	{ "mc_vertices.comp", "mc_vertices.comp", NULL, NULL, NULL, false },
+	  "#define FIELD_PASS_BOUND 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
+	{ "mc_debris.comp", "mc_debris.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false, NULL },
+	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false, NULL },
+	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_setup.comp", "mc_setup.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_vertices.comp", "mc_vertices.comp", NULL, NULL, NULL, false, NULL },
 	{ "mc_vertices.comp (WITH_AO)", "density.comp", NULL, NULL,
-	  "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n#define HAS_CONTROL_MAP 1\n", false },
-	{ "mc_indices.comp", "mc_indices.comp", NULL, NULL, NULL, false },
-	{ "mc_atomic.comp", "mc_atomic.comp", NULL, NULL, NULL, false },
-	{ "mc_nocompact.comp", "mc_nocompact.comp", NULL, NULL, NULL, false },
-	{ "mc_finish.comp", "mc_finish.comp", NULL, NULL, NULL, false },
+	  "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
+	{ "mc_indices.comp", "mc_indices.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_atomic.comp", "mc_atomic.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_nocompact.comp", "mc_nocompact.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_finish.comp", "mc_finish.comp", NULL, NULL, NULL, false, NULL },
 	/* the curves' displacement map over a heightmap */
-	{ "curve_bake.comp (BAKE_HEIGHTMAP)", "curve_bake.comp", NULL, NULL, "#define BAKE_HEIGHTMAP 1\n", false },
+	{ "curve_bake.comp (BAKE_HEIGHTMAP)", "curve_bake.comp", NULL, NULL, "#define BAKE_HEIGHTMAP 1\n", false, NULL },
 	/* V4L2 output: the frame sampled, the device's layout stored */
-	{ "v4l2_convert.comp", "v4l2_convert.comp", NULL, NULL, "#define FMT 0u\n", false },
-	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", "#define DETAIL_NORMALS 1\n", false },
+	{ "v4l2_convert.comp", "v4l2_convert.comp", NULL, NULL, NULL, false, conv_shader_defines_yuyv },
+	{ "render.vert + render.frag", NULL, "render.vert", "render.frag", "#define DETAIL_NORMALS 1\n", false, NULL },
 	/* the volume's depth pre-pass on a software rasterizer (render.c) */
-	{ "render.vert + depth.frag", NULL, "render.vert", "depth.frag", NULL, false },
-	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false },
-	{ "sky.vert + sky.frag", NULL, "sky.vert", "sky.frag", NULL, false },
-	{ "osd.vert + osd.frag", NULL, "osd.vert", "osd.frag", NULL, false },
+	{ "render.vert + depth.frag", NULL, "render.vert", "depth.frag", NULL, false, NULL },
+	{ "water.vert + water.frag", NULL, "water.vert", "water.frag", NULL, false, NULL },
+	{ "sky.vert + sky.frag", NULL, "sky.vert", "sky.frag", NULL, false, NULL },
+	{ "osd.vert + osd.frag", NULL, "osd.vert", "osd.frag", NULL, false, NULL },
 	/* a mesh's draw command split into parts on a software rasterizer */
-	{ "draw_parts.comp", "draw_parts.comp", NULL, NULL, NULL, false },
+	{ "draw_parts.comp", "draw_parts.comp", NULL, NULL, NULL, false, NULL },
 	/* the governor's upscale, and edge smoothing (--antialias fxaa) */
-	{ "upscale.vert + upscale.frag", NULL, "upscale.vert", "upscale.frag", NULL, false },
-	{ "upscale.vert + fxaa.frag", NULL, "upscale.vert", "fxaa.frag", NULL, false },
+	{ "upscale.vert + upscale.frag", NULL, "upscale.vert", "upscale.frag", NULL, false, NULL },
+	{ "upscale.vert + fxaa.frag", NULL, "upscale.vert", "fxaa.frag", NULL, false, NULL },
 	/* the attract playlist's crossfade (renderer_fade_kept) */
-	{ "upscale.vert + fade.frag", NULL, "upscale.vert", "fade.frag", NULL, false },
+	{ "upscale.vert + fade.frag", NULL, "upscale.vert", "fade.frag", NULL, false, NULL },
 	/* the tests' own passes */
-	{ "hp_test.comp", "hp_test.comp", NULL, NULL, NULL, true },
-	{ "curve_test.comp", "curve_test.comp", NULL, NULL, NULL, true },
+	{ "hp_test.comp", "hp_test.comp", NULL, NULL, NULL, true, NULL },
+	{ "curve_test.comp", "curve_test.comp", NULL, NULL, NULL, true, NULL },
 };
 
 const struct gl_pass *gl_limits_passes(size_t *count)
@@ -94,9 +95,9 @@ static const struct limit_def defs[] = {
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0, 128), N_LOCAL, 0, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1, 128), N_LOCAL, 1, 0, NULL },
 	{ LIM(GL_MAX_COMPUTE_WORK_GROUP_SIZE, 2, 64), N_LOCAL, 2, 0, NULL },
-	/* the one 'shared' variable, 256 bytes: the world pre-pass's float
-	 * s_red[64] (tests/test_gl_limits.c checks there is no other) */
-	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, 64 * 4, "block_bound.glsl s_red (the pre-pass's reductions)" },
+	/* the one 'shared' variable, WG_SIZE floats: the world pre-pass's
+	 * s_red (tests/test_gl_limits.c checks there is no other) */
+	{ LIM(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, -1, 16384), N_CONST, 0, WG_SIZE * 4, "block_bound.glsl s_red (the pre-pass's reductions)" },
 	{ LIM(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_COMPUTE, 0, NULL },
 	{ LIM(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_VERTEX, 0, NULL },
 	{ LIM(GL_MAX_TEXTURE_IMAGE_UNITS, -1, 16), N_STAGE_SAMPLERS, GLS_FRAGMENT, 0, NULL },

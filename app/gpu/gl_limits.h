@@ -54,6 +54,9 @@ struct gl_pass {
 	const char *cs, *vs, *fs;    /* compute shader, or vertex + fragment shaders */
 	const char *defines;
 	bool tests_only;             /* run by the tests, not by the program */
+	/* instead of defines: the library that compiles the pass makes them
+	 * (hal/convert.c, the V4L2 conversion) */
+	void (*make_defines)(char *buf, size_t len);
 };
 const struct gl_pass *gl_limits_passes(size_t *count);
 

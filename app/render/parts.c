@@ -57,7 +57,7 @@ int parts_split(struct draw_parts *dp, GLuint src, GLintptr offset, bool indexed
 	glProgramUniform1ui(dp->prog, dp->l_parts, parts);
 	glProgramUniform1i(dp->prog, dp->l_indexed, indexed ? 1 : 0);
 	glUseProgram(dp->prog);
-	glDispatchCompute((parts + 63) / 64, 1, 1);
+	glDispatchCompute((parts + WG_SIZE - 1) / WG_SIZE, 1, 1);
 	glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
 	glUseProgram(0);
 	return gpu_check("draw in parts") < 0 ? -1 : 0;
