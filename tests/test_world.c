@@ -8,6 +8,7 @@
 #include "tcheck.h"
 #include "gpu_fixture.h"
 #include "terrain.h"
+#include "density_bound.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -162,11 +163,75 @@ static void check_empty_not_regenerated(const struct params *p)
 	edits_destroy(ed);
 }
 
-/* The coarse pre-pass is conservative: for blocks of several presets and
- * every level, a block it calls all air (all rock) has no density sample
- * inside (outside) the surface in the CPU reference (density_ref, the
- * block's corners and one more cell around, with the octaves the level is
- * made with), so it never skips a block with a surface; and it does skip
+/* The pre-pass's verdicts for one field state against the CPU reference
+ * (density_ref, the block's corners and one more cell around, with the
+ * octaves the level is made with): a block called all air (all rock) must
+ * have no density sample inside (outside) the surface.  Blocks of levels 0
+ * to lods-1, two by two columns of ys blocks around the ground (or the
+ * planet's top).  Counts the blocks empty in the reference and those the
+ * pre-pass skipped; returns the number of wrong verdicts, or -1 when no
+ * world could be made. */
+static int prepass_wrong(struct params *p, const char *what, int lods, int ys, int *empty_out, int *skipped_out)
+{
+	char err[512] = "";
+	p->block_cells = 16; /* the CPU reference reads every sample */
+	p->block_pool = 16;
+	struct edits *ed = edits_create();
+	struct world *w = world_create(p, ed, err, sizeof(err));
+	CHECK(w != NULL, "%s: world_create: %s", what, err);
+	if (!w) {
+		edits_destroy(ed);
+		return -1;
+	}
+	struct noise_set ns;
+	noise_set_init(&ns, p->seed);
+	enum { NB = 3 * 2 * 2 * 24 };
+	int keys[NB][4], verdict[NB], n = 0;
+	for (int lod = 0; lod < lods && lod < 3; lod++)
+		for (int z = 0; z < 2; z++)
+			for (int x = 0; x < 2; x++)
+				for (int y = -ys / 2; y < ys / 2 && y < 12; y++) {
+					keys[n][0] = x * 3 - 1;
+					keys[n][1] = p->shape == SHAPE_PLANET ? y - 4 * (lod + 1) : y;
+					keys[n][2] = z * 2;
+					keys[n][3] = lod;
+					n++;
+				}
+	CHECK(world_prepass(w, p, (const int(*)[4])keys, n, verdict) == 0, "%s: pre-pass", what);
+	int m = p->block_cells + 3, skipped = 0, empty = 0, wrong = 0;
+	float *d = malloc(sizeof(float) * (size_t)m * m * m);
+	for (int i = 0; i < n && d; i++) {
+		int lod = keys[i][3];
+		struct params q = *p;
+		q.octaves = world_block_octaves(w, p, lod);
+		q.closed = false; /* as the world makes its blocks: open, neighbours continue them */
+		float s = p->block_size * (float)(1 << lod), cell = s / (float)p->block_cells;
+		float bias = lod > 0 ? p->lod_bias * cell : 0.0f;
+		float origin[3] = { keys[i][0] * s, keys[i][1] * s, keys[i][2] * s };
+		density_ref_volume(&q, &ns, NULL, origin, cell, p->block_cells, p->block_cells, p->block_cells, d);
+		int inside = 0;
+		for (int k = 0; k < m * m * m; k++)
+			inside += d[k] - bias > q.iso;
+		bool air = inside == 0, rock = inside == m * m * m;
+		empty += air || rock;
+		skipped += verdict[i] != 0;
+		if ((verdict[i] == 1 && !air) || (verdict[i] == 2 && !rock) || verdict[i] < 0 || verdict[i] > 2) {
+			wrong++;
+			CHECK(0, "%s: block %d,%d,%d lod %d called %s by the pre-pass, has %d of %d samples inside", what,
+			      keys[i][0], keys[i][1], keys[i][2], lod, verdict[i] == 1 ? "all air" : "all rock", inside,
+			      m * m * m);
+		}
+	}
+	free(d);
+	world_destroy(w);
+	edits_destroy(ed);
+	*empty_out = empty;
+	*skipped_out = skipped;
+	return wrong;
+}
+
+/* The coarse pre-pass is conservative for blocks of several presets and
+ * every level, so it never skips a block with a surface; and it does skip
  * most of the default field's empty blocks. */
 static void check_prepass(void)
 {
@@ -177,63 +242,75 @@ static void check_prepass(void)
 		small_world(&p);
 		char err[512] = "";
 		CHECK(params_apply_preset(&p, presets_tried[pi], err, sizeof(err)) == 0, "preset: %s", err);
-		p.block_cells = 16; /* the CPU reference reads every sample */
-		p.block_pool = 16;
-		struct edits *ed = edits_create();
-		struct world *w = world_create(&p, ed, err, sizeof(err));
-		CHECK(w != NULL, "world_create: %s", err);
-		if (!w) {
-			edits_destroy(ed);
-			continue;
-		}
-		struct noise_set ns;
-		noise_set_init(&ns, p.seed);
-		enum { NB = 3 * 2 * 2 * 24 };
-		int keys[NB][4], verdict[NB], n = 0;
-		for (int lod = 0; lod < 3; lod++)
-			for (int z = 0; z < 2; z++)
-				for (int x = 0; x < 2; x++)
-					for (int y = -12; y < 12; y++) {
-						int l = lod, xx = x * 3 - 1, zz = z * 2;
-						keys[n][0] = xx;
-						keys[n][1] = p.shape == SHAPE_PLANET ? y - 4 * (l + 1) : y;
-						keys[n][2] = zz;
-						keys[n][3] = l;
-						n++;
-					}
-		CHECK(world_prepass(w, &p, (const int(*)[4])keys, n, verdict) == 0, "pre-pass");
-		int m = p.block_cells + 3, skipped = 0, empty = 0, wrong = 0;
-		float *d = malloc(sizeof(float) * (size_t)m * m * m);
-		for (int i = 0; i < n && d; i++) {
-			int lod = keys[i][3];
-			struct params q = p;
-			q.octaves = world_block_octaves(w, &p, lod);
-			float s = p.block_size * (float)(1 << lod), cell = s / (float)p.block_cells;
-			float bias = lod > 0 ? p.lod_bias * cell : 0.0f;
-			float origin[3] = { keys[i][0] * s, keys[i][1] * s, keys[i][2] * s };
-			density_ref_volume(&q, &ns, NULL, origin, cell, p.block_cells, p.block_cells, p.block_cells, d);
-			int inside = 0;
-			for (int k = 0; k < m * m * m; k++)
-				inside += d[k] - bias > q.iso;
-			bool air = inside == 0, rock = inside == m * m * m;
-			empty += air || rock;
-			skipped += verdict[i] != 0;
-			if ((verdict[i] == 1 && !air) || (verdict[i] == 2 && !rock) || verdict[i] < 0 || verdict[i] > 2) {
-				wrong++;
-				CHECK(0, "%s: block %d,%d,%d lod %d called %s by the pre-pass, has %d of %d samples inside",
-				      presets_tried[pi], keys[i][0], keys[i][1], keys[i][2], lod,
-				      verdict[i] == 1 ? "all air" : "all rock", inside, m * m * m);
-			}
-		}
-		free(d);
-		printf("pre-pass %-10s: %d blocks, %d empty in the CPU reference, %d skipped by the pre-pass, %d wrongly\n",
-		       presets_tried[pi], n, empty, skipped, wrong);
+		int empty = 0, skipped = 0, wrong = prepass_wrong(&p, presets_tried[pi], 3, 24, &empty, &skipped);
+		printf("pre-pass %-10s: %d empty in the CPU reference, %d skipped by the pre-pass, %d wrongly\n",
+		       presets_tried[pi], empty, skipped, wrong);
 		if (!strcmp(presets_tried[pi], "default"))
 			CHECK(skipped * 10 >= empty * 6, "the pre-pass skips only %d of the default field's %d empty blocks",
 			      skipped, empty);
-		world_destroy(w);
-		edits_destroy(ed);
 	}
+}
+
+/* The bound term by term, whatever the preset: from the parameter table,
+ * every P_TERM number set strong on the default field (three times its
+ * default, or 16 where the default is 0, within its range) and every choice
+ * of every enum and bool the shaders see (shape, fractal, terrace, shelf,
+ * flat_spot, ...), with the switch's own numbers (terrace_*, flat_*) ten
+ * times their defaults (32 where 0: the flat spot's pad above the hills).
+ * Each state the bound covers (density_bound_supported; the world
+ * generates every block of the others) must give no wrong verdict: a term
+ * added to density.glsl and density_ref.c but left out of
+ * density_bound.glsl makes blocks with a surface look empty here (tried:
+ * the bound without its marble, terrace, shelf or flat-spot part fails). */
+static void check_prepass_terms(void)
+{
+	int states = 0, covered = 0;
+	for (size_t i = 0; i < param_count; i++) {
+		const struct param_info *pi = &param_table[i];
+		if (!(pi->flags & P_SHADER))
+			continue;
+		int nv = 0;
+		double v[16];
+		if (pi->flags & P_TERM) {
+			double x = pi->def != 0.0 ? 3.0 * pi->def : 16.0;
+			v[nv++] = x < pi->lo ? pi->lo : x > pi->hi ? pi->hi : x;
+		} else if (pi->type == PT_BOOL) {
+			v[nv++] = 0.0;
+			v[nv++] = 1.0;
+		} else if (pi->type == PT_ENUM) {
+			for (const char *c = pi->choices; c && *c && nv < 16; c = strchr(c, '|') ? strchr(c, '|') + 1 : "")
+				v[nv] = nv, nv++;
+		}
+		for (int k = 0; k < nv; k++) {
+			struct params p;
+			small_world(&p);
+			params_set_number(&p, pi, v[k]);
+			/* a switch's own numbers (terrace_step, shelf_strength, ...)
+			 * strong too, as the term's are */
+			size_t len = strcspn(pi->name, "_"); /* flat_spot: flat_x, flat_y, ... */
+			for (size_t j = 0; v[k] != 0.0 && !(pi->flags & P_TERM) && j < param_count; j++) {
+				const struct param_info *q = &param_table[j];
+				if (q->type == PT_FLOAT && (q->flags & P_SHADER) && !strncmp(q->name, pi->name, len) &&
+				    q->name[len] == '_') {
+					double x = q->def != 0.0 ? 10.0 * q->def : 32.0;
+					params_set_number(&p, q, x < q->lo ? q->lo : x > q->hi ? q->hi : x);
+				}
+			}
+			states++;
+			if (!density_bound_supported(&p, NULL) || params_get_number(&p, pi) == pi->def)
+				continue; /* the default field itself is the first preset above */
+			char what[96], val[32];
+			params_format(&p, pi, val, sizeof(val));
+			snprintf(what, sizeof(what), "%s = %s", pi->name, val);
+			int empty = 0, skipped = 0, wrong = prepass_wrong(&p, what, 2, 12, &empty, &skipped);
+			covered++;
+			printf("pre-pass %-26s: %d empty in the CPU reference, %d skipped, %d wrongly\n", what, empty,
+			       skipped, wrong);
+		}
+	}
+	printf("pre-pass: %d states of the table's terms and choices, %d covered by the bound and checked\n", states,
+	       covered);
+	CHECK(covered >= 8, "only %d term states checked", covered);
 }
 
 /* A live world (budgeted: each block in four stages over frames, the
@@ -457,6 +534,7 @@ int main(void)
 	}
 	edits_destroy(ed);
 	check_prepass();
+	check_prepass_terms();
 	check_staged_matches_offline(&p);
 	check_no_holes(&p);
 	check_empty_not_regenerated(&p);
