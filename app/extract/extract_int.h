@@ -87,6 +87,39 @@ struct pipeline {
 	double pass_ms[PASS_COUNT];
 };
 
+/* ---- the programs (programs.c) ----------------------------------------------- */
+
+/* One of the engine's own passes (not specialized); counts the compile. */
+GLuint extract_program(struct pipeline *pl, const char *file, char *err, size_t errlen);
+/* Program `file` with `defines`, for a field program (field) also
+ * specialized on the parameters and the field's own defines; compiled on
+ * first use, the PROGRAM_VARIANTS most recently used kept.  0 with err. */
+GLuint extract_variant_program(struct pipeline *pl, const char *file, const char *defines, const struct params *p,
+			       bool field, char *err, size_t errlen);
+/* The density pass (the field's program) and the vertex pass (the field's
+ * with ambient occlusion, else mc_vertices.comp) for these parameters. */
+GLuint extract_density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+/* Every program of a run: all issued first (parallel compilation), then
+ * taken in order into pl->p_*.  0, or -1 with err. */
+int extract_create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+
+/* ---- the buffers (buffers.c) ------------------------------------------------ */
+
+/* Output capacities: automatic = 16 triangles per cell of the largest
+ * face, at least 64 Ki, within what the field can ask for and the GL
+ * buffer limit (pl->tri_cap, pl->vert_cap). */
+void extract_plan_capacities(struct pipeline *pl, const struct params *p);
+/* The sign buffer's capacity in words for grid g. */
+uint32_t extract_sign_words(const struct grid *g);
+/* The densities, sign bits and HistoPyramid (released between runs by
+ * pipeline_release_field); then also the outputs, status and tables.
+ * 0, or -1 with err. */
+int extract_field_buffers(struct pipeline *pl, char *err, size_t errlen);
+int extract_create_buffers(struct pipeline *pl, char *err, size_t errlen);
+/* The vertex buffer grown to hold verts (with its canary).  0, or -1 with err. */
+int extract_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen);
+
 /* A shader storage buffer of size bytes (at least 4), data may be NULL. */
 GLuint extract_buffer(GLsizeiptr size, const void *data, GLenum usage);
 

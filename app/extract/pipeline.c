@@ -15,7 +15,8 @@
  *   -> glDrawElementsIndirect by the renderer.
  * Comparison methods: mc_atomic.comp (atomic append, unshared vertices)
  * and mc_nocompact.comp (15 vertices per cell), both closed by
- * mc_finish.comp and drawn with glDrawArraysIndirect. */
+ * mc_finish.comp and drawn with glDrawArraysIndirect.  The programs:
+ * programs.c. */
 #include "extract_int.h"
 #include "util.h"
 #include "gpu.h"
@@ -108,294 +109,10 @@ static void set_caps(GLuint prog, uint32_t tri_cap, uint32_t vert_cap)
 	glProgramUniform1ui(prog, gpu_uniform(prog, "u_vert_cap"), vert_cap);
 }
 
-/* The Marching Cubes tables as a uniform block (common.glsl's McTables,
- * std140): per case two words of the pair of uvec4 entries, the case's 15
- * edge ids at 4 bits (15 = none) and its triangle count in the top 4 bits;
- * then the edge owners and corners as ivec4.  A uniform block, not a
- * storage block: 2368 bytes that every pass reads and none writes, and a
- * storage block fewer for the boards' 8 (docs/PLATFORMS.md). */
-static void upload_tables(struct pipeline *pl)
-{
-	struct mc_tables t;
-	mc_tables_build(&t);
-	uint32_t buf[256 * MC_TABLE_CASE_WORDS + 12 * 4 + 8 * 4];
-	uint32_t *w = buf;
-	for (int i = 0; i < 256; i++) {
-		uint64_t v = (uint64_t)t.tri_count[i] << 60;
-		for (int j = 0; j < MC_MAX_TRIS * 3; j++)
-			v |= (uint64_t)(t.tri[i][j] < 0 ? 15 : t.tri[i][j]) << (4 * j);
-		*w++ = (uint32_t)v;
-		*w++ = (uint32_t)(v >> 32);
-	}
-	for (int e = 0; e < 12; e++)
-		for (int j = 0; j < 4; j++)
-			*w++ = (uint32_t)(int32_t)t.edge_owner[e][j];
-	for (int c = 0; c < 8; c++) {
-		for (int j = 0; j < 3; j++)
-			*w++ = (uint32_t)(int32_t)t.corner[c][j];
-		*w++ = 0;
-	}
-	glGenBuffers(1, &pl->b_tables);
-	glBindBuffer(GL_UNIFORM_BUFFER, pl->b_tables);
-	glBufferData(GL_UNIFORM_BUFFER, sizeof(buf), buf, GL_STATIC_DRAW);
-	glBindBuffer(GL_UNIFORM_BUFFER, 0);
-}
-
-/* One of the engine's own passes (not specialized). */
-static GLuint program(struct pipeline *pl, const char *file, char *err, size_t errlen)
-{
-	GLuint prog = gpu_compute_program(file, NULL, err, errlen);
-	pl->compiles += prog != 0;
-	return prog;
-}
-
-static void write_guard(GLintptr at)
-{
-	uint32_t g[GUARD_BYTES / 4];
-	for (size_t i = 0; i < GUARD_BYTES / 4; i++)
-		g[i] = GUARD_WORD;
-	glBufferSubData(GL_SHADER_STORAGE_BUFFER, at, GUARD_BYTES, g);
-}
-
-/* The cache key of program `file` with `defines`: for a field program
- * also the parameters' specialization (params_glsl_specialization: the
- * enum terms' values, the TERM_<NAME> switches) and the field's own
- * defines.  0, or -1 with err. */
-static int variant_key(struct pipeline *pl, const char *file, const char *defines, const struct params *p, bool field,
-		       char *key, size_t len, char *err, size_t errlen)
-{
-	int n = snprintf(key, len, "// %s\n%s", file, defines);
-	size_t used = n < 0 ? len : (size_t)n;
-	if (field && used < len) {
-		n = params_glsl_specialization(p, key + used, len - used);
-		used = n < 0 ? len : used + (size_t)n;
-	}
-	if (field && pl->field->defines && used < len) {
-		err[0] = 0;
-		n = pl->field->defines(pl->field->ctx, p, key + used, len - used, err, errlen);
-		if (n < 0 && err[0])
-			return -1;
-		used = n < 0 ? len : used + (size_t)n;
-	}
-	if (used >= len) {
-		snprintf(err, errlen, "shader specialization key of %s too long", file);
-		return -1;
-	}
-	return 0;
-}
-
-/* Program `file` with `defines` (field: specialized as variant_key says);
- * compiled on first use, the PROGRAM_VARIANTS most recently used kept
- * (least recently used evicted), so a knob that switches a term on or off
- * compiles once and switching back finds the program again. */
-static GLuint variant_program(struct pipeline *pl, const char *file, const char *defines, const struct params *p,
-			      bool field, char *err, size_t errlen)
-{
-	char key[VARIANT_KEY_MAX];
-	if (variant_key(pl, file, defines, p, field, key, sizeof(key), err, errlen) < 0)
-		return 0;
-	pl->variant_clock++;
-	struct program_variant *victim = NULL;
-	for (int i = 0; i < PROGRAM_VARIANTS; i++) {
-		struct program_variant *v = &pl->variants[i];
-		if (v->prog && !strcmp(v->key, key)) {
-			v->used = pl->variant_clock;
-			return v->prog;
-		}
-		if (!victim || (victim->prog && (!v->prog || v->used < victim->used)))
-			victim = v;
-	}
-	double t0 = clock_ms();
-	GLuint prog = gpu_compute_program(file, key, err, errlen);
-	if (!prog)
-		return 0;
-	pl->compiles++;
-	log_debug("pipeline: a new variant of %s, linked in %.1f ms (the driver may compile more at its first "
-		  "dispatch)%s",
-		  file, clock_ms() - t0, victim->prog ? "; the least recently used one evicted" : "");
-	if (victim->prog)
-		glDeleteProgram(victim->prog);
-	snprintf(victim->key, sizeof(victim->key), "%s", key);
-	victim->prog = prog;
-	victim->used = pl->variant_clock;
-	return prog;
-}
-
-/* The density pass: the field's program. */
-static GLuint density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
-{
-	return variant_program(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, true, err, errlen);
-}
-
-/* The vertex pass: with ambient occlusion its rays read the field, so it is
- * the field's program; without, the engine's own (not specialized: it reads
- * no parameter that selects code). */
-static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field);
-static GLuint vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
-{
-	const char *file;
-	bool field;
-	const char *defines = vertex_defines(pl, p, &file, &field);
-	return variant_program(pl, file, defines, p, field, err, errlen);
-}
-
 /* The field's resources and uniforms for prog.  0, or -1 with err. */
 static int bind_field(struct pipeline *pl, GLuint prog, const struct params *p, char *err, size_t errlen)
 {
 	return pl->field->bind(pl->field->ctx, prog, p, err, errlen) == 0 ? 0 : -1;
-}
-
-static int ensure_vertex_room(struct pipeline *pl, uint64_t verts, char *err, size_t errlen)
-{
-	if (verts <= pl->verts_alloc)
-		return 0;
-	uint64_t bytes = verts * VERTEX_BYTES;
-	if (bytes > (uint64_t)pl->max_ssbo || bytes > 0x7fffffffu) {
-		snprintf(err, errlen, "vertex buffer of %llu MB exceeds the GL limit (%d MB); lower --grid",
-			 (unsigned long long)(bytes >> 20), pl->max_ssbo >> 20);
-		return -1;
-	}
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_verts);
-	glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(bytes + GUARD_BYTES), NULL, GL_DYNAMIC_DRAW);
-	write_guard((GLintptr)bytes);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	if (glGetError() != GL_NO_ERROR) {
-		snprintf(err, errlen, "cannot allocate %llu MB of vertex buffer", (unsigned long long)(bytes >> 20));
-		return -1;
-	}
-	pl->verts_alloc = verts;
-	return 0;
-}
-
-/* Output capacities: automatic = 16 triangles per cell of the largest
- * face, at least 64 Ki, never more than the field could ask for (5 per
- * cell, 3 vertices per owner cell) nor than the GL buffer limit. */
-static void plan_capacities(struct pipeline *pl, const struct params *p)
-{
-	const struct grid *g = &pl->g;
-	uint64_t ncells = (uint64_t)g->nx * g->ny * g->nz;
-	uint64_t fx = (uint64_t)(g->ny + 1) * (g->nz + 1), fy = (uint64_t)(g->nx + 1) * (g->nz + 1),
-		 fz = (uint64_t)(g->nx + 1) * (g->ny + 1);
-	uint64_t face = fx > fy ? (fx > fz ? fx : fz) : (fy > fz ? fy : fz);
-	uint64_t tcap = p->max_triangles ? (uint64_t)p->max_triangles : 16 * face;
-	if (!p->max_triangles && tcap < 65536)
-		tcap = 65536;
-	if (tcap > 5 * ncells)
-		tcap = 5 * ncells;
-	uint64_t vcap = p->max_vertices ? (uint64_t)p->max_vertices : tcap;
-	if (vcap > 3 * (uint64_t)pl->owners)
-		vcap = 3 * (uint64_t)pl->owners;
-	if (tcap * 12 > (uint64_t)pl->max_ssbo)
-		tcap = (uint64_t)pl->max_ssbo / 12;
-	if (vcap * VERTEX_BYTES > (uint64_t)pl->max_ssbo)
-		vcap = (uint64_t)pl->max_ssbo / VERTEX_BYTES;
-	pl->tri_cap = (uint32_t)(tcap ? tcap : 1);
-	pl->vert_cap = (uint32_t)(vcap ? vcap : 1);
-}
-
-/* Issues a variant's compile and link ahead (gpu_prefetch_compute). */
-static void prefetch_variant(struct pipeline *pl, const char *file, const char *defines, const struct params *p,
-			     bool field)
-{
-	char key[VARIANT_KEY_MAX], err[256];
-	if (variant_key(pl, file, defines, p, field, key, sizeof(key), err, sizeof(err)) == 0)
-		gpu_prefetch_compute(file, key);
-}
-
-/* The vertex pass's variant (vertex_program). */
-static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field)
-{
-	*field = p->ao_rays > 0;
-	*file = *field ? pl->field->program : "mc_vertices.comp";
-	if (!*field)
-		return "";
-	/* AO: a grid with an extra margin is a block of a larger world, whose
-	 * long rays evaluate the field outside it (shaders/ao.glsl) */
-	return pl->g.margin_extra > 0 ? "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n"
-				      : "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n";
-}
-
-/* Every program of a run, issued together first: a driver with parallel
- * compilation builds them side by side (the start's largest part on a GPU
- * with empty caches), then each is taken in order. */
-static int create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
-{
-	static const char *const own[] = { "mc_debris.comp", "mc_classify.comp", "hp_reduce.comp",
-					   "hp_downsweep.comp", "mc_setup.comp", "mc_indices.comp" };
-	const char *vfile;
-	bool vfield;
-	const char *vdefs = vertex_defines(pl, p, &vfile, &vfield);
-	prefetch_variant(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, true);
-	prefetch_variant(pl, vfile, vdefs, p, vfield);
-	if (pl->g.margin_extra > 0) /* a world's block: the coarse pre-pass (pipeline_bound) */
-		prefetch_variant(pl, pl->field->program, "#define FIELD_PASS_BOUND 1\n", p, true);
-	for (size_t i = 0; i < ARRAY_SIZE(own); i++)
-		gpu_prefetch_compute(own[i], NULL);
-	if (!(pl->p_density = density_program(pl, p, err, errlen)) ||
-	    !(pl->p_debris = program(pl, "mc_debris.comp", err, errlen)) ||
-	    !(pl->p_classify = program(pl, "mc_classify.comp", err, errlen)) ||
-	    !(pl->p_reduce = program(pl, "hp_reduce.comp", err, errlen)) ||
-	    !(pl->p_downsweep = program(pl, "hp_downsweep.comp", err, errlen)) ||
-	    !(pl->p_setup = program(pl, "mc_setup.comp", err, errlen)) ||
-	    !(pl->p_vertices = vertex_program(pl, p, err, errlen)) ||
-	    !(pl->p_indices = program(pl, "mc_indices.comp", err, errlen)))
-		return -1;
-	return 0;
-}
-
-/* The sign buffer's words: a bit per density sample, every z slab padded
- * to a multiple of SIGN_SLAB_ALIGN bits (shaders/common.glsl, sign_slab_bits). */
-static uint32_t sign_words(const struct grid *g)
-{
-	int m2 = 1 + 2 * grid_margin(g);
-	uint64_t slab_bits = (uint64_t)div_up((uint64_t)(g->nx + m2) * (g->ny + m2), SIGN_SLAB_ALIGN) * SIGN_SLAB_ALIGN;
-	return (uint32_t)(slab_bits / 32 * (uint64_t)(g->nz + m2));
-}
-
-/* What a run needs and its outputs do not: the densities, the sign bits
- * (raw and filtered) and the HistoPyramid.  0, or -1 with err. */
-static int create_field_buffers(struct pipeline *pl, char *err, size_t errlen)
-{
-	pl->b_dens = extract_buffer((GLsizeiptr)grid_dens_count(&pl->g) * 4, NULL, GL_DYNAMIC_COPY);
-	pl->b_signs = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
-	pl->b_signs_raw = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
-	/* level 0, the pyramid and the prefix sums (extract_int.h, hp_levels) */
-	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 8, NULL, GL_DYNAMIC_COPY);
-	if (gpu_check("the field's buffers") < 0) {
-		snprintf(err, errlen, "cannot allocate the pipeline's field buffers (grid %dx%dx%d)", pl->g.nx, pl->g.ny,
-			 pl->g.nz);
-		return -1;
-	}
-	return 0;
-}
-
-void pipeline_release_field(struct pipeline *pl)
-{
-	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_hp };
-	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++) {
-		glDeleteBuffers(1, bufs[i]); /* 0 is ignored */
-		*bufs[i] = 0;
-	}
-}
-
-static int create_buffers(struct pipeline *pl, char *err, size_t errlen)
-{
-	if (create_field_buffers(pl, err, errlen) < 0)
-		return -1;
-	pl->b_idx = extract_buffer((GLsizeiptr)pl->tri_cap * 12 + GUARD_BYTES, NULL, GL_DYNAMIC_DRAW);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_idx);
-	write_guard((GLintptr)pl->tri_cap * 12);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	uint32_t zero[ST_WORDS] = { 0 };
-	pl->b_status = extract_buffer(sizeof(zero), zero, GL_DYNAMIC_DRAW);
-	glGenBuffers(1, &pl->b_verts);
-	upload_tables(pl);
-	if (gpu_check("pipeline buffers") < 0 || ensure_vertex_room(pl, pl->vert_cap, err, errlen) < 0) {
-		if (!err[0])
-			snprintf(err, errlen, "cannot allocate the pipeline's GPU buffers (grid %d)", pl->g.nx);
-		return -1;
-	}
-	return 0;
 }
 
 struct pipeline *pipeline_create(const struct grid *g, const struct params *p, const struct field *f, char *err,
@@ -431,7 +148,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 		return NULL;
 	}
 	pl->owners = (uint32_t)owners;
-	pl->sign_words = sign_words(g);
+	pl->sign_words = extract_sign_words(g);
 	pl->words = div_up(owners, 4);
 	hp_plan(&pl->hp, pl->words);
 	if ((uint64_t)pl->hp.nodes * 8 > (uint64_t)pl->max_ssbo) {
@@ -440,8 +157,8 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 		free(pl);
 		return NULL;
 	}
-	plan_capacities(pl, p);
-	if (create_programs(pl, p, err, errlen) < 0 || create_buffers(pl, err, errlen) < 0) {
+	extract_plan_capacities(pl, p);
+	if (extract_create_programs(pl, p, err, errlen) < 0 || extract_create_buffers(pl, err, errlen) < 0) {
 		pipeline_destroy(pl);
 		return NULL;
 	}
@@ -516,9 +233,9 @@ static GLuint bind_status(const struct pipeline *pl, GLintptr *off)
 static int density_slabs(struct pipeline *pl, const struct params *p, int z0, int z1, char *err, size_t errlen)
 {
 	err[0] = 0;
-	if (!pl->b_dens && create_field_buffers(pl, err, errlen) < 0) /* released after the last run */
+	if (!pl->b_dens && extract_field_buffers(pl, err, errlen) < 0) /* released after the last run */
 		return -1;
-	pl->p_density = density_program(pl, p, err, errlen);
+	pl->p_density = extract_density_program(pl, p, err, errlen);
 	if (!pl->p_density)
 		return -1;
 	double t = clock_ms();
@@ -575,7 +292,7 @@ static GLuint setup_pass(struct pipeline *pl, const struct params *p, GLintptr *
 static int output_passes(struct pipeline *pl, const struct params *p, GLuint status, GLintptr status_off, double *t,
 			 char *err, size_t errlen)
 {
-	pl->p_vertices = vertex_program(pl, p, err, errlen);
+	pl->p_vertices = extract_vertex_program(pl, p, err, errlen);
 	if (!pl->p_vertices)
 		return -1;
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
@@ -693,7 +410,7 @@ int pipeline_bound(struct pipeline *pl, const struct params *p, GLuint in, GLuin
 	err[0] = 0;
 	if (!count)
 		return 0;
-	GLuint prog = variant_program(pl, pl->field->program, "#define FIELD_PASS_BOUND 1\n", p, true, err, errlen);
+	GLuint prog = extract_variant_program(pl, pl->field->program, "#define FIELD_PASS_BOUND 1\n", p, true, err, errlen);
 	if (!prog)
 		return -1;
 	set_common(pl, prog, p);
@@ -720,9 +437,9 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 {
 	uint64_t ncells = (uint64_t)pl->g.nx * pl->g.ny * pl->g.nz;
 	GLuint *prog = nocompact ? &pl->p_nocompact : &pl->p_atomic;
-	if (!*prog && !(*prog = program(pl, nocompact ? "mc_nocompact.comp" : "mc_atomic.comp", err, errlen)))
+	if (!*prog && !(*prog = extract_program(pl, nocompact ? "mc_nocompact.comp" : "mc_atomic.comp", err, errlen)))
 		return -1;
-	if (!pl->p_finish && !(pl->p_finish = program(pl, "mc_finish.comp", err, errlen)))
+	if (!pl->p_finish && !(pl->p_finish = extract_program(pl, "mc_finish.comp", err, errlen)))
 		return -1;
 	if (p->ao_rays > 0 && !pl->said_no_ao) {
 		log_warn("compaction %s computes no ambient occlusion (it has no vertex pass; only hp does): "
@@ -730,7 +447,7 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 		pl->said_no_ao = true;
 	}
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
-	if (ensure_vertex_room(pl, need, err, errlen) < 0)
+	if (extract_vertex_room(pl, need, err, errlen) < 0)
 		return -1;
 	bind(BIND_DENSITY, pl->b_dens);
 	bind(BIND_VERTICES, pl->b_verts);
