@@ -263,7 +263,7 @@ if [ "${ISOTERRA_SKIP_CHROOT_SUITES:-0}" != 1 ]; then
 		ISOTERRA_DEB_NOCHECK=${ISOTERRA_DEB_NOCHECK:-1}
 		export ISOTERRA_DEB_NOCHECK
 		run_chroot_suite "Debian 13 (chroot): build -Werror, tests" debian13 || status=1
-		run_chroot_suite "arm64: cross build, qemu-user smoke run" arm64 || status=1
+		run_chroot_suite "arm64: the packages cross-built, qemu-user smoke run" arm64 || status=1
 		run_chroot_suite "Debian package: build, lintian, install" debpkg || status=1
 	fi
 fi
