@@ -228,24 +228,33 @@ static int make_context(struct platform *p, bool egl15, bool khr_cc, bool debug,
 	return 0;
 }
 
-static int check_gl_version(struct platform *p, char *err, size_t errlen)
+const char *platform_check_gles31(char *err, size_t errlen)
 {
 	const char *ver = (const char *)glGetString(GL_VERSION);
-	const char *ren = (const char *)glGetString(GL_RENDERER);
 	if (!ver) {
-		snprintf(err, errlen, "glGetString(GL_VERSION) failed (GL error 0x%04x)", glGetError());
-		return -1;
+		snprintf(err, errlen, "no current GL context: glGetString(GL_VERSION) failed (GL error 0x%04x)",
+			 glGetError());
+		return NULL;
 	}
 	int major = 0, minor = 0;
 	/* "OpenGL ES 3.2 Mesa 22.3.6"; ES 1.x says "OpenGL ES-CM 1.1". */
 	if (sscanf(ver, "OpenGL ES %d.%d", &major, &minor) != 2) {
 		snprintf(err, errlen, "context is not OpenGL ES 3.1 (GL_VERSION is '%s')", ver);
-		return -1;
+		return NULL;
 	}
 	if (major < 3 || (major == 3 && minor < 1)) {
-		snprintf(err, errlen, "context does not support OpenGL ES 3.1 (got %s)", ver);
-		return -1;
+		snprintf(err, errlen, "OpenGL ES 3.1 with compute shaders is required, the context gives '%s'", ver);
+		return NULL;
 	}
+	return ver;
+}
+
+static int check_gl_version(struct platform *p, char *err, size_t errlen)
+{
+	const char *ver = platform_check_gles31(err, errlen);
+	const char *ren = (const char *)glGetString(GL_RENDERER);
+	if (!ver)
+		return -1;
 	snprintf(p->device_desc, sizeof(p->device_desc), "%s", ren ? ren : "unknown renderer");
 	log_debug("GL_VERSION '%s', GL_RENDERER '%s'", ver, p->device_desc);
 	return 0;

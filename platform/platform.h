@@ -87,6 +87,9 @@ const char *platform_backend_names(void);
  * why none opens) and its extensions, to f.  0 (also with no device), or
  * -1 with err when EGL cannot enumerate devices.  No platform may be open. */
 int platform_list_devices(FILE *f, char *err, size_t errlen);
+/* The current context's GL_VERSION when it is OpenGL ES 3.1 or later, else
+ * NULL with err (one check for the platform's contexts and gpu_init). */
+const char *platform_check_gles31(char *err, size_t errlen);
 /* A device option's form: "" (none), a decimal index or an absolute path.
  * 0, or -1 with err (which device it names is only known at open). */
 int platform_device_check(const char *spec, char *err, size_t errlen);

@@ -949,7 +949,7 @@ static void test_heightmap_cpu(struct edits *ed, struct params *p, const struct 
 	hm_data[0] = 0;
 	hm_data[1] = 65535;
 	hm_path(path, sizeof(path), "hm.png");
-	CHECK(heightmap_write_png16(path, hm_data, HM_W, HM_H, err, sizeof(err)) == 0, "write png16: %s", err);
+	CHECK(image_write_png_gray16(path, hm_data, HM_W, HM_H, err, sizeof(err)) == 0, "write png16: %s", err);
 	struct heightmap hm;
 	CHECK(heightmap_load(path, &hm, err, sizeof(err)) == 0, "load: %s", err);
 	int bad = 0;

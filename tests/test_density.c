@@ -22,6 +22,7 @@
 #include "density_ref.h"
 #include "terrain.h"
 #include "gpu.h"
+#include "image.h"
 #include "noise.h"
 #include "params.h"
 #include "pipeline.h"
@@ -663,7 +664,7 @@ static void test_gpu(void)
 		uint16_t v[7 * 5];
 		for (int i = 0; i < 7 * 5; i++)
 			v[i] = (uint16_t)((i % 7) * 65535 / 6 + (i / 7) * 1000);
-		CHECK(heightmap_write_png16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
+		CHECK(image_write_png_gray16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
 		snprintf(kv, sizeof(kv), "control_strength=0.85;control_map=%s;control_map_scale=5", cm);
 		gpu_compare("control_strength=0.85 (file)", 17, kv, false);
 		/* all black at strength 1: no noise term at all; all white: the full term */
@@ -672,7 +673,7 @@ static void test_gpu(void)
 		params_defaults(&q);
 		for (int i = 0; i < 7 * 5; i++)
 			v[i] = 0;
-		CHECK(heightmap_write_png16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
+		CHECK(image_write_png_gray16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
 		snprintf(kv, sizeof(kv), "control_strength=1;control_map=%s", cm);
 		set(&p, kv);
 		set(&q, "noise_amp=0");
@@ -686,7 +687,7 @@ static void test_gpu(void)
 		CHECK(bad == 0, "a black control map at strength 1 removes the noise term (%d of 50 differ)", bad);
 		for (int i = 0; i < 7 * 5; i++)
 			v[i] = 65535;
-		CHECK(heightmap_write_png16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
+		CHECK(image_write_png_gray16(cm, v, 7, 5, e, sizeof(e)) == 0, "control map: %s", e);
 		edits_clear(ed); /* the same size and second: reload */
 		CHECK(edits_load(ed, &p, e, sizeof(e)) == 0, "edits_load: %s", e);
 		params_defaults(&q);
@@ -708,7 +709,7 @@ static void test_gpu(void)
 		uint16_t v[9 * 7];
 		for (int i = 0; i < 9 * 7; i++)
 			v[i] = (uint16_t)((i * 7919u + 1237u) % 65536u);
-		CHECK(heightmap_write_png16(hm, v, 9, 7, e, sizeof(e)) == 0, "heightmap: %s", e);
+		CHECK(image_write_png_gray16(hm, v, 9, 7, e, sizeof(e)) == 0, "heightmap: %s", e);
 		static const char *hm_terms[] = { "heightmap_detail=0;heightmap_noise=0", "heightmap_detail=2;heightmap_noise=0",
 						  "heightmap_detail=0;heightmap_noise=0.3", "heightmap_detail=2;heightmap_noise=0.3",
 						  "heightmap_detail=2;heightmap_noise=0.3;noise_amp=0" };

@@ -970,7 +970,7 @@ static void check_terms(void)
 	uint16_t v[9 * 7];
 	for (int i = 0; i < 9 * 7; i++)
 		v[i] = (uint16_t)((i * 7919u + 1237u) % 65536u);
-	CHECK(heightmap_write_png16(hm, v, 9, 7, err, sizeof(err)) == 0, "heightmap: %s", err);
+	CHECK(image_write_png_gray16(hm, v, 9, 7, err, sizeof(err)) == 0, "heightmap: %s", err);
 	static const struct term_case cases[] = {
 		{ "", "warp_amp=0", "warp_amp=3", "u_warp_amp", false },
 		{ "", "noise_amp=0", "noise_amp=12", "u_noise_amp", false },

@@ -44,21 +44,6 @@ static void option_name(FILE *f, const char *prefix, const char *name)
 	}
 }
 
-static void enum_choice(char *buf, size_t len, const char *choices, int idx)
-{
-	const char *c = choices;
-	for (int i = 0; c; i++) {
-		const char *bar = strchr(c, '|');
-		size_t n = bar ? (size_t)(bar - c) : strlen(c);
-		if (i == idx) {
-			snprintf(buf, len, "%.*s", (int)n, c);
-			return;
-		}
-		c = bar ? bar + 1 : NULL;
-	}
-	snprintf(buf, len, "%d", idx);
-}
-
 static void parameter(FILE *f, const struct param_info *pi)
 {
 	static const char *const meta[] = { "NUMBER", "N", "", "NAME", "TEXT" };
@@ -80,7 +65,7 @@ static void parameter(FILE *f, const struct param_info *pi)
 	case PT_BOOL: snprintf(buf, sizeof(buf), "Boolean, default %s", pi->def ? "true" : "false"); break;
 	case PT_ENUM: {
 		char d[64];
-		enum_choice(d, sizeof(d), pi->choices, (int)pi->def);
+		params_enum_name(pi, (int)pi->def, d, sizeof(d));
 		snprintf(buf, sizeof(buf), "One of %s, default %s", pi->choices, d);
 		break;
 	}

@@ -131,6 +131,59 @@ int image_write_png_staged(const struct image *img, const char *path, struct ato
 	return atomic_close(af, path, err, errlen);
 }
 
+int image_write_png_gray16(const char *path, const uint16_t *v, int w, int h, char *err, size_t errlen)
+{
+	if (!v || w <= 0 || h <= 0 || w > IMAGE_MAX_DIM || h > IMAGE_MAX_DIM) {
+		snprintf(err, errlen, "cannot write '%s': invalid image %dx%d", path, w, h);
+		return -1;
+	}
+	uint8_t *row = malloc((size_t)w * 2);
+	if (!row) {
+		snprintf(err, errlen, "out of memory writing '%s'", path);
+		return -1;
+	}
+	struct atomic_file af;
+	if (atomic_open(&af, path, err, errlen) < 0) {
+		free(row);
+		return -1;
+	}
+	struct png_ctx ctx = { .f = af.f };
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &ctx, png_err_fn, png_warn_fn);
+	png_infop info = png ? png_create_info_struct(png) : NULL;
+	if (!info) {
+		snprintf(err, errlen, "out of memory writing '%s'", path);
+		png_destroy_write_struct(&png, NULL);
+		atomic_abort(&af);
+		free(row);
+		return -1;
+	}
+	if (setjmp(png_jmpbuf(png))) {
+		snprintf(err, errlen, "cannot write '%s': %s", path, ctx.msg);
+		png_destroy_write_struct(&png, &info);
+		atomic_abort(&af);
+		free(row);
+		return -1;
+	}
+	png_set_write_fn(png, &ctx, png_write_fn, png_flush_fn);
+	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+		     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_write_info(png, info);
+	for (int y = 0; y < h; y++) {
+		for (int x = 0; x < w; x++) {
+			uint16_t s = v[(size_t)y * (size_t)w + (size_t)x];
+			row[2 * x] = (uint8_t)(s >> 8); /* PNG is big-endian */
+			row[2 * x + 1] = (uint8_t)(s & 0xff);
+		}
+		png_write_row(png, row);
+	}
+	png_write_end(png, NULL);
+	png_destroy_write_struct(&png, &info);
+	free(row);
+	if (atomic_close(&af, path, err, errlen) < 0)
+		return -1;
+	return atomic_commit(&af, path, err, errlen);
+}
+
 int image_write_png(const struct image *img, const char *path, char *err, size_t errlen)
 {
 	struct atomic_file af;

@@ -19,6 +19,9 @@ int image_write_png(const struct image *img, const char *path, char *err, size_t
  * caller commits it to path, or aborts it.  0 or -1 with err (no temp left). */
 int image_write_png_staged(const struct image *img, const char *path, struct atomic_file *af, char *err,
 			   size_t errlen);
+/* Writes w*h 16-bit grayscale samples (a heightmap, a control map) as a
+ * PNG, atomically as image_write_png.  0 or -1 with err. */
+int image_write_png_gray16(const char *path, const uint16_t *v, int w, int h, char *err, size_t errlen);
 /* Reads any PNG libpng understands into RGBA8 (palette, gray, 16-bit are
  * converted).  0 or -1 with a clear message in err. */
 int image_read_png(struct image *img, const char *path, char *err, size_t errlen);

@@ -221,36 +221,6 @@ static int load_heightmap(struct edits *ed, const struct params *p, char *err, s
 	return 0;
 }
 
-/* A control map: any PNG, read as 16-bit gray (image.c). */
-static int control_map_load(const char *path, struct heightmap *m, char *err, size_t errlen)
-{
-	memset(m, 0, sizeof(*m));
-	uint16_t *s = NULL;
-	int w = 0, h = 0;
-	char e[512];
-	if (image_read_png_gray16(path, &s, &w, &h, e, sizeof(e)) < 0) {
-		snprintf(err, errlen, "control map: %s (a grayscale PNG is needed)", e);
-		return -1;
-	}
-	if (w < 2 || h < 2 || w > 8192 || h > 8192) {
-		snprintf(err, errlen, "control map '%s' is %dx%d; 2x2 to 8192x8192 pixels are supported", path, w, h);
-		free(s);
-		return -1;
-	}
-	m->v = malloc(sizeof(float) * (size_t)w * (size_t)h);
-	if (!m->v) {
-		free(s);
-		snprintf(err, errlen, "out of memory for the control map '%s'", path);
-		return -1;
-	}
-	for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-		m->v[i] = (float)s[i];
-	free(s);
-	m->w = w;
-	m->h = h;
-	return 0;
-}
-
 /* The control map file p->control_map, (re)loaded when it changed. */
 static int load_control(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
@@ -260,7 +230,7 @@ static int load_control(struct edits *ed, const struct params *p, char *err, siz
 			return -1;
 		if (!same_key(&k, &ed->control_file)) {
 			struct heightmap m;
-			if (control_map_load(p->control_map, &m, err, errlen) < 0)
+			if (heightmap_read_png(p->control_map, "control map", &m, err, errlen) < 0)
 				return -1;
 			heightmap_free(&ed->control);
 			ed->control = m;

@@ -32,8 +32,11 @@ struct heightmap {
  * with err. */
 int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen);
 void heightmap_free(struct heightmap *hm);
-/* Writes a 16-bit grayscale PNG atomically (temp file + rename). */
-int heightmap_write_png16(const char *path, const uint16_t *v, int w, int h, char *err, size_t errlen);
+/* A grayscale PNG (8 or 16 bits) as samples 0..65535, 2x2 to
+ * HEIGHTMAP_MAX_SIDE on a side (refused from the header, before decoding);
+ * what names the file in messages ("heightmap", "control map").  The
+ * heightmap's PNG path, and the control map's.  0, or -1 with err. */
+int heightmap_read_png(const char *path, const char *what, struct heightmap *hm, char *err, size_t errlen);
 
 /* ---- the edit state (edits.c) ---------------------------------------------- */
 

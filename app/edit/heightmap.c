@@ -5,7 +5,6 @@
 #include <errno.h>
 #include <limits.h>
 #include <stdint.h>
-#include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -94,27 +93,38 @@ int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t err
 		snprintf(err, errlen, "heightmap '%s': unknown format (a 16-bit grayscale .png is needed)", path);
 		return -1;
 	}
+	return heightmap_read_png(path, "heightmap", hm, err, errlen);
+}
+
+int heightmap_read_png(const char *path, const char *what, struct heightmap *hm, char *err, size_t errlen)
+{
+	memset(hm, 0, sizeof(*hm));
 	uint16_t *s = NULL;
 	int w = 0, h = 0;
+	char e[512];
 	/* the size from the header, refused before anything is decoded */
-	if (image_read_png_size(path, &w, &h, err, errlen) < 0)
+	if (image_read_png_size(path, &w, &h, e, sizeof(e)) < 0) {
+		snprintf(err, errlen, "%s: %s (a grayscale PNG is needed)", what, e);
 		return -1;
+	}
 	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) {
-		snprintf(err, errlen, "heightmap '%s' is %dx%d; 2x2 to %dx%d samples are supported", path, w, h,
+		snprintf(err, errlen, "%s '%s' is %dx%d; 2x2 to %dx%d samples are supported", what, path, w, h,
 			 HEIGHTMAP_MAX_SIDE, HEIGHTMAP_MAX_SIDE);
 		return -1;
 	}
-	if (image_read_png_gray16(path, &s, &w, &h, err, errlen) < 0)
+	if (image_read_png_gray16(path, &s, &w, &h, e, sizeof(e)) < 0) {
+		snprintf(err, errlen, "%s: %s", what, e);
 		return -1;
+	}
 	if (w < 2 || h < 2 || w > HEIGHTMAP_MAX_SIDE || h > HEIGHTMAP_MAX_SIDE) { /* the file changed meanwhile */
-		snprintf(err, errlen, "heightmap '%s' changed while it was read", path);
+		snprintf(err, errlen, "%s '%s' changed while it was read", what, path);
 		free(s);
 		return -1;
 	}
 	hm->v = malloc(sizeof(float) * (size_t)w * (size_t)h);
 	if (!hm->v) {
 		free(s);
-		snprintf(err, errlen, "out of memory for heightmap '%s'", path);
+		snprintf(err, errlen, "out of memory for the %s '%s'", what, path);
 		return -1;
 	}
 	for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
@@ -131,83 +141,3 @@ void heightmap_free(struct heightmap *hm)
 	memset(hm, 0, sizeof(*hm));
 }
 
-struct png_err {
-	char msg[200];
-};
-
-static void on_error(png_structp png, png_const_charp msg)
-{
-	struct png_err *e = png_get_error_ptr(png);
-	snprintf(e->msg, sizeof(e->msg), "%s", msg);
-	png_longjmp(png, 1);
-}
-
-static void on_warning(png_structp png, png_const_charp msg)
-{
-	(void)png;
-	(void)msg;
-}
-
-int heightmap_write_png16(const char *path, const uint16_t *v, int w, int h, char *err, size_t errlen)
-{
-	char tmp[4096];
-	if (snprintf(tmp, sizeof(tmp), "%s.XXXXXX.tmp", path) >= (int)sizeof(tmp)) {
-		snprintf(err, errlen, "file name too long: '%s'", path);
-		return -1;
-	}
-	int fd = mkstemps(tmp, 4);
-	if (fd < 0) {
-		snprintf(err, errlen, "cannot create '%s': %s", tmp, strerror(errno));
-		return -1;
-	}
-	FILE *f = fdopen(fd, "wb");
-	if (!f) {
-		close(fd);
-		unlink(tmp);
-		snprintf(err, errlen, "cannot write '%s': %s", tmp, strerror(errno));
-		return -1;
-	}
-	struct png_err pe = { "" };
-	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &pe, on_error, on_warning);
-	png_infop info = png ? png_create_info_struct(png) : NULL;
-	uint8_t *volatile row = malloc((size_t)w * 2);
-	if (!png || !info || !row) {
-		png_destroy_write_struct(&png, &info);
-		free(row);
-		fclose(f);
-		unlink(tmp);
-		snprintf(err, errlen, "out of memory writing '%s'", path);
-		return -1;
-	}
-	if (setjmp(png_jmpbuf(png))) {
-		png_destroy_write_struct(&png, &info);
-		free(row);
-		fclose(f);
-		unlink(tmp);
-		snprintf(err, errlen, "cannot write '%s': %s", path, pe.msg);
-		return -1;
-	}
-	png_init_io(png, f);
-	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
-		     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-	png_write_info(png, info);
-	for (int y = 0; y < h; y++) {
-		for (int x = 0; x < w; x++) {
-			uint16_t s = v[(size_t)y * (size_t)w + (size_t)x];
-			row[2 * x] = (uint8_t)(s >> 8); /* PNG is big-endian */
-			row[2 * x + 1] = (uint8_t)(s & 0xff);
-		}
-		png_write_row(png, row);
-	}
-	png_write_end(png, NULL);
-	png_destroy_write_struct(&png, &info);
-	free(row);
-	int bad = fflush(f) != 0 || fsync(fileno(f)) != 0;
-	bad |= fclose(f) != 0;
-	if (bad || rename(tmp, path) != 0) {
-		snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		unlink(tmp);
-		return -1;
-	}
-	return 0;
-}

@@ -2,6 +2,7 @@
 #include "gpu.h"
 #include "gl_limits.h"
 #include "log.h"
+#include "platform.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -37,21 +38,10 @@ static bool has_ext(const char *exts, const char *name)
 int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen)
 {
 	memset(caps, 0, sizeof(*caps));
-	const char *ver = (const char *)glGetString(GL_VERSION);
+	const char *ver = platform_check_gles31(err, errlen);
 	const char *ren = (const char *)glGetString(GL_RENDERER);
-	if (!ver) {
-		snprintf(err, errlen, "no current GL context (glGetString(GL_VERSION) failed)");
+	if (!ver)
 		return -1;
-	}
-	int major = 0, minor = 0;
-	if (sscanf(ver, "OpenGL ES %d.%d", &major, &minor) != 2) {
-		snprintf(err, errlen, "not an OpenGL ES context: '%s'", ver);
-		return -1;
-	}
-	if (major < 3 || (major == 3 && minor < 1)) {
-		snprintf(err, errlen, "OpenGL ES 3.1 with compute shaders is required, the driver gives '%s'", ver);
-		return -1;
-	}
 	snprintf(caps->version, sizeof(caps->version), "%s", ver);
 	snprintf(caps->renderer, sizeof(caps->renderer), "%s", ren ? ren : "?");
 	/* every limit the passes rely on, or one line naming the one too small */
@@ -137,6 +127,24 @@ bool gpu_software_rasterizer(void)
 	software = has_ext(exts, "EGL_MESA_device_software");
 	log_debug("EGL device of this display: %s", software ? "software (EGL_MESA_device_software)" : "hardware");
 	return software;
+}
+
+int gpu_fence_read(GLsync *fence, GLuint buf, GLsizeiptr size, void *out, bool wait)
+{
+	GLenum st = glClientWaitSync(*fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0,
+				     wait ? 10ull * 1000 * 1000 * 1000 : 0);
+	if (st != GL_ALREADY_SIGNALED && st != GL_CONDITION_SATISFIED)
+		return 0;
+	glDeleteSync(*fence);
+	*fence = 0;
+	glBindBuffer(GL_COPY_READ_BUFFER, buf);
+	void *m = size > 0 ? glMapBufferRange(GL_COPY_READ_BUFFER, 0, size, GL_MAP_READ_BIT) : NULL;
+	if (m) {
+		memcpy(out, m, (size_t)size);
+		glUnmapBuffer(GL_COPY_READ_BUFFER);
+	}
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	return m ? 1 : -1;
 }
 
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)

@@ -81,6 +81,12 @@ int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen);
  * shader-storage and buffer-update barriers).  Tests, export and reports
  * only: never in the frame loop.  0, or -1 (a GL error is logged). */
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
+/* A fenced read-back, for results a frame asked for frames ago: when
+ * *fence has signalled (with wait: flushed, and waited for up to 10 s) it
+ * is deleted (*fence = 0) and size bytes at the start of buf are copied
+ * into out.  1 read, 0 not signalled yet (nothing changed), -1 signalled
+ * but the buffer could not be mapped (out untouched). */
+int gpu_fence_read(GLsync *fence, GLuint buf, GLsizeiptr size, void *out, bool wait);
 /* glGetError() != GL_NO_ERROR -> logs "what: GL error 0x..." and returns -1. */
 int gpu_check(const char *what);
 /* The current context renders on the CPU (its EGL device has

@@ -50,7 +50,7 @@ int params_enum_index(const struct param_info *pi, const char *choice)
 	return -1;
 }
 
-static void enum_name(const struct param_info *pi, int idx, char *buf, size_t len)
+void params_enum_name(const struct param_info *pi, int idx, char *buf, size_t len)
 {
 	const char *c = pi->choices;
 	for (int i = 0; c; i++) {
@@ -205,7 +205,7 @@ void params_format(const struct params *p, const struct param_info *pi, char *bu
 	case PT_FLOAT: snprintf(buf, len, "%g", *(const float *)f); break;
 	case PT_INT: snprintf(buf, len, "%d", *(const int *)f); break;
 	case PT_BOOL: snprintf(buf, len, "%s", *(const bool *)f ? "true" : "false"); break;
-	case PT_ENUM: enum_name(pi, *(const int *)f, buf, len); break;
+	case PT_ENUM: params_enum_name(pi, *(const int *)f, buf, len); break;
 	case PT_STRING: snprintf(buf, len, "%s", (const char *)f); break;
 	}
 }
@@ -227,7 +227,7 @@ void params_print_help(FILE *out, unsigned flag_mask)
 		case PT_BOOL: snprintf(range, sizeof(range), "bool, default %s", pi->def ? "true" : "false"); break;
 		case PT_ENUM: {
 			char d[32];
-			enum_name(pi, (int)pi->def, d, sizeof(d));
+			params_enum_name(pi, (int)pi->def, d, sizeof(d));
 			snprintf(range, sizeof(range), "%s, default %s", pi->choices, d);
 			break;
 		}

@@ -68,6 +68,8 @@ void params_format(const struct params *p, const struct param_info *pi, char *bu
 /* Numeric value of a FLOAT/INT/BOOL/ENUM entry. */
 double params_get_number(const struct params *p, const struct param_info *pi);
 void params_set_number(struct params *p, const struct param_info *pi, double v);
+/* Enum index -> its choice's name (the number itself when out of range). */
+void params_enum_name(const struct param_info *pi, int idx, char *buf, size_t len);
 /* Enum choice name -> index, or -1. */
 int params_enum_index(const struct param_info *pi, const char *choice);
 /* Help text: one entry a line (or two), for --help. */

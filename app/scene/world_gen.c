@@ -67,20 +67,11 @@ void collect_results(struct world *w, bool wait)
 		struct readback *r = &w->rb[i];
 		if (r->block < 0)
 			continue;
-		GLenum st = glClientWaitSync(r->fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0,
-					     wait ? 10ull * 1000 * 1000 * 1000 : 0);
-		if (st != GL_ALREADY_SIGNALED && st != GL_CONDITION_SATISFIED)
-			continue;
-		glDeleteSync(r->fence);
-		r->fence = 0;
 		uint32_t v[RB_WORDS] = { 0 };
-		glBindBuffer(GL_COPY_READ_BUFFER, r->buf);
-		void *m = glMapBufferRange(GL_COPY_READ_BUFFER, 0, RB_BYTES, GL_MAP_READ_BIT);
-		if (m) {
-			memcpy(v, m, RB_BYTES);
-			glUnmapBuffer(GL_COPY_READ_BUFFER);
-		}
-		glBindBuffer(GL_COPY_READ_BUFFER, 0);
+		int got = gpu_fence_read(&r->fence, r->buf, RB_BYTES, v, wait);
+		if (got == 0)
+			continue;
+		bool m = got > 0;
 		struct block *blk = &w->blocks[r->block];
 		blk->readback = -1;
 		r->block = -1;
@@ -287,20 +278,11 @@ void collect_probes(struct world *w, bool wait)
 		struct probe_batch *pb = &w->probes[i];
 		if (!pb->n)
 			continue;
-		GLenum st = glClientWaitSync(pb->fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0,
-					     wait ? 10ull * 1000 * 1000 * 1000 : 0);
-		if (st != GL_ALREADY_SIGNALED && st != GL_CONDITION_SATISFIED)
-			continue;
-		glDeleteSync(pb->fence);
-		pb->fence = 0;
 		uint32_t v[PROBE_BATCH];
-		glBindBuffer(GL_COPY_READ_BUFFER, pb->out);
-		void *m = glMapBufferRange(GL_COPY_READ_BUFFER, 0, (GLsizeiptr)pb->n * 4, GL_MAP_READ_BIT);
-		if (m) {
-			memcpy(v, m, (size_t)pb->n * 4);
-			glUnmapBuffer(GL_COPY_READ_BUFFER);
-		}
-		glBindBuffer(GL_COPY_READ_BUFFER, 0);
+		int got = gpu_fence_read(&pb->fence, pb->out, (GLsizeiptr)pb->n * 4, v, wait);
+		if (got == 0)
+			continue;
+		bool m = got > 0;
 		for (int k = 0; k < pb->n; k++) {
 			int b = find_block(w, pb->key[k], false);
 			if (b < 0)
