@@ -1,10 +1,8 @@
 /* isoterra — the controls: hal's knobs, buttons and keys (hal/) mapped to
  * the parameters, and what they ask for besides: presets, reset, pause,
  * screenshots, the on-screen display of what changed (drawn by
- * render/osd.c) and the knob log.  Also where hal's configuration comes
- * from: the hal_*_config structs filled from the parameter table, hal's
- * messages routed to the log, and the V4L2 conversion's program built by the
- * shader loader.
+ * render/osd.c) and the knob log.  hal's configuration from the
+ * parameters: hal_config.h.
  *
  * The frame loop calls, per frame:
  *     if (controls_poll(c, &p)) ...          // inputs -> parameters; 1 = quit
@@ -20,24 +18,8 @@
 
 #include "params.h"
 #include "hal.h"
-#include "convert.h"
-#include "v4l2_out.h"
 
 struct renderer;
-
-/* ---- hal's configuration from the parameters ----------------------------- */
-/* Encoder e (0-based) reads the keys enc<e+1>_*, button b button<b+1>_*:
- * another encoder is HAL_ENCODERS plus its keys in params_hal.def.  Encoder
- * 1 selects the parameter, the others change it.  -1 with err when a key is
- * missing from the table. */
-int controls_gpio_config(const struct params *p, struct hal_gpio_config *cfg, char *err, size_t errlen);
-void controls_keys_config(const struct params *p, struct hal_keys_config *cfg);
-/* The V4L2 output of frames of width x height. */
-void controls_v4l2_config(const struct params *p, int width, int height, struct hal_v4l2_config *cfg);
-/* hal's messages into the log, as the program's own ("isoterra: warning: ..."). */
-struct hal_log controls_hal_log(void);
-/* The V4L2 conversion's program (the shader loader) and units (abi.h). */
-const struct hal_gpu *controls_hal_gpu(void);
 
 /* ---- knob mapping ---------------------------------------------------------- */
 /* The parameters a knob cycles through (knob_params; "" = every P_LIVE

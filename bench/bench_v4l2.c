@@ -12,6 +12,7 @@
  * usage: bench_v4l2 [--quick] [--platform NAME] [--device DEV] [--v4l2-fps N] */
 #include "app.h"
 #include "v4l2_out.h"
+#include "hal_config.h"
 #include "terrain.h"
 
 #include <errno.h>
@@ -139,7 +140,7 @@ static int open_outputs(const struct options *o, const struct bench_scene *s, st
 	if (dev) {
 		struct hal_v4l2_config vc = { .device = dev, .format = CF_YUYV, .matrix = CM_BT601,
 					      .io = HAL_V4L2_IO_AUTO, .fps = o->fps, .width = s->w, .height = s->h,
-					      .gpu = *controls_hal_gpu(), .log = controls_hal_log() };
+					      .gpu = *hal_config_gpu(), .log = hal_config_log() };
 		*paced = v4l2_out_open(&vc, err, sizeof(err));
 		if (!*paced) {
 			fprintf(stderr, "bench: %s: %s\n", dev, err);
@@ -157,8 +158,8 @@ static int open_outputs(const struct options *o, const struct bench_scene *s, st
 		unlink(tmpl);
 	struct frame_format f = { .fmt = CF_YUYV, .width = s->w, .height = s->h, .matrix = CM_BT601 };
 	conv_fmt_tight(f.fmt, s->w, s->h, &f.bytesperline, &f.sizeimage);
-	*paced = v4l2_out_open_bytes(&f, o->fps, to_file, fo, controls_hal_gpu(), err, sizeof(err));
-	*every = *paced ? v4l2_out_open_bytes(&f, 0, to_file, fo, controls_hal_gpu(), err, sizeof(err)) : NULL;
+	*paced = v4l2_out_open_bytes(&f, o->fps, to_file, fo, hal_config_gpu(), err, sizeof(err));
+	*every = *paced ? v4l2_out_open_bytes(&f, 0, to_file, fo, hal_config_gpu(), err, sizeof(err)) : NULL;
 	if (!*every) {
 		fprintf(stderr, "bench: %s\n", err);
 		return -1;

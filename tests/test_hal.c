@@ -4,6 +4,7 @@
  * the configuration errors of the controls (app/controls.c over hal/). */
 #include "app.h"
 #include "controls.h"
+#include "hal_config.h"
 #include "hal.h"
 #include "osd.h"
 #include "font.h"
@@ -209,7 +210,7 @@ static void test_config(void)
 		CHECK(params_set(&p, name, eq + 1, err, sizeof(err)) == 0, "%s: %s", set[i], err);
 	}
 	struct hal_gpio_config g;
-	CHECK(controls_gpio_config(&p, &g, err, sizeof(err)) == 0, "gpio config: %s", err);
+	CHECK(hal_config_gpio(&p, &g, err, sizeof(err)) == 0, "gpio config: %s", err);
 	CHECK(!strcmp(g.chip, "knobs") && !strcmp(g.enc[1].chip, "other") && !g.enc[0].chip[0], "chips");
 	CHECK(g.enc[0].a == 3 && g.enc[0].b == 4 && g.enc[0].sw == 5 && g.enc[1].a == HAL_NO_LINE, "lines");
 	CHECK(g.enc[0].bias == HAL_BIAS_PULL_DOWN && g.enc[1].bias == HAL_BIAS_AS_IS && g.button_bias == HAL_BIAS_DISABLE,
@@ -221,15 +222,15 @@ static void test_config(void)
 		      g.button[1].action == HAL_SCREENSHOT && g.button[3].action == HAL_QUIT,
 	      "buttons");
 	struct hal_keys_config k;
-	controls_keys_config(&p, &k);
+	hal_config_keys(&p, &k);
 	CHECK(k.mode == HAL_KEYS_EVDEV && !strcmp(k.evdev, "/dev/input/event9"), "keys");
 	struct hal_v4l2_config v;
-	controls_v4l2_config(&p, 64, 48, &v);
+	hal_config_v4l2(&p, 64, 48, &v);
 	CHECK(!strcmp(v.device, "/dev/video7") && v.format == CF_NV12 && v.matrix == CM_BT709 &&
 		      v.io == HAL_V4L2_IO_WRITE && v.fps == 25 && v.width == 64 && v.height == 48,
 	      "v4l2");
 	params_defaults(&p);
-	controls_v4l2_config(&p, 64, 48, &v);
+	hal_config_v4l2(&p, 64, 48, &v);
 	CHECK(v.format == -1 && v.matrix == CM_BT601 && v.io == HAL_V4L2_IO_AUTO, "v4l2 defaults: the first format");
 	CHECK(v.gpu.compile && v.gpu.log.fn && v.log.fn, "seams filled");
 }

@@ -8,7 +8,7 @@
 #include "convert.h"
 #include "v4l2_out.h"
 #include "hal.h"
-#include "controls.h"
+#include "hal_config.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
 
@@ -181,7 +181,7 @@ int main(void)
 						f.bytesperline += pad == 1 ? 12 : 2;
 						f.sizeimage = conv_fmt_min_size(fmt, h, f.bytesperline) + 100;
 					}
-					struct gpu_conv *c = gpu_conv_create(&f, 2, controls_hal_gpu(), err, sizeof(err));
+					struct gpu_conv *c = gpu_conv_create(&f, 2, hal_config_gpu(), err, sizeof(err));
 					CHECK(c != NULL, "create %s: %s", conv_fmt_name(fmt), err);
 					if (!c)
 						continue;
@@ -210,7 +210,7 @@ int main(void)
 			for (int fmt = 0; fmt < CF_COUNT; fmt++) {
 				struct frame_format f = { .fmt = fmt, .width = w, .height = h, .matrix = CM_BT709 };
 				conv_fmt_tight(fmt, w, h, &f.bytesperline, &f.sizeimage);
-				struct gpu_conv *c = gpu_conv_create(&f, 2, controls_hal_gpu(), err, sizeof(err));
+				struct gpu_conv *c = gpu_conv_create(&f, 2, hal_config_gpu(), err, sizeof(err));
 				CHECK(c != NULL, "create %s: %s", conv_fmt_name(fmt), err);
 				if (!c)
 					continue;
@@ -230,7 +230,7 @@ int main(void)
 		/* the ring: three frames in flight without waiting, then in order */
 		struct frame_format f = { .fmt = CF_YUYV, .width = w, .height = h };
 		conv_fmt_tight(CF_YUYV, w, h, &f.bytesperline, &f.sizeimage);
-		struct gpu_conv *c = gpu_conv_create(&f, 3, controls_hal_gpu(), err, sizeof(err));
+		struct gpu_conv *c = gpu_conv_create(&f, 3, hal_config_gpu(), err, sizeof(err));
 		int n = 0;
 		for (int i = 0; i < 4; i++)
 			n += gpu_conv_submit(c, fbo, w, h);
@@ -245,7 +245,7 @@ int main(void)
 		gpu_conv_destroy(c);
 		/* the paced sink: 12 frames at 100 fps take >= 110 ms */
 		if (s == 0) {
-			struct v4l2_out *v = v4l2_out_open_bytes(&f, 100.0, sink, NULL, controls_hal_gpu(), err, sizeof(err));
+			struct v4l2_out *v = v4l2_out_open_bytes(&f, 100.0, sink, NULL, hal_config_gpu(), err, sizeof(err));
 			CHECK(v != NULL, "sink: %s", err);
 			uint64_t t0 = hal_now_ns();
 			for (int i = 0; v && i < 12; i++)

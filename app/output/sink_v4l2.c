@@ -2,7 +2,7 @@
  * every finished frame.  Paced to p->v4l2_fps; a missing or vanished device
  * is reported and retried by hal, rendering goes on. */
 #include "sink.h"
-#include "controls.h"
+#include "hal_config.h"
 #include "render.h"
 #include "v4l2_out.h"
 
@@ -53,7 +53,7 @@ struct sink *sink_v4l2_open(const struct params *p, int w, int h, char *err, siz
 	if (!p->v4l2[0])
 		return NULL;
 	struct hal_v4l2_config cfg;
-	controls_v4l2_config(p, w, h, &cfg);
+	hal_config_v4l2(p, w, h, &cfg);
 	struct v4l2_out *out = v4l2_out_open(&cfg, err, errlen);
 	if (!out)
 		return NULL;

@@ -3,6 +3,7 @@
  * the process's groups against the device nodes met. */
 #include "probe_int.h"
 #include "controls.h"
+#include "hal_config.h"
 #include "hal_probe.h"
 #include "platform_probe.h"
 
@@ -194,7 +195,7 @@ void probe_gpio(struct probe_report *r, const struct params *p)
 	pj_arr(r, "lines");
 	struct hal_gpio_config cfg;
 	char err[512];
-	if (controls_gpio_config(p, &cfg, err, sizeof(err)) < 0) {
+	if (hal_config_gpio(p, &cfg, err, sizeof(err)) < 0) {
 		pj_end(r);
 		pj_end(r);
 		probe_block(r, "GPIO configuration: %s", err);
@@ -293,7 +294,7 @@ void probe_v4l2(struct probe_report *r, const struct params *p)
 		hal_probe_v4l2_one(p->v4l2, v);
 		probe_node(r, p->v4l2, true, "--v4l2 output");
 		struct hal_v4l2_config cfg;
-		controls_v4l2_config(p, 16, 16, &cfg);
+		hal_config_v4l2(p, 16, 16, &cfg);
 		if (v->err[0]) {
 			probe_block(r, "--v4l2 %s: %s", p->v4l2, v->err);
 		} else if (!v->output) {

@@ -16,7 +16,7 @@
  *       produce captures by hand when investigating.
  */
 #include "app.h"
-#include "controls.h"
+#include "hal_config.h"
 #include "convert.h"
 
 #include <dirent.h>
@@ -95,11 +95,11 @@ static int convert(int argc, char **argv)
 	glBindFramebuffer(GL_FRAMEBUFFER, fbo);
 	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
 	struct hal_v4l2_config vc; /* --v4l2-format, --v4l2-matrix as the app maps them */
-	controls_v4l2_config(&p, w, h, &vc);
+	hal_config_v4l2(&p, w, h, &vc);
 	struct frame_format f = { .fmt = vc.format >= 0 ? (enum conv_fmt)vc.format : CF_YUYV, .width = w, .height = h,
 				  .matrix = vc.matrix };
 	conv_fmt_tight(f.fmt, w, h, &f.bytesperline, &f.sizeimage);
-	struct gpu_conv *c = gpu_conv_create(&f, 2, controls_hal_gpu(), err, sizeof(err));
+	struct gpu_conv *c = gpu_conv_create(&f, 2, hal_config_gpu(), err, sizeof(err));
 	int rc = 1;
 	const uint8_t *bytes = NULL;
 	if (c && gpu_conv_submit(c, fbo, w, h) == 1 && (bytes = gpu_conv_ready(c, true)) != NULL) {
