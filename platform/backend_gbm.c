@@ -2,9 +2,9 @@
  *
  * Takes the output kms.c picks (a DRM card, its connector, mode and CRTC),
  * renders through a gbm_surface with EGL's GBM platform and scans the
- * buffers out: atomic modesetting (TEST_ONLY first,
- * then a real commit; page flips with DRM_MODE_PAGE_FLIP_EVENT) with a
- * legacy drmModeSetCrtc/drmModePageFlip fallback.  present() waits for the
+ * buffers out: atomic modesetting (kms_atomic.c: TEST_ONLY first, then a
+ * real commit; page flips with DRM_MODE_PAGE_FLIP_EVENT) with a legacy
+ * drmModeSetCrtc/drmModePageFlip fallback (kms_legacy.c).  present() waits for the
  * flip event (vsync).  close() puts back the CRTC that was there before
  * (the console, usually).  Structure after kmscube (drm-common, drm-atomic,
  * drm-legacy).
@@ -22,7 +22,6 @@
 #include "kms.h"
 #include "platform.h"
 #include "clock.h"
-#include "util.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -42,22 +41,14 @@
 #define FLIP_TIMEOUT_MS 5000
 #define CONNECTOR_POLL_MS 1000
 
-struct gbm_props {
-	uint32_t conn_crtc_id;
-	uint32_t crtc_mode_id, crtc_active;
-	uint32_t fb_id, crtc_id, src_x, src_y, src_w, src_h, crtc_x, crtc_y, crtc_w, crtc_h;
-};
-
 struct gbm_state {
 	struct kms_output kms;     /* card, connector, mode, CRTC */
 	struct gbm_device *gbm;
 	struct gbm_surface *surf;
 	struct gbm_bo *front;      /* on screen */
-	uint32_t plane_id;
+	struct kms_atomic at;      /* atomic modesetting's plane, properties, mode blob */
 	drmModeCrtc *saved;        /* the CRTC as we found it, put back on close */
 	bool atomic, modeset_done, flip_pending, restore_done;
-	uint32_t mode_blob;
-	struct gbm_props props;
 	struct platform *p;
 	char want_mode[32];        /* --mode ("" = the preferred one), chosen again on return */
 	bool connected;            /* the connector, as last asked */
@@ -72,135 +63,6 @@ struct gbm_fb {
 static bool gbm_probe(void)
 {
 	return kms_probe();
-}
-
-/* ---- atomic -------------------------------------------------------------- */
-
-static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name, uint64_t *value)
-{
-	drmModeObjectProperties *props = drmModeObjectGetProperties(fd, obj, type);
-	uint32_t id = 0;
-	if (!props)
-		return 0;
-	for (uint32_t i = 0; i < props->count_props && !id; i++) {
-		drmModePropertyRes *pr = drmModeGetProperty(fd, props->props[i]);
-		if (!pr)
-			continue;
-		if (strcmp(pr->name, name) == 0) {
-			id = pr->prop_id;
-			if (value)
-				*value = props->prop_values[i];
-		}
-		drmModeFreeProperty(pr);
-	}
-	drmModeFreeObjectProperties(props);
-	return id;
-}
-
-static uint32_t find_primary_plane(struct gbm_state *g)
-{
-	drmModePlaneRes *pr = drmModeGetPlaneResources(g->kms.fd);
-	uint32_t found = 0;
-	if (!pr)
-		return 0;
-	for (uint32_t i = 0; i < pr->count_planes && !found; i++) {
-		drmModePlane *pl = drmModeGetPlane(g->kms.fd, pr->planes[i]);
-		if (!pl)
-			continue;
-		uint64_t type = 0;
-		if ((pl->possible_crtcs & (1u << g->kms.crtc_index)) &&
-		    prop_id(g->kms.fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type", &type) &&
-		    type == DRM_PLANE_TYPE_PRIMARY)
-			found = pl->plane_id;
-		drmModeFreePlane(pl);
-	}
-	drmModeFreePlaneResources(pr);
-	return found;
-}
-
-/* Atomic client cap, primary plane, property ids.  false: use legacy. */
-static bool atomic_init(struct gbm_state *g)
-{
-	if (drmSetClientCap(g->kms.fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
-	    drmSetClientCap(g->kms.fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
-		log_debug("gbm: no atomic modesetting on %s (%s); legacy", g->kms.path, strerror(errno));
-		return false;
-	}
-	g->plane_id = find_primary_plane(g);
-	if (!g->plane_id) {
-		log_debug("gbm: no primary plane for CRTC %u; legacy", g->kms.crtc_id);
-		return false;
-	}
-	struct gbm_props *pp = &g->props;
-	struct {
-		uint32_t *id;
-		uint32_t obj, type;
-		const char *name;
-	} want[] = {
-		{ &pp->conn_crtc_id, g->kms.conn_id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID" },
-		{ &pp->crtc_mode_id, g->kms.crtc_id, DRM_MODE_OBJECT_CRTC, "MODE_ID" },
-		{ &pp->crtc_active, g->kms.crtc_id, DRM_MODE_OBJECT_CRTC, "ACTIVE" },
-		{ &pp->fb_id, g->plane_id, DRM_MODE_OBJECT_PLANE, "FB_ID" },
-		{ &pp->crtc_id, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_ID" },
-		{ &pp->src_x, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_X" },
-		{ &pp->src_y, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_Y" },
-		{ &pp->src_w, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_W" },
-		{ &pp->src_h, g->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_H" },
-		{ &pp->crtc_x, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_X" },
-		{ &pp->crtc_y, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_Y" },
-		{ &pp->crtc_w, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_W" },
-		{ &pp->crtc_h, g->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_H" },
-	};
-	for (size_t i = 0; i < ARRAY_SIZE(want); i++) {
-		*want[i].id = prop_id(g->kms.fd, want[i].obj, want[i].type, want[i].name, NULL);
-		if (!*want[i].id) {
-			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
-			return false;
-		}
-	}
-	if (drmModeCreatePropertyBlob(g->kms.fd, &g->kms.mode, sizeof(g->kms.mode), &g->mode_blob) != 0) {
-		log_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
-		return false;
-	}
-	return true;
-}
-
-/* Every property the frame needs; modeset adds the connector and CRTC. */
-static int atomic_commit(struct gbm_state *g, uint32_t fb, bool modeset, uint32_t flags)
-{
-	drmModeAtomicReq *req = drmModeAtomicAlloc();
-	if (!req) {
-		errno = ENOMEM;
-		return -1;
-	}
-	const struct gbm_props *pp = &g->props;
-	uint32_t w = g->kms.mode.hdisplay, h = g->kms.mode.vdisplay;
-	int ok = 1;
-	if (modeset) {
-		ok &= drmModeAtomicAddProperty(req, g->kms.conn_id, pp->conn_crtc_id, g->kms.crtc_id) > 0;
-		ok &= drmModeAtomicAddProperty(req, g->kms.crtc_id, pp->crtc_mode_id, g->mode_blob) > 0;
-		ok &= drmModeAtomicAddProperty(req, g->kms.crtc_id, pp->crtc_active, 1) > 0;
-		flags |= DRM_MODE_ATOMIC_ALLOW_MODESET;
-	}
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->fb_id, fb) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_id, g->kms.crtc_id) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_x, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_y, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->src_h, (uint64_t)h << 16) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_x, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_y, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_w, w) > 0;
-	ok &= drmModeAtomicAddProperty(req, g->plane_id, pp->crtc_h, h) > 0;
-	int rc;
-	if (!ok) {
-		errno = ENOMEM;
-		rc = -1;
-	} else {
-		rc = drmModeAtomicCommit(g->kms.fd, req, flags, g);
-	}
-	drmModeAtomicFree(req);
-	return rc;
 }
 
 /* ---- framebuffers -------------------------------------------------------- */
@@ -296,17 +158,16 @@ static void hide_cursor(struct gbm_state *g)
 static int modeset(struct gbm_state *g, uint32_t fb)
 {
 	if (g->atomic) {
-		if (atomic_commit(g, fb, true, DRM_MODE_ATOMIC_TEST_ONLY) != 0) {
+		if (kms_atomic_commit(&g->at, &g->kms, fb, true, DRM_MODE_ATOMIC_TEST_ONLY, g) != 0) {
 			log_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
 			g->atomic = false;
-		} else if (atomic_commit(g, fb, true, 0) != 0) {
+		} else if (kms_atomic_commit(&g->at, &g->kms, fb, true, 0, g) != 0) {
 			log_error("gbm: atomic modeset %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 			          g->kms.path, strerror(errno));
 			return -1;
 		}
 	}
-	if (!g->atomic &&
-	    drmModeSetCrtc(g->kms.fd, g->kms.crtc_id, fb, 0, 0, &g->kms.conn_id, 1, &g->kms.mode) != 0) {
+	if (!g->atomic && kms_legacy_modeset(&g->kms, fb) != 0) {
 		log_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 		          g->kms.path, strerror(errno));
 		return -1;
@@ -358,15 +219,8 @@ static int remake_surface(struct gbm_state *g)
  * for a new size, the surface follow. */
 static int follow_mode(struct gbm_state *g)
 {
-	if (g->atomic) {
-		if (g->mode_blob && drmModeDestroyPropertyBlob(g->kms.fd, g->mode_blob) != 0)
-			log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
-		g->mode_blob = 0;
-		if (drmModeCreatePropertyBlob(g->kms.fd, &g->kms.mode, sizeof(g->kms.mode), &g->mode_blob) != 0) {
-			log_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
-			return -1;
-		}
-	}
+	if (g->atomic && kms_atomic_set_mode(&g->at, &g->kms) < 0)
+		return -1;
 	if (g->kms.mode.hdisplay != g->p->width || g->kms.mode.vdisplay != g->p->height)
 		return remake_surface(g);
 	return 0;
@@ -422,9 +276,9 @@ static int flip(struct gbm_state *g, uint32_t fb)
 	g->flip_pending = true;
 	int rc;
 	if (g->atomic)
-		rc = atomic_commit(g, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK);
+		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK, g);
 	else
-		rc = drmModePageFlip(g->kms.fd, g->kms.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, g);
+		rc = kms_legacy_flip(&g->kms, fb, g);
 	if (rc != 0) {
 		int e = errno;
 		g->flip_pending = false;
@@ -488,12 +342,7 @@ static void restore_crtc(struct gbm_state *g)
 	if (g->flip_pending)
 		(void)wait_flip(g);
 	drmModeCrtc *s = g->saved;
-	int rc;
-	if (s && s->mode_valid && s->buffer_id)
-		rc = drmModeSetCrtc(g->kms.fd, s->crtc_id, s->buffer_id, s->x, s->y, &g->kms.conn_id, 1, &s->mode);
-	else
-		rc = drmModeSetCrtc(g->kms.fd, g->kms.crtc_id, 0, 0, 0, NULL, 0, NULL);
-	if (rc != 0)
+	if (kms_legacy_restore(&g->kms, s) != 0)
 		log_warn("gbm: restoring CRTC %u on %s: %s", g->kms.crtc_id, g->kms.path, strerror(errno));
 	else
 		log_debug("gbm: CRTC %u restored (fb %u)", g->kms.crtc_id, s ? s->buffer_id : 0);
@@ -513,8 +362,7 @@ static void gbm_close(struct platform *p)
 		gbm_surface_destroy(g->surf); /* frees the bos: fb_destroy removes the FBs */
 	if (g->gbm)
 		gbm_device_destroy(g->gbm);
-	if (g->mode_blob && drmModeDestroyPropertyBlob(g->kms.fd, g->mode_blob) != 0)
-		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+	kms_atomic_release(&g->at, g->kms.fd);
 	if (g->saved)
 		drmModeFreeCrtc(g->saved);
 	kms_output_close(&g->kms);
@@ -558,7 +406,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	if (!g->saved)
 		log_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->kms.crtc_id,
 		         strerror(errno));
-	g->atomic = !opt->kms_legacy && atomic_init(g);
+	g->atomic = !opt->kms_legacy && kms_atomic_init(&g->at, &g->kms);
 
 	g->gbm = gbm_create_device(g->kms.fd);
 	if (!g->gbm) {

@@ -40,6 +40,34 @@ int kms_output_poll(struct kms_output *o, const char *mode, bool *changed);
 /* Closes the card and stops listening for its hotplug events. */
 void kms_output_close(struct kms_output *o);
 
+/* ---- kms_atomic.c: atomic modesetting -------------------------------------- */
+struct kms_atomic {
+	uint32_t plane_id;  /* the CRTC's primary plane */
+	uint32_t mode_blob; /* the mode as a property blob */
+	uint32_t conn_crtc_id, crtc_mode_id, crtc_active; /* property ids */
+	uint32_t fb_id, crtc_id, src_x, src_y, src_w, src_h, crtc_x, crtc_y, crtc_w, crtc_h;
+};
+/* The atomic client cap, o's CRTC's primary plane, every property id a
+ * frame sets and the mode blob.  false (why: logged): use legacy. */
+bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o);
+/* The frame with fb on the primary plane at the mode's size; modeset: the
+ * connector, the mode and the CRTC's activation too
+ * (DRM_MODE_ATOMIC_ALLOW_MODESET).  flags: DRM_MODE_ATOMIC_* and
+ * DRM_MODE_PAGE_FLIP_EVENT, whose event carries user.  0, or -1 (errno). */
+int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
+		      uint32_t flags, void *user);
+/* o->mode changed: its blob made again.  0, or -1 (logged). */
+int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o);
+void kms_atomic_release(struct kms_atomic *a, int fd);
+
+/* ---- kms_legacy.c: legacy modesetting ---------------------------------------- */
+/* drmModeSetCrtc of fb at o's mode; a page flip to fb with its event
+ * (carrying user); the CRTC put back as saved (or off when it was off).
+ * 0, or the ioctl's non-zero return (errno). */
+int kms_legacy_modeset(const struct kms_output *o, uint32_t fb);
+int kms_legacy_flip(const struct kms_output *o, uint32_t fb, void *user);
+int kms_legacy_restore(const struct kms_output *o, const drmModeCrtc *saved);
+
 /* ---- hotplug.c: the card's hotplug events ------------------------------- */
 struct hotplug;
 /* Listens for the kernel's hotplug events of the card open as card_fd;

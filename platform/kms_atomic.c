@@ -1,0 +1,158 @@
+/* isoterra — atomic modesetting (kms.h): the CRTC's primary plane and the
+ * property ids a frame sets, the mode as a property blob, and the commit of
+ * a whole frame (with the connector and the mode when it modesets).  After
+ * kmscube's drm-atomic.c; the legacy path is kms_legacy.c. */
+#include "kms.h"
+#include "log.h"
+#include "util.h"
+
+#include <errno.h>
+#include <string.h>
+
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name, uint64_t *value)
+{
+	drmModeObjectProperties *props = drmModeObjectGetProperties(fd, obj, type);
+	uint32_t id = 0;
+	if (!props)
+		return 0;
+	for (uint32_t i = 0; i < props->count_props && !id; i++) {
+		drmModePropertyRes *pr = drmModeGetProperty(fd, props->props[i]);
+		if (!pr)
+			continue;
+		if (strcmp(pr->name, name) == 0) {
+			id = pr->prop_id;
+			if (value)
+				*value = props->prop_values[i];
+		}
+		drmModeFreeProperty(pr);
+	}
+	drmModeFreeObjectProperties(props);
+	return id;
+}
+
+static uint32_t find_primary_plane(const struct kms_output *o)
+{
+	drmModePlaneRes *pr = drmModeGetPlaneResources(o->fd);
+	uint32_t found = 0;
+	if (!pr)
+		return 0;
+	for (uint32_t i = 0; i < pr->count_planes && !found; i++) {
+		drmModePlane *pl = drmModeGetPlane(o->fd, pr->planes[i]);
+		if (!pl)
+			continue;
+		uint64_t type = 0;
+		if ((pl->possible_crtcs & (1u << o->crtc_index)) &&
+		    prop_id(o->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type", &type) &&
+		    type == DRM_PLANE_TYPE_PRIMARY)
+			found = pl->plane_id;
+		drmModeFreePlane(pl);
+	}
+	drmModeFreePlaneResources(pr);
+	return found;
+}
+
+bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
+{
+	if (drmSetClientCap(o->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
+	    drmSetClientCap(o->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
+		log_debug("gbm: no atomic modesetting on %s (%s); legacy", o->path, strerror(errno));
+		return false;
+	}
+	a->plane_id = find_primary_plane(o);
+	if (!a->plane_id) {
+		log_debug("gbm: no primary plane for CRTC %u; legacy", o->crtc_id);
+		return false;
+	}
+	struct kms_atomic *pp = a;
+	struct {
+		uint32_t *id;
+		uint32_t obj, type;
+		const char *name;
+	} want[] = {
+		{ &pp->conn_crtc_id, o->conn_id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID" },
+		{ &pp->crtc_mode_id, o->crtc_id, DRM_MODE_OBJECT_CRTC, "MODE_ID" },
+		{ &pp->crtc_active, o->crtc_id, DRM_MODE_OBJECT_CRTC, "ACTIVE" },
+		{ &pp->fb_id, a->plane_id, DRM_MODE_OBJECT_PLANE, "FB_ID" },
+		{ &pp->crtc_id, a->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_ID" },
+		{ &pp->src_x, a->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_X" },
+		{ &pp->src_y, a->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_Y" },
+		{ &pp->src_w, a->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_W" },
+		{ &pp->src_h, a->plane_id, DRM_MODE_OBJECT_PLANE, "SRC_H" },
+		{ &pp->crtc_x, a->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_X" },
+		{ &pp->crtc_y, a->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_Y" },
+		{ &pp->crtc_w, a->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_W" },
+		{ &pp->crtc_h, a->plane_id, DRM_MODE_OBJECT_PLANE, "CRTC_H" },
+	};
+	for (size_t i = 0; i < ARRAY_SIZE(want); i++) {
+		*want[i].id = prop_id(o->fd, want[i].obj, want[i].type, want[i].name, NULL);
+		if (!*want[i].id) {
+			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
+			return false;
+		}
+	}
+	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
+		log_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
+		return false;
+	}
+	return true;
+}
+
+int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
+		      uint32_t flags, void *user)
+{
+	drmModeAtomicReq *req = drmModeAtomicAlloc();
+	if (!req) {
+		errno = ENOMEM;
+		return -1;
+	}
+	const struct kms_atomic *pp = a;
+	uint32_t w = o->mode.hdisplay, h = o->mode.vdisplay;
+	int ok = 1;
+	if (modeset) {
+		ok &= drmModeAtomicAddProperty(req, o->conn_id, pp->conn_crtc_id, o->crtc_id) > 0;
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_mode_id, a->mode_blob) > 0;
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_active, 1) > 0;
+		flags |= DRM_MODE_ATOMIC_ALLOW_MODESET;
+	}
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->fb_id, fb) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_id, o->crtc_id) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_x, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_y, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_h, (uint64_t)h << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_x, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_y, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_w, w) > 0;
+	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_h, h) > 0;
+	int rc;
+	if (!ok) {
+		errno = ENOMEM;
+		rc = -1;
+	} else {
+		rc = drmModeAtomicCommit(o->fd, req, flags, user);
+	}
+	drmModeAtomicFree(req);
+	return rc;
+}
+
+int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o)
+{
+	if (a->mode_blob && drmModeDestroyPropertyBlob(o->fd, a->mode_blob) != 0)
+		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+	a->mode_blob = 0;
+	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
+		log_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
+		return -1;
+	}
+	return 0;
+}
+
+void kms_atomic_release(struct kms_atomic *a, int fd)
+{
+	if (a->mode_blob && drmModeDestroyPropertyBlob(fd, a->mode_blob) != 0)
+		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+	a->mode_blob = 0;
+}
