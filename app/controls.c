@@ -3,14 +3,12 @@
  * hal_config.c, v4l2_config.c. */
 #include "controls.h"
 #include "hal_config.h"
-#include "cli.h"
 #include "log.h"
 #include "osd.h"
 #include "render.h"
 #include "util.h"
 
 #include <errno.h>
-#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -93,10 +91,8 @@ struct controls {
 	struct knobs knobs;
 	struct params base;    /* the start-up values (reset, preset cycling) */
 	int preset;            /* index of the last preset applied, -1 none */
-	bool paused, t_init;
-	float t_raw, t_offset;
-	bool shot;
-	int shot_n;
+	bool paused;
+	bool shot;             /* a screenshot asked for (controls_take_screenshot) */
 	FILE *knob_log;
 	char osd_title[OSD_COLS + 1], osd_value[OSD_COLS + 1];
 	float osd_bar;
@@ -104,18 +100,6 @@ struct controls {
 	float fly[HAL_FLY_AXES]; /* manual camera: held input */
 	uint64_t fly_until;      /* ... until this time (ns) */
 };
-
-/* Screenshots: "name.png", at most one %d (or %0Nd) for a running number. */
-static int check_screenshot(const char *name, char *err, size_t errlen)
-{
-	char buf[PATH_MAX];
-	size_t sl = strlen(name);
-	if (cli_numbered_name(name, 0, buf, sizeof(buf)) == -1 || sl < 5 || strcmp(name + sl - 4, ".png")) {
-		snprintf(err, errlen, "screenshot: '%s' must end in .png with at most one %%d (or %%0Nd)", name);
-		return -1;
-	}
-	return 0;
-}
 
 /* The GPIO controls and the keys; err only for bad configuration. */
 static int open_inputs(struct controls *c, const struct params *p, char *err, size_t errlen)
@@ -142,7 +126,7 @@ struct controls *controls_create(const struct params *p, char *err, size_t errle
 	err[0] = 0;
 	c->base = *p;
 	c->preset = -1;
-	if (check_screenshot(p->screenshot, err, errlen) < 0 || knobs_init(&c->knobs, p->knob_params, err, errlen) < 0 ||
+	if (knobs_init(&c->knobs, p->knob_params, err, errlen) < 0 ||
 	    open_inputs(c, p, err, errlen) < 0)
 		goto fail;
 	if (p->knob_log[0]) {
@@ -317,38 +301,29 @@ int controls_poll(struct controls *c, struct params *p)
 	return in.actions[HAL_QUIT] != 0;
 }
 
-float controls_time(struct controls *c, float t)
+bool controls_paused(const struct controls *c)
 {
-	if (!c)
-		return t;
-	if (!c->t_init) {
-		c->t_init = true;
-		c->t_raw = t;
-	}
-	if (c->paused)
-		c->t_offset += t - c->t_raw;
-	c->t_raw = t;
-	return t - c->t_offset;
+	return c && c->paused;
 }
 
-static int screenshot(struct controls *c, struct renderer *r, const struct params *p, char *err, size_t errlen)
+float pause_clock_time(struct pause_clock *pc, float t, bool paused)
 {
-	struct image img = { 0 };
-	char name[PATH_MAX], e[512];
-	if (cli_numbered_name(p->screenshot, c->shot_n++, name, sizeof(name)) < 0) {
-		log_warn("screenshot: no room for number %d in '%s'", c->shot_n - 1, p->screenshot);
-		return 0;
+	if (!pc->init) {
+		pc->init = true;
+		pc->raw = t;
 	}
-	if (renderer_read(r, &img) < 0) {
-		snprintf(err, errlen, "screenshot: reading the frame back failed");
-		return -1;
-	}
-	if (image_write_png(&img, name, e, sizeof(e)) < 0)
-		log_warn("screenshot: %s", e);
-	else
-		log_info("screenshot: %s", name);
-	image_free(&img);
-	return 0;
+	if (paused)
+		pc->offset += t - pc->raw;
+	pc->raw = t;
+	return t - pc->offset;
+}
+
+bool controls_take_screenshot(struct controls *c)
+{
+	bool shot = c && c->shot;
+	if (c)
+		c->shot = false;
+	return shot;
 }
 
 int controls_frame(struct controls *c, struct renderer *r, const struct params *p, char *err, size_t errlen)
@@ -366,10 +341,6 @@ int controls_frame(struct controls *c, struct renderer *r, const struct params *
 			snprintf(err, errlen, "drawing the on-screen display failed");
 			return -1;
 		}
-	}
-	if (c->shot) {
-		c->shot = false;
-		return screenshot(c, r, p, err, errlen);
 	}
 	return 0;
 }

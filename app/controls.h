@@ -6,9 +6,10 @@
  *
  * The frame loop calls, per frame:
  *     if (controls_poll(c, &p)) ...          // inputs -> parameters; 1 = quit
- *     t = controls_time(c, t);               // animation clock (pause)
+ *     paused = controls_paused(c);           // the loop's clocks stop
  *     ... draw ...
- *     controls_frame(c, renderer, &p, ...);  // OSD, screenshot
+ *     controls_frame(c, renderer, &p, ...);  // OSD
+ *     sink_frame.screenshot = controls_take_screenshot(c);
  * A NULL struct controls * is valid everywhere and does nothing. */
 #ifndef ISOTERRA_CONTROLS_H
 #define ISOTERRA_CONTROLS_H
@@ -51,13 +52,25 @@ int controls_poll(struct controls *c, struct params *p);
  * forward, right, up; yaw right, pitch up.  A terminal repeats a held key
  * ~30 times a second, so a press holds for 0.15 s.  Zero when none. */
 void controls_flight(struct controls *c, float move[3], float turn[2]);
-/* The animation clock: t while running, frozen while paused. */
-float controls_time(struct controls *c, float t);
+/* Paused by a button or key (the frame loop's clocks stop). */
+bool controls_paused(const struct controls *c);
+
+/* An animation clock that stops while paused: pause_clock_time(pc, t,
+ * paused) is t while running, frozen while paused, the time paused taken
+ * out for good.  The frame loop keeps one per time base; zero-initialized. */
+struct pause_clock {
+	bool init;
+	float raw, offset;
+};
+float pause_clock_time(struct pause_clock *pc, float t, bool paused);
 /* A message on the OSD for osd_seconds (a broken shader edit).  NULL c or
  * no OSD: nothing. */
 void controls_notice(struct controls *c, const struct params *p, const char *title, const char *text);
-/* After the frame is drawn into r's target: the OSD over it, a screenshot
- * when one was asked for (reported).  0, or -1 with err. */
+/* A screenshot asked for since the last call (the screenshot sink takes
+ * it: sink_frame.screenshot). */
+bool controls_take_screenshot(struct controls *c);
+/* After the frame is drawn into r's target: the OSD over it.  0, or -1
+ * with err. */
 int controls_frame(struct controls *c, struct renderer *r, const struct params *p, char *err, size_t errlen);
 
 #endif

@@ -25,6 +25,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 {
 	struct params *p = lp->p;
 	double start = clock_ms() / 1e3;
+	struct pause_clock frame_clock = { 0 }, wall_clock = { 0 };
 	lp->frames = 0;
 	err[0] = 0;
 	for (int f = 0; p->count == 0 || f < p->count; f++) {
@@ -40,17 +41,22 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		}
 		kiosk_frame_begin(lp->kiosk, p, lp->r, lp->live ? clock_ms() / 1e3 - start : (double)f / p->fps);
 		bool last = p->count > 0 && f == p->count - 1;
-		struct scene_frame sf = { .index = f, .last = last, .live = lp->live,
-					  .start_s = start, .ctl = lp->ctl, .r = lp->r, .w = lp->w, .h = lp->h,
-					  .refresh_hz = lp->refresh_hz,
-					  .timing = lp->timing ? &tm : NULL };
+		struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = lp->w,
+					  .h = lp->h, .refresh_hz = lp->refresh_hz, .timing = lp->timing ? &tm : NULL };
+		/* the animation clocks, stopped while the controls pause: frame
+		 * time, and the live world's wall clock */
+		bool paused = controls_paused(lp->ctl);
+		sf.frame_time = pause_clock_time(&frame_clock, (float)f / p->fps, paused);
+		double ct = lp->live ? clock_ms() / 1e3 - start : (double)f / p->fps;
+		sf.clock_time = ct - (double)((float)ct - pause_clock_time(&wall_clock, (float)ct, paused));
+		controls_flight(lp->ctl, sf.move, sf.turn);
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 		    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
 			return -1;
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .count = p->count,
 					 .last = last, .update_ms = tm.update_ms,
-					 .draw_ms = tm.draw_ms };
+					 .draw_ms = tm.draw_ms, .screenshot = controls_take_screenshot(lp->ctl) };
 		if (lp->scene->ops->status)
 			lp->scene->ops->status(lp->scene, fr.status, sizeof(fr.status));
 		int q = sinks_frame(lp->sinks, &fr, err, errlen);

@@ -32,6 +32,9 @@ run --v4l2-format MJPG
 [ $? -eq 2 ] && grep -q "v4l2_format" err && ok || bad "bad format name: $(cat err)"
 run --screenshot shot.jpg
 [ $? -eq 2 ] && grep -q "screenshot" err && ok || bad "bad screenshot name: $(cat err)"
+run --screenshot 'a%s.png'
+[ $? -eq 2 ] && grep -q "screenshot: 'a%s.png' must end in .png with at most one %d" err && ok ||
+	bad "a screenshot name that cannot number its files: $(cat err)"
 run --enc1-steps-per-detent 3 --gpio-chip x --enc1-a 0 --enc1-b 1
 [ $? -eq 2 ] && grep -q "1, 2 or 4" err && ok || bad "3 steps per detent: $(cat err)"
 # a file that is not an evdev node (/dev/zero reads zeros forever): refused at
@@ -40,5 +43,20 @@ timeout -k 5 60 "$BIN" --size 64x48 --grid 8 --count 3 --out o.png --keyboard ev
 rc=$?
 [ $rc -eq 2 ] && grep -q "/dev/zero is not an evdev input device" err && ok ||
 	bad "/dev/zero as evdev keyboard: rc $rc (124 or 137: hung): $(cat err)"
+# the screenshot key on a terminal (script(1) gives the program one): the
+# screenshot sink writes the frame asked for to the first numbered name,
+# and q ends the run
+if command -v script >/dev/null; then
+	rm -f shot-*.png o.png
+	(sleep 2; printf 's'; sleep 2; printf 'q') | timeout -k 5 120 script -qec "'$BIN' --keyboard tty --size 64x48 \
+		--grid 8 --count 1000000 --out o.png --screenshot 'shot-%d.png'" /dev/null >shot.log 2>&1
+	rc=$?
+	size=$(python3 -c "import struct,sys; d=open('shot-0.png','rb').read(24); \
+		print('%dx%d' % struct.unpack('>II', d[16:24]) if d[:8] == b'\x89PNG\r\n\x1a\n' else 'not a PNG')" 2>/dev/null)
+	[ $rc -eq 0 ] && [ "$size" = 64x48 ] && grep -q "screenshot: shot-0.png" shot.log && [ ! -e shot-1.png ] && ok ||
+		bad "screenshot key: rc $rc, shot-0.png '$size': $(tr -d '\r' <shot.log | grep -v '^\[' | tail -3)"
+else
+	echo "SKIP screenshot key: no script(1)"
+fi
 echo "hal_cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -25,6 +25,14 @@ int sinks_open(struct sink_set *set, const struct params *p, int w, int h, char 
 		return 1;
 	if (sinks_add(set, sink_file_open(p, w, h, err, errlen)) < 0)
 		return 1;
+	struct sink *shot = sink_shot_open(p, err, errlen);
+	if (!shot)
+		return 2;
+	if (sinks_add(set, shot) < 0) {
+		shot->ops->destroy(shot);
+		snprintf(err, errlen, "too many outputs");
+		return 1;
+	}
 	return 0;
 }
 

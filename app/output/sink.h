@@ -37,6 +37,7 @@ struct sink_frame {
 	bool last;          /* the run's last frame */
 	char status[96];    /* the scene's state for the frame rate reports (or "") */
 	double update_ms, draw_ms; /* the scene's split, when the loop times it (results) */
+	bool screenshot;    /* the controls asked for a screenshot of this frame */
 };
 
 /* The end of the run. */
@@ -80,6 +81,10 @@ struct sink *sink_memory_open(struct image *img, char *err, size_t errlen);
 /* hal's V4L2 output (p->v4l2).  NULL with err[0] == 0 when none is
  * configured, NULL with err for bad configuration. */
 struct sink *sink_v4l2_open(const struct params *p, int w, int h, char *err, size_t errlen);
+/* Screenshots: the frames asked for (sink_frame.screenshot) as PNG files
+ * numbered from p->screenshot ("name.png", at most one %d or %0Nd).  NULL
+ * with err for a name that cannot number them. */
+struct sink *sink_shot_open(const struct params *p, char *err, size_t errlen);
 /* The scene's mesh as binary PLY to path at the end of a run that went well. */
 struct sink *sink_mesh_open(const char *path, char *err, size_t errlen);
 /* A display platform (gbm, wayland, x11): each frame blitted to the window
@@ -101,7 +106,7 @@ struct sink_set {
 	int n;
 };
 /* The sinks p asks for, in frame order: V4L2, mesh export, the --out file
- * (frames of w x h).  A display sink, opened with the platform, is added
+ * (frames of w x h), screenshots.  A display sink, opened with the platform, is added
  * after them: it may re-create the renderer.  0, or the exit code with err:
  * 2 bad configuration, 1 a file or device that cannot be opened. */
 int sinks_open(struct sink_set *set, const struct params *p, int w, int h, char *err, size_t errlen);

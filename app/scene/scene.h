@@ -11,7 +11,6 @@
 #include "mesh.h"
 
 struct renderer;
-struct controls;
 
 /* The frame to draw. */
 struct scene_frame {
@@ -21,8 +20,11 @@ struct scene_frame {
 	bool live;               /* on a display: wall-clock time, blocks stream
 	                          * under their budget; else each frame is
 	                          * complete and reproducible (time = index / fps) */
-	double start_s;          /* live: the clock (seconds) at the first frame */
-	struct controls *ctl;    /* pause clock, flight keys; may be NULL */
+	float frame_time;        /* index / fps, the time paused taken out */
+	double clock_time;       /* live: seconds since the first frame, else
+	                          * index / fps; the time paused taken out */
+	float move[3], turn[2];  /* the manual camera's held flight keys (-1..1):
+	                          * forward, right, up; yaw right, pitch up */
 	struct renderer *r;      /* draw into it */
 	int w, h;
 	double refresh_hz;       /* the display's refresh rate when known, else 0 */

@@ -1,7 +1,6 @@
 /* isoterra — the volume scene: one box of the field extracted every frame
  * (the pipeline), seen by the orbit camera. */
 #include "scene.h"
-#include "controls.h"
 #include "pipeline.h"
 #include "render.h"
 #include "edits.h"
@@ -104,7 +103,7 @@ static int follow_grid(struct volume_scene *vs, const struct params *p, char *er
 static int volume_frame(struct scene *s, struct params *p, const struct scene_frame *fr, char *err, size_t errlen)
 {
 	struct volume_scene *vs = (struct volume_scene *)s;
-	float t = controls_time(fr->ctl, (float)fr->index / p->fps);
+	float t = fr->frame_time;
 	p->time = vs->t0 + t;
 	err[0] = 0;
 	double t0 = clock_ms();

@@ -2,7 +2,6 @@
  * autopilot's camera, or steered by the flight keys (camera=manual). */
 #include "scene.h"
 #include "clock.h"
-#include "controls.h"
 #include "render.h"
 #include "world.h"
 #include "edits.h"
@@ -70,14 +69,10 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	 * blocks.  On a display the world runs live: wall-clock time, and
 	 * blocks stream in under the generation budget. */
 	double t0 = clock_ms();
-	double t = fr->live ? t0 / 1e3 - fr->start_s : (double)fr->index / p->fps;
-	t -= (double)((float)t - controls_time(fr->ctl, (float)t)); /* paused time */
+	double t = fr->clock_time;
 	p->time = ws->t0;
-	if (p->camera == CAMERA_MANUAL) { /* manual: the keys steer, rock still stops */
-		float move[3], turn[2];
-		controls_flight(fr->ctl, move, turn);
-		autopilot_steer(&ws->ap, move, turn);
-	}
+	if (p->camera == CAMERA_MANUAL) /* manual: the keys steer, rock still stops */
+		autopilot_steer(&ws->ap, fr->move, fr->turn);
 	struct camera cam;
 	autopilot_advance(&ws->ap, t);
 	autopilot_camera(&ws->ap, &cam, p->fov, (float)fr->w / (float)fr->h, ws->far);
