@@ -6,6 +6,7 @@
 # host answers ack-NAME) and powers the VM off.
 R=/vmtest
 U=isoterra-kiosk.service
+up() { cut -d. -f1 /proc/uptime; }
 exec >>"$R/guest.log" 2>&1
 ok() { echo "ok: $*"; }
 bad() { echo "FAIL: $*"; }
@@ -48,7 +49,67 @@ shot kiosk-b
 f1=$(echo "$s1" | awk '{print $1+0}')
 f2=$(echo "$s2" | awk '{print $1+0}')
 [ "$f2" -gt "$f1" ] && ok "frames advance: '$s1' -> '$s2'" || bad "frames do not advance: '$s1' -> '$s2'"
-# 3. SIGKILL: systemd restarts it (Restart=always), NRestarts counts it
+# 3. a knob turn changes the picture: the gpio-sim chip "knobs"
+#    (isoterra-vmtest-gpio.service made it before the unit started;
+#    /vmtest/gpio.env: CHIP, SYS) as the board's knobs, a line driven by
+#    writing its sysfs "pull".  The unit opened the chip through its node
+#    (group gpio, mode 0660, from the udev rule) in its own sandbox.  The
+#    pause button freezes the orbit: two screendumps, the same to the byte
+#    (the host compares them); then encoder 2 turns two detents (fov 40 ->
+#    42) and the next screendump differs: the knob's doing, the clock stands
+#    still.  The unit's knob log (kiosk.conf's knob_log, in its state
+#    folder) says when each change is taken (polled: cheap, journalctl under
+#    TCG is not), the journal is checked once at the end.  A change shows a
+#    frame after it is taken, and a frame takes a second or two under TCG:
+#    the waits after a log line leave it that.
+tk=$(up)
+CHIP='' SYS=''
+# shellcheck disable=SC1091 # written in the guest
+[ -r "$R/gpio.env" ] && . "$R/gpio.env"
+if [ -z "$CHIP" ]; then
+	bad "no gpio-sim chip: $(cat "$R/gpio.log" 2>&1)"
+else
+	node=$(stat -c '%G %a' "/dev/$CHIP" 2>&1)
+	[ "$node" = "gpio 660" ] && ok "knobs: /dev/$CHIP (gpio-sim, label knobs): group gpio, mode 0660" ||
+		bad "knobs: /dev/$CHIP is '$node', want 'gpio 660'"
+fi
+KLOG=/var/lib/isoterra/knob.log
+nk() { if [ -f $KLOG ]; then wc -l <$KLOG; else echo 0; fi; }
+waitk() { # the knob log at $1 lines, at most $2 seconds
+	end=$(($(up) + $2))
+	while [ "$(nk)" -lt "$1" ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
+	[ "$(nk)" -ge "$1" ]
+}
+line() { [ -n "$SYS" ] && echo "pull-$2" >"$SYS/sim_gpio$1/pull"; sleep 0.02; } # line up|down
+press() { line 2 down; sleep 0.1; line 2 up; } # the pause button (active-low)
+cw() { line 1 up; line 0 up; line 1 down; line 0 down; } # a detent forward: 00 01 11 10 00
+k0=$(nk)
+press
+waitk $((k0 + 1)) 30 || bad "pause button: nothing in the knob log in 30 s"
+sleep 2
+shot paused-a
+sleep 2
+shot paused-b
+ta=$(up)
+cw
+cw
+waitk $((k0 + 3)) 30 || bad "encoder: not two changes in the knob log in 30 s"
+tb=$(up)
+sleep 3
+shot knob
+press
+waitk $((k0 + 4)) 30 || bad "pause button again: nothing in the knob log in 30 s"
+got=$(sed -n "$((k0 + 1)),\$p" $KLOG | tr '\n' ',')
+[ "$got" = "paused,fov 41,fov 42,running," ] && ok "knob log: $got (the turn taken in $((tb - ta)) s)" ||
+	bad "knob log: '$got', want 'paused,fov 41,fov 42,running,'"
+j=$(journalctl -b -u "$U" --no-pager -o cat | grep -E "gpio: |knob: " | sed 's/^isoterra: [a-z]*: //' | tr '\n' ',')
+case "$j" in
+*"gpio: $CHIP (knobs) ready,"*"knob: paused,knob: fov = 41,knob: fov = 42,knob: running,"*)
+	ok "the unit's journal: ${j%,}" ;;
+*) bad "the unit's journal: '$j', want gpio: $CHIP (knobs) ready, then paused, fov = 41, 42, running" ;;
+esac
+echo "guest: the knob checks took $(($(up) - tk)) s"
+# 4. SIGKILL: systemd restarts it (Restart=always), NRestarts counts it
 r1=$(prop NRestarts)
 systemctl kill -s KILL "$U"
 n=0
@@ -61,11 +122,11 @@ if wait_active 300; then
 else
 	bad "after SIGKILL: not active again: $(systemctl is-active "$U"); $(journalctl -b -u "$U" --no-pager | tail -10)"
 fi
-# 4. stopped: the console is back on the display
+# 5. stopped: the console is back on the display
 systemctl stop "$U"
 sleep 2
 shot console
-# 5. its files: the state and cache folders are its own, nothing else is
+# 6. its files: the state and cache folders are its own, nothing else is
 #    writable.  The packaged unit, sandbox and all, as kiosk_unit.sh made
 #    copies of it: isoterra-wtest-N.service runs one headless frame to
 #    --out PATH (its state folder: written; a folder of mode 1777 in /etc:

@@ -14,8 +14,11 @@
 # unit of its own.  Checked (the guest's lines and the host's): READY=1
 # (active), watchdog pings (WatchdogTimestamp advances), frames advance
 # (STATUS=) and are on the display (two screendumps differ from each other
-# and from the console after the stop), SIGKILL -> restarted (NRestarts),
-# the packaged unit's sandbox writes its state and cache folders only.
+# and from the console after the stop), a knob turn changes the picture (a
+# gpio-sim chip, made before the unit starts, as the board's knobs: the
+# pause button freezes the picture, then the encoder changes fov and the
+# picture with it), SIGKILL -> restarted (NRestarts), the packaged unit's
+# sandbox writes its state and cache folders only.
 # Ends with "kiosk_unit: N passed, M failed"; exit 0 when all passed, 77
 # when it cannot run here (no QEMU, kernel, busybox).
 set -u
@@ -37,6 +40,15 @@ halvm_require
 [ -x "$ROOT/usr/bin/isoterra" ] || halvm_skip "$ROOT has no /usr/bin/isoterra"
 [ -x "$ROOT/usr/bin/udevadm" ] || halvm_skip "$ROOT has no udev (the device nodes' groups)"
 command -v python3 >/dev/null || halvm_skip "python3 missing"
+# gpio-sim, built out of tree as for tests/vm/gpio_knobs.sh and kept in the
+# cache folder (the first build: a minute); in a subshell, as its missing
+# prerequisites end the shell (halvm_skip): then the knob checks fail, the
+# rest runs
+GPIOSIM=$HALVM_CACHE/gpio-sim-$HALVM_REL/gpio-sim-oot.ko
+if ! why=$(halvm_gpio_sim 2>&1) || [ ! -s "$GPIOSIM" ]; then
+	bad "gpio-sim for the knobs: $(echo "$why" | tail -3)"
+	GPIOSIM=
+fi
 t0=$(date +%s)
 
 # ---- the root filesystem -------------------------------------------------------
@@ -64,7 +76,70 @@ mode = ${W}x$H
 grid = 16
 seed = 7
 ao_rays = 0
+# the knobs (the guest's gpio-sim chip "knobs", isoterra-vmtest-gpio
+# below): encoder 2 (lines 0, 1) changes fov, one step a detent; button 1
+# (line 2, active-low) pauses.  The sim's pulls are the board's resistors
+# (bias as_is); no OSD: the picture changes by the parameter alone.  The
+# knob log, in the unit's state folder, tells the guest's test when a
+# change is taken
+gpio_chip = knobs
+enc2_a = 0
+enc2_b = 1
+enc_accel_max = 1
+button1_line = 2
+button1_action = pause
+button_bias = as_is
+knob_params = fov
+knob_log = /var/lib/isoterra/knob.log
+osd = false
 CONF
+# the gpiochip's node as board images give it (Raspberry Pi OS's
+# 99-com.rules): group gpio, mode 0660.  The package's postinst adds user
+# isoterra to a gpio group where one exists (tools/debpkg.sh made one and
+# ran dpkg-reconfigure before this; made here where it did not)
+mkdir -p "$ROOT/etc/udev/rules.d"
+echo 'SUBSYSTEM=="gpio", KERNEL=="gpiochip*", GROUP="gpio", MODE="0660"' >"$ROOT/etc/udev/rules.d/60-isoterra-vm-gpio.rules"
+if ! grep -q '^gpio:.*[:,]isoterra\(,\|$\)' "$ROOT/etc/group"; then
+	grep -q '^gpio:' "$ROOT/etc/group" || chroot "$ROOT" groupadd -r gpio
+	env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin DEBIAN_FRONTEND=noninteractive chroot "$ROOT" dpkg-reconfigure isoterra \
+		>/dev/null 2>&1
+	grep -q '^gpio:.*[:,]isoterra\(,\|$\)' "$ROOT/etc/group" || bad "user isoterra not in group gpio: $(grep '^gpio:' "$ROOT/etc/group")"
+fi
+# the chip, before the unit starts (isoterra-vmtest-gpio.service): 4 lines
+# labelled "knobs", at rest (the encoder's phases low, the button
+# released: high), the node's group from the rule above (udevadm settle);
+# its name and sysfs folder for the guest's test in /vmtest/gpio.env
+cat >"$ROOT/usr/local/sbin/isoterra-vmtest-gpio" <<'GPIO'
+#!/bin/sh
+exec >/vmtest/gpio.log 2>&1
+C=/sys/kernel/config
+mountpoint -q $C || mount -t configfs none $C
+D=$C/gpio-sim/knobs
+if ! mkdir -p $D/bank0 || ! echo 4 >$D/bank0/num_lines || ! echo knobs >$D/bank0/label || ! echo 1 >$D/live; then
+	echo "gpio-sim: cannot create the chip: $(ls $C 2>&1)"
+	exit 1
+fi
+CHIP=$(cat $D/bank0/chip_name)
+SYS=/sys/devices/platform/$(cat $D/dev_name)/$CHIP
+for l in 0 1; do echo pull-down >"$SYS/sim_gpio$l/pull"; done
+echo pull-up >"$SYS/sim_gpio2/pull"
+udevadm settle
+printf 'CHIP=%s\nSYS=%s\n' "$CHIP" "$SYS" >/vmtest/gpio.env
+echo "gpio-sim: $CHIP: $(ls -l "/dev/$CHIP")"
+GPIO
+cat >"$ROOT/etc/systemd/system/isoterra-vmtest-gpio.service" <<CONF
+[Unit]
+Description=isoterra kiosk-unit VM test: the knobs' gpio-sim chip
+After=systemd-udevd.service sys-kernel-config.mount
+Before=isoterra-kiosk.service
+[Service]
+Type=oneshot
+RemainAfterExit=yes
+ExecStart=/bin/sh /usr/local/sbin/isoterra-vmtest-gpio
+[Install]
+WantedBy=multi-user.target
+CONF
+ln -sf /etc/systemd/system/isoterra-vmtest-gpio.service "$ROOT/etc/systemd/system/multi-user.target.wants/"
 # the sandbox's writes: copies of the packaged unit (its sandbox whole,
 # software rendering allowed as above) that run one headless frame to
 # --out PATH (isoterra-wtest-N), or a shell that tries to create a file in
@@ -92,7 +167,7 @@ wunit isoterra-wprobe "/bin/sh /usr/local/sbin/isoterra-wprobe"
 for d in /etc/isoterra-open /usr/local/isoterra-open /var/lib/isoterra-open /srv/isoterra-open /home/isoterra-open; do
 	mkdir -p "$ROOT$d" && chmod 1777 "$ROOT$d" && rm -f "$ROOT$d/isoterra-wprobe"
 done
-rm -f "$ROOT/var/tmp/isoterra-wprobe" "$ROOT/tmp/isoterra-wprobe"
+rm -f "$ROOT/var/tmp/isoterra-wprobe" "$ROOT/tmp/isoterra-wprobe" "$ROOT/var/lib/isoterra/knob.log"
 cp "$here/kiosk_guest.sh" "$ROOT/usr/local/sbin/isoterra-vmtest"
 cat >"$ROOT/etc/systemd/system/isoterra-vmtest.service" <<CONF
 [Unit]
@@ -118,10 +193,16 @@ for d in "$MESA_KEEP"/mesa_shader_cache*; do
 done
 
 # ---- the VM ----------------------------------------------------------------------
+# the modules: virtio, 9p, the display, and configfs + gpio-sim for the
+# knobs (the root has no /lib/modules of this kernel); rebuilt when the
+# list, kiosk_init, mkinitramfs.sh or the module changes
 INITRD=$HALVM_CACHE/kiosk-initramfs-$HALVM_REL.cpio.gz
-if [ ! -s "$INITRD" ] || [ "$here/kiosk_init" -nt "$INITRD" ]; then
-	sh "$here/mkinitramfs.sh" "$INITRD" "$HALVM_REL" "$here/kiosk_init" virtio_pci 9pnet_virtio 9p virtio_gpu \
-		>/dev/null || { bad "initramfs"; finish; }
+mods="virtio_pci 9pnet_virtio 9p virtio_gpu${GPIOSIM:+ configfs $GPIOSIM}"
+if [ ! -s "$INITRD" ] || [ "$(cat "$INITRD.mods" 2>/dev/null)" != "$mods" ] || [ "$here/kiosk_init" -nt "$INITRD" ] ||
+	[ "$here/mkinitramfs.sh" -nt "$INITRD" ] || { [ -n "$GPIOSIM" ] && [ "$GPIOSIM" -nt "$INITRD" ]; }; then
+	# shellcheck disable=SC2086 # a word list
+	sh "$here/mkinitramfs.sh" "$INITRD" "$HALVM_REL" "$here/kiosk_init" $mods >/dev/null || { bad "initramfs"; finish; }
+	echo "$mods" >"$INITRD.mods"
 fi
 alive() { kill -0 "$1" 2>/dev/null; }
 rm -f "$T"/*.ppm "$T/mon.sock"
@@ -171,7 +252,9 @@ while read -r l; do
 	esac
 done <"$ROOT/vmtest/guest.log"
 # the display: two frames of the kiosk, different (the orbit moves) and
-# not the console (after the stop); terrain colours, not one flat colour
+# not the console (after the stop); terrain colours, not one flat colour.
+# Then the knob: two frames while paused, the same to the byte (the
+# picture is frozen), and one after the encoder's turn, different (fov)
 python3 - "$T" <<'PY' >"$T/shots.log" 2>&1
 import sys
 def ppm(p):
@@ -192,6 +275,26 @@ if [ $? -eq 0 ]; then
 	ok "on the display: $(cat "$T/shots.log")"
 else
 	bad "the display: $(tail -3 "$T/shots.log")"
+fi
+if python3 - "$T" <<'PY' >"$T/knob-shots.log" 2>&1; then
+import sys
+def ppm(p):
+    d = open(p, 'rb').read()
+    parts = d.split(maxsplit=4)
+    w, h = int(parts[1]), int(parts[2])
+    return w, h, parts[4][-w * h * 3:]
+T = sys.argv[1]
+p1, p2, k = (ppm('%s/%s.ppm' % (T, n)) for n in ('paused-a', 'paused-b', 'knob'))
+def diff(x, y):
+    if x[:2] != y[:2]: return 255.0
+    return sum(abs(p - q) for p, q in zip(x[2], y[2])) / len(x[2])
+print("paused: |a-b| %.2f (%s); after the turn: |paused-knob| %.2f" %
+      (diff(p1, p2), "the same" if p1 == p2 else "different", diff(p2, k)))
+sys.exit(0 if p1 == p2 and diff(p2, k) > 0.5 else 1)
+PY
+	ok "the knob on the display: $(cat "$T/knob-shots.log")"
+else
+	bad "the knob on the display: $(tail -3 "$T/knob-shots.log")"
 fi
 echo "kiosk_unit: $(($(date +%s) - t0)) s; results in $T"
 finish

@@ -5,6 +5,9 @@
 # as /init.  Used by the KMS test (init: tests/vm/init, + virtio_gpu) and
 # the hardware-layer tests (init: tests/vm/hal_init).
 #   mkinitramfs.sh OUT.cpio.gz KERNEL_RELEASE INIT MODULE...
+# A MODULE that is a path to a .ko file (a module built out of tree, e.g.
+# gpio-sim: tests/vm/hal_vm_lib.sh) is taken as it is, in its place in the
+# order, without dependencies: name the modules it needs before it.
 set -eu
 [ $# -ge 4 ] || { echo "usage: mkinitramfs.sh OUT.cpio.gz KERNEL_RELEASE INIT MODULE..." >&2; exit 2; }
 out=$1
@@ -25,7 +28,13 @@ trap 'rm -rf "$d"' EXIT
 mkdir -p "$d/bin" "$d/proc" "$d/sys" "$d/dev" "$d/host" "$d/mods"
 cp "$busybox" "$d/bin/busybox"
 for m in "$@"; do
-	modprobe -S "$rel" --show-depends "$m" || { echo "mkinitramfs: no module $m for $rel" >&2; exit 1; }
+	case "$m" in
+	/*.ko)
+		[ -s "$m" ] || { echo "mkinitramfs: no module file $m" >&2; exit 1; }
+		echo "insmod $m"
+		;;
+	*) modprobe -S "$rel" --show-depends "$m" || { echo "mkinitramfs: no module $m for $rel" >&2; exit 1; } ;;
+	esac
 done | awk '$1 == "insmod" && !seen[$2]++ { print $2 }' >"$d/list"
 while read -r ko; do
 	name=$(basename "$ko")
