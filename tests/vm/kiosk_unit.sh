@@ -255,18 +255,13 @@ done <"$ROOT/vmtest/guest.log"
 # not the console (after the stop); terrain colours, not one flat colour.
 # Then the knob: two frames while paused, the same to the byte (the
 # picture is frozen), and one after the encoder's turn, different (fov)
-python3 - "$T" <<'PY' >"$T/shots.log" 2>&1
+python3 - "$T" "$here" <<'PY' >"$T/shots.log" 2>&1
 import sys
-def ppm(p):
-    d = open(p, 'rb').read()
-    parts = d.split(maxsplit=4)
-    w, h = int(parts[1]), int(parts[2])
-    return w, h, parts[4][-w * h * 3:]
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, sys.argv[2])
+from ppm import ppm, diff
 T = sys.argv[1]
 a, b, c = (ppm('%s/%s.ppm' % (T, n)) for n in ('kiosk-a', 'kiosk-b', 'console'))
-def diff(x, y):
-    if x[:2] != y[:2]: return 255.0
-    return sum(abs(p - q) for p, q in zip(x[2], y[2])) / len(x[2])
 colours = len(set(a[2][i:i + 3] for i in range(0, len(a[2]), 3)))
 print("kiosk %dx%d, %d colours; mean |a-b| %.2f, |a-console| %.2f" % (a[0], a[1], colours, diff(a, b), diff(a, c)))
 sys.exit(0 if colours > 50 and diff(a, b) > 0.5 and diff(a, c) > 5 else 1)
@@ -276,18 +271,13 @@ if [ $? -eq 0 ]; then
 else
 	bad "the display: $(tail -3 "$T/shots.log")"
 fi
-if python3 - "$T" <<'PY' >"$T/knob-shots.log" 2>&1; then
+if python3 - "$T" "$here" <<'PY' >"$T/knob-shots.log" 2>&1; then
 import sys
-def ppm(p):
-    d = open(p, 'rb').read()
-    parts = d.split(maxsplit=4)
-    w, h = int(parts[1]), int(parts[2])
-    return w, h, parts[4][-w * h * 3:]
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, sys.argv[2])
+from ppm import ppm, diff
 T = sys.argv[1]
 p1, p2, k = (ppm('%s/%s.ppm' % (T, n)) for n in ('paused-a', 'paused-b', 'knob'))
-def diff(x, y):
-    if x[:2] != y[:2]: return 255.0
-    return sum(abs(p - q) for p, q in zip(x[2], y[2])) / len(x[2])
 print("paused: |a-b| %.2f (%s); after the turn: |paused-knob| %.2f" %
       (diff(p1, p2), "the same" if p1 == p2 else "different", diff(p2, k)))
 sys.exit(0 if p1 == p2 and diff(p2, k) > 0.5 else 1)
