@@ -45,7 +45,15 @@ mkdir -p $D/bank0 && echo 8 >$D/bank0/num_lines && echo knobs >$D/bank0/label &&
 find_sys
 rest
 echo "guest: $CHIP at $SYS"
-line() { echo "pull-$2" >$SYS/sim_gpio$1/pull; sleep 0.02; } # line up|down
+# One level change of a line, then a pause.  The kernel's v1 line events
+# learn the edge's direction by reading the line's level in a threaded
+# handler: when the guest's CPU is held off long enough (TCG on a loaded
+# host), a line changed twice before that handler ran reports the same
+# direction twice, the Gray sequence breaks and a detent is lost.  A line
+# changes again two pauses later: 100 ms pauses tolerate stalls of the
+# guest five times as long as 20 ms did (a detent was lost so once, beside
+# a busy host, 2026-11-27: 'sun 1.2' never came).
+line() { echo "pull-$2" >$SYS/sim_gpio$1/pull; sleep 0.1; } # line up|down
 LOG=$R/knob.log
 nlog() { if [ -f $LOG ]; then wc -l <$LOG; else echo 0; fi; }
 # The app polls its inputs once per frame, and a frame of software
@@ -75,6 +83,7 @@ step() { # expect one more log line after the action: step "action" "expected li
 		[ "$got" = "$2" ] && ok "$1 -> $got" || bad "$1: got '$got', want '$2'"
 	else
 		bad "$1: no knob change within ${3:-$WAIT} s (want '$2')"
+		n=$(nlog) # the next step expects the line after what did come
 	fi
 }
 cat >$R/knobs.conf <<CONF
@@ -111,10 +120,14 @@ ulimit -c unlimited
 echo "/run/res/core.%e.%p" >/proc/sys/kernel/core_pattern
 trap save_cache EXIT
 # isoterra itself, headless, tiny frames (software rendering under TCG), one
-# PNG per frame so the test sees it render; without the keyboard's fifo (fd
-# 3), which must close when the test closes it
+# PNG per frame so the test sees it render, into the guest's tmpfs (FR:
+# thousands of files written and listed over 9p cost the host CPU the
+# guest needs); without the keyboard's fifo (fd 3), which must close when
+# the test closes it
+FR=/run/frames
+mkdir -p $FR || die "mkdir $FR"
 $INROOT "$BIN" --platform surfaceless --size 64x48 --grid 8 --count 1000000 --cam-spin 0 --no-water \
-	--config $R/knobs.conf --keyboard evdev --keyboard-evdev $KDEV --out "$R/f%d.png" >$R/app.out 2>$R/app.log 3>&- &
+	--config $R/knobs.conf --keyboard evdev --keyboard-evdev $KDEV --out "$FR/f%d.png" >$R/app.out 2>$R/app.log 3>&- &
 APP=$!
 waitapp "gpio: $CHIP (knobs) ready" ${WAIT_FIRST:-600} && ok "app opened the chip" || die "app did not open $CHIP: $(cat $R/app.log)"
 # which libgpiod the app runs on (1.6: libgpiod.so.2, 2.x: libgpiod.so.3)
@@ -126,7 +139,7 @@ fi
 # the first frame compiles every shader (minutes under TCG without the cache)
 # (a sequence's frames are staged as f<N>.png.XXXXXX and renamed only when
 # the run ends well: a staged frame counts)
-frames() { ls $R | grep -c '^f[0-9]*\.png'; }
+frames() { ls $FR | grep -c '^f[0-9]*\.png'; }
 waitframes() { # at least $1 frames, at most $2 s
 	end=$(($(up) + $2))
 	while [ "$(frames)" -lt "$1" ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done

@@ -80,7 +80,8 @@ waitk() { # the knob log at $1 lines, at most $2 seconds
 	while [ "$(nk)" -lt "$1" ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
 	[ "$(nk)" -ge "$1" ]
 }
-line() { [ -n "$SYS" ] && echo "pull-$2" >"$SYS/sim_gpio$1/pull"; sleep 0.02; } # line up|down
+# 100 ms between level changes: see line() in gpio_knobs_guest.sh
+line() { [ -n "$SYS" ] && echo "pull-$2" >"$SYS/sim_gpio$1/pull"; sleep 0.1; } # line up|down
 press() { line 2 down; sleep 0.1; line 2 up; } # the pause button (active-low)
 cw() { line 1 up; line 0 up; line 1 down; line 0 down; } # a detent forward: 00 01 11 10 00
 k0=$(nk)

@@ -86,14 +86,18 @@ grep -q "^  $OUT: .*video output, formats .*YUYV" $R/probe_output.txt && grep -q
 probe 1 capture "NOT run.*--v4l2 $CAP .*is not a video output device" --v4l2 $CAP
 probe 1 missing "NOT run.*--v4l2 /dev/video99: cannot open" --v4l2 /dev/video99
 
-# the app streams to the output node until SIGTERM
+# the app streams to the output node until SIGTERM; its frames go to the
+# guest's tmpfs (FR: thousands of files written and listed over 9p cost
+# the host CPU the guest needs; see gpio_knobs_guest.sh)
+FR=/run/frames
+mkdir -p $FR || die "mkdir $FR"
 "$BIN" --platform surfaceless --size ${SW}x$SH --grid 16 --count 1000000 --cam-spin 0 --no-water --keyboard off \
-	--v4l2 $OUT --v4l2-format YUYV --v4l2-matrix bt601 --v4l2-fps 0 --out "$R/frame%d.png" >$R/app.log 2>&1 &
+	--v4l2 $OUT --v4l2-format YUYV --v4l2-matrix bt601 --v4l2-fps 0 --out "$FR/frame%d.png" >$R/app.log 2>&1 &
 APP=$!
 # a sequence's frames are staged as frame<N>.png.XXXXXX, renamed only when
 # the run ends well; frames are written in order, so every frame below the
 # newest one is whole
-fr() { ls $R/frame$1.png $R/frame$1.png.* 2>/dev/null | head -1; }
+fr() { ls $FR/frame$1.png $FR/frame$1.png.* 2>/dev/null | head -1; }
 end=$(($(up) + WAIT))
 while [ -z "$(fr 4)" ] && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
 [ -n "$(fr 4)" ] || die "the app did not render 4 frames in $WAIT s: $(tail -5 $R/app.log)"
@@ -112,7 +116,7 @@ cmp -s "$(fr 2)" $R/ref.png && ok "the app's frames are still (frame 2 = frame $
 # unregisters its nodes as a USB unplug would (ioctls fail with ENODEV) and
 # registers them again once the last file handle is closed.  The app must
 # report it, go on rendering, and stream again when the node is back.
-frames() { ls $R | grep -c '^frame[0-9]*\.png'; }
+frames() { ls $FR | grep -c '^frame[0-9]*\.png'; }
 waitfor() { # regex in the app log, at most $2 s
 	end=$(($(up) + $2))
 	while ! grep -q "$1" $R/app.log && [ "$(up)" -lt $end ] && kill -0 $APP 2>/dev/null; do sleep 0.5; done
