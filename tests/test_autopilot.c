@@ -2,7 +2,9 @@
  * 120 s each, with the CPU density function as the judge: it starts in air,
  * no point of its path (every step, and between steps) lies in rock, and in no 5 s window does it hover
  * (stay within one second's travel, or 10 units at high speed, of where the
- * window began: the size of a cave chamber it may turn around in).  CPU only. */
+ * window began: the size of a cave chamber it may turn around in).  CPU only:
+ * the flights are independent and fly on one thread per CPU, their verdicts
+ * printed and checked in order afterwards. */
 #include "density_ref.h"
 #include "noise.h"
 #include "params.h"
@@ -10,8 +12,11 @@
 #include "tcheck.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define SAMPLE 0.1                    /* seconds between judged samples */
 #define WINDOW 50                     /* samples in the 5 s hover window */
@@ -21,6 +26,7 @@
 #define STEPS 6                       /* simulation steps per sample (60 per second) */
 
 struct verdict {
+	bool init_ok;     /* autopilot_init succeeded */
 	float min_air;    /* least air seen (-density) */
 	float min_travel; /* least net travel over 5 s */
 	double hover_at;  /* first time it hovered (or -1) */
@@ -41,8 +47,12 @@ static float air_along(const struct params *p, const struct noise_set *ns, const
 static void fly(const struct params *p, const struct noise_set *ns, struct verdict *v)
 {
 	struct autopilot ap;
-	static float hist[NSAMP + 1][3];
-	CHECK(autopilot_init(&ap, p, NULL) == 0, "autopilot_init");
+	float (*hist)[3] = malloc(sizeof(float[NSAMP + 1][3]));
+	v->init_ok = hist && autopilot_init(&ap, p, NULL) == 0;
+	if (!v->init_ok) {
+		free(hist);
+		return;
+	}
 	v->min_air = -density_ref(p, ns, NULL, ap.pos[0], ap.pos[1], ap.pos[2]);
 	v->min_travel = 1e30f;
 	v->hover_at = -1.0;
@@ -70,6 +80,30 @@ static void fly(const struct params *p, const struct noise_set *ns, struct verdi
 		}
 	}
 	autopilot_free(&ap);
+	free(hist);
+}
+
+struct flight {
+	size_t preset;
+	struct params p;
+	struct verdict v;
+};
+
+struct pool {
+	struct flight *f;
+	size_t n;
+	atomic_size_t next;
+};
+
+static void *fly_worker(void *arg)
+{
+	struct pool *pool = arg;
+	for (size_t i; (i = atomic_fetch_add(&pool->next, 1)) < pool->n;) {
+		struct noise_set ns;
+		noise_set_init(&ns, pool->f[i].p.seed);
+		fly(&pool->f[i].p, &ns, &pool->f[i].v);
+	}
+	return NULL;
 }
 
 static void preset_params(size_t i, struct params *p)
@@ -96,6 +130,11 @@ int main(int argc, char **argv)
 			only = argv[a];
 		}
 	}
+	struct flight *f = calloc(preset_count * nseeds * sizeof(speeds) / sizeof(speeds[0]), sizeof(*f));
+	CHECK(f != NULL, "out of memory");
+	if (!f)
+		return tc_done("autopilot");
+	size_t n = 0;
 	for (size_t pi = 0; pi < preset_count; pi++) {
 		if (strstr(presets[pi].settings, "field=")) /* the test fields are no terrain */
 			continue;
@@ -103,28 +142,47 @@ int main(int argc, char **argv)
 			continue;
 		for (size_t si = 0; si < nseeds; si++)
 			for (size_t vi = 0; vi < sizeof(speeds) / sizeof(speeds[0]); vi++) {
-				struct params p;
-				preset_params(pi, &p);
-				p.scene = SCENE_WORLD;
-				p.seed = seeds[si];
-				p.fly_speed = speeds[vi];
-				struct noise_set ns;
-				noise_set_init(&ns, p.seed);
-				struct verdict v;
-				fly(&p, &ns, &v);
-				flights++;
-				bool ok = v.min_air > 0.0f && v.hover_at < 0.0;
-				bad += !ok;
-				printf("%-12s seed %5d speed %4.0f: least air %6.2f, least 5 s reach %7.2f%s\n",
-				       presets[pi].name, p.seed, (double)p.fly_speed, (double)v.min_air,
-				       (double)v.min_travel, ok ? "" : "  <-- FAIL");
-				CHECK(v.min_air > 0.0f, "%s seed %d speed %g: in rock (air %g)", presets[pi].name, p.seed,
-				      (double)p.fly_speed, (double)v.min_air);
-				CHECK(v.hover_at < 0.0, "%s seed %d speed %g: hovered (5 s reach %g < %g) at %.1f s",
-				      presets[pi].name, p.seed, (double)p.fly_speed, (double)v.min_travel,
-				      (double)fminf(p.fly_speed, REACH), v.hover_at);
+				f[n].preset = pi;
+				preset_params(pi, &f[n].p);
+				f[n].p.scene = SCENE_WORLD;
+				f[n].p.seed = seeds[si];
+				f[n].p.fly_speed = speeds[vi];
+				n++;
 			}
 	}
+	struct pool pool = { .f = f, .n = n };
+	atomic_init(&pool.next, 0);
+	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+	size_t nthreads = cpus < 1 ? 1 : cpus > 8 ? 8 : (size_t)cpus;
+	pthread_t th[8];
+	size_t started = 0;
+	for (; started < nthreads; started++)
+		if (pthread_create(&th[started], NULL, fly_worker, &pool) != 0)
+			break;
+	if (started == 0)
+		fly_worker(&pool); /* no thread could start: fly them here */
+	for (size_t t = 0; t < started; t++)
+		pthread_join(th[t], NULL);
+	for (size_t i = 0; i < n; i++) {
+		const struct params *p = &f[i].p;
+		const struct verdict *v = &f[i].v;
+		const char *name = presets[f[i].preset].name;
+		flights++;
+		CHECK(v->init_ok, "%s seed %d speed %g: autopilot_init", name, p->seed, (double)p->fly_speed);
+		if (!v->init_ok) {
+			bad++;
+			continue;
+		}
+		bool ok = v->min_air > 0.0f && v->hover_at < 0.0;
+		bad += !ok;
+		printf("%-12s seed %5d speed %4.0f: least air %6.2f, least 5 s reach %7.2f%s\n", name, p->seed,
+		       (double)p->fly_speed, (double)v->min_air, (double)v->min_travel, ok ? "" : "  <-- FAIL");
+		CHECK(v->min_air > 0.0f, "%s seed %d speed %g: in rock (air %g)", name, p->seed, (double)p->fly_speed,
+		      (double)v->min_air);
+		CHECK(v->hover_at < 0.0, "%s seed %d speed %g: hovered (5 s reach %g < %g) at %.1f s", name, p->seed,
+		      (double)p->fly_speed, (double)v->min_travel, (double)fminf(p->fly_speed, REACH), v->hover_at);
+	}
+	free(f);
 	printf("autopilot: %d flights of %.0f s, %d failed\n", flights, FLIGHT, bad);
 	return tc_done("autopilot");
 }
