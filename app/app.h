@@ -15,7 +15,6 @@
 #include "output.h"    /* app/output: sinks, PLY, Y4M, the display */
 #include "platform.h"  /* platform/: EGL backends */
 #include "controls.h"  /* hal/ events -> parameters, OSD, screenshots */
-#include "hal_config.h" /* hal's configuration from the parameters */
 #include "run.h"       /* the frame loop */
 
 #endif

@@ -2,11 +2,9 @@
  * pause clock, OSD, screenshots, the knob log.  hal's configuration:
  * hal_config.c, v4l2_config.c. */
 #include "controls.h"
-#include "hal_config.h"
-#include "log.h"
-#include "osd.h"
+#include "output.h"
+#include "core.h"
 #include "render.h"
-#include "util.h"
 
 #include <errno.h>
 #include <math.h>

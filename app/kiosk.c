@@ -1,10 +1,8 @@
 /* isoterra — SIGHUP reload and the attract playlist (see kiosk.h). */
 #include "kiosk.h"
-#include "log.h"
+#include "core.h"
 #include "render.h"
-#include "signals.h"
-#include "cli.h"
-#include "util.h"
+#include "params.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -2,18 +2,15 @@
  * program's run around it: platform, GL, renderer, controls, sinks, scene;
  * the summary at the end. */
 #include "run.h"
-#include "cli.h"
-#include "clock.h"
+#include "params.h"
+#include "core.h"
 #include "controls.h"
 #include "gpu.h"
 #include "kiosk.h"
-#include "log.h"
-#include "notify.h"
 #include "platform.h"
 #include "render.h"
 #include "scene.h"
-#include "signals.h"
-#include "sink.h"
+#include "output.h"
 
 #include <limits.h>
 #include <signal.h>

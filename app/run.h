@@ -6,7 +6,7 @@
 #include <stddef.h>
 
 #include "params.h"
-#include "image.h"
+#include "core.h"
 
 struct scene;
 struct controls;

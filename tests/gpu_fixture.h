@@ -56,7 +56,7 @@ static inline void fixture_terrain_close(struct fixture_terrain *ft)
 	edits_destroy(ft->ed);
 }
 
-static struct platform *fixture_open(void)
+static inline struct platform *fixture_open(void)
 {
 	char err[512];
 	const char *name = getenv("ISOTERRA_PLATFORM");

@@ -20,7 +20,14 @@
 #define SANITIZED 0
 #endif
 
+/* A test program of several files defines TCHECK_SHARED before this header
+ * in each of them, and the counters once, in the file with main:
+ *     int tc_pass, tc_fail; */
+#ifdef TCHECK_SHARED
+extern int tc_pass, tc_fail;
+#else
 static int tc_pass, tc_fail;
+#endif
 
 #define CHECK(cond, ...)                                                        \
 	do {                                                                    \

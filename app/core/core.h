@@ -1,7 +1,7 @@
 /* isoterra — app/core, the folder's door: what every other folder builds
  * on (logging, the clock, small helpers, atomic files, PNG through libpng,
- * meshes, grids, the service manager's notifications).  Depends on nothing
- * else of the program. */
+ * meshes, grids, the service manager's notifications, the process's
+ * signal flags).  Depends on nothing else of the program. */
 #ifndef ISOTERRA_CORE_H
 #define ISOTERRA_CORE_H
 
@@ -14,5 +14,6 @@
 #include "grid.h"
 #include "notify.h"
 #include "heap.h"
+#include "signals.h"
 
 #endif

@@ -15,7 +15,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-#include "abi.h"
+#include "gpu.h"
 
 /* Road, river and railway are surfaces: the ground is pulled to the curve's
  * height across its profile.  A tunnel is a tube through the rock with its

@@ -5,7 +5,6 @@
  * The GL objects belong to one edit state (struct edits_gl). */
 #include "edits.h"
 #include "gpu.h"
-#include "abi.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -3,7 +3,6 @@
  * the API, and the record of the region that changed. */
 #include "edits.h"
 #include "core.h"
-#include "image.h"
 
 #include <float.h>
 #include <stdio.h>

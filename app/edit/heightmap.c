@@ -1,6 +1,6 @@
 /* isoterra — heightmap files: 16-bit grayscale PNG in and out. */
 #include "edits.h"
-#include "image.h"
+#include "core.h"
 
 #include <errno.h>
 #include <limits.h>

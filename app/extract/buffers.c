@@ -6,9 +6,8 @@
 #include "extract_int.h"
 #include "vertex.h"
 #include "gpu.h"
-#include "abi.h"
 #include "mc.h"
-#include "util.h"
+#include "core.h"
 
 #include <stdio.h>
 #include <stdlib.h>

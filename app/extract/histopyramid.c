@@ -6,7 +6,6 @@
  * level-0 bytes with the very same calls. */
 #include "extract_int.h"
 #include "gpu.h"
-#include "abi.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -19,8 +19,7 @@
 #define ISOTERRA_MC_H
 
 #include <stdint.h>
-#include "grid.h"
-#include "mesh.h"
+#include "core.h"
 
 #define MC_MAX_TRIS 5 /* per cell, checked when the table is built */
 

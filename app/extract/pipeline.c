@@ -18,11 +18,8 @@
  * mc_finish.comp and drawn with glDrawArraysIndirect.  The programs:
  * programs.c. */
 #include "extract_int.h"
-#include "util.h"
+#include "core.h"
 #include "gpu.h"
-#include "abi.h"
-#include "clock.h"
-#include "log.h"
 #include "mc.h"
 
 #include <math.h>

@@ -25,8 +25,7 @@
 #include <GLES3/gl31.h>
 
 #include "params.h"
-#include "mesh.h"
-#include "grid.h"
+#include "core.h"
 #include "field.h"
 
 /* The grid the parameters describe (--grid N cells over the vol_* cube). */

@@ -3,10 +3,8 @@
  * set, the most recently used kept), and every program of a run issued
  * together at creation (extract_int.h). */
 #include "extract_int.h"
-#include "util.h"
+#include "core.h"
 #include "gpu.h"
-#include "clock.h"
-#include "log.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "log.h"
+#include "core.h"
 
 /* The passes, with the #defines that declare the most: HAS_CONTROL_MAP 1
  * (the control map's sampler) and, through carve.glsl, the curves' storage

@@ -1,7 +1,7 @@
 /* isoterra — GLES 3.1 capability checks, KHR_debug routing, error checks. */
 #include "gpu.h"
 #include "gl_limits.h"
-#include "log.h"
+#include "core.h"
 #include "platform.h"
 
 #include <EGL/egl.h>

@@ -95,4 +95,8 @@ int gpu_check(const char *what);
  * there.  A capability of the display, not a renderer name. */
 bool gpu_software_rasterizer(void);
 
+/* the GL limits against each program's use (gl_limits.c), which the probe
+ * reports */
+#include "gl_limits.h"
+
 #endif

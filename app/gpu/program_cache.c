@@ -11,8 +11,7 @@
  * program is compiled and the file rewritten (temp file + rename). */
 #include "gpu.h"
 #include "gpu_int.h"
-#include "atomic_file.h"
-#include "log.h"
+#include "core.h"
 
 #include <dirent.h>
 #include <errno.h>

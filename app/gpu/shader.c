@@ -4,7 +4,7 @@
 #include "gpu.h"
 #include "gpu_int.h"
 #include "gl_limits.h"
-#include "log.h"
+#include "core.h"
 #include "shader_int.h"
 
 #include <errno.h>

@@ -9,7 +9,7 @@
  * after glUseProgram rather than once. */
 #include "gpu.h"
 #include "gpu_int.h"
-#include "log.h"
+#include "core.h"
 #include "shader_int.h"
 
 #include <errno.h>

@@ -8,7 +8,7 @@
  * deleted program's name comes back only through the loader. */
 #include "gpu.h"
 #include "gpu_int.h"
-#include "log.h"
+#include "core.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -5,10 +5,9 @@
  * display), and the frame rate is reported on SIGUSR1 and every
  * --fps-report seconds. */
 #include "sink.h"
-#include "log.h"
+#include "core.h"
 #include "platform.h"
 #include "render.h"
-#include "signals.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -2,7 +2,7 @@
  * triangle lists).  Bytes are encoded explicitly, so big-endian hosts write
  * the same file. */
 #include "ply.h"
-#include "util.h"
+#include "core.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -13,8 +13,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "atomic_file.h"
-#include "log.h"
 
 #define PLY_VERTEX_BYTES 24u /* 6 float32 */
 #define FACE_BYTES 13u   /* uchar 3 + 3 uint32 */

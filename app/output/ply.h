@@ -3,8 +3,7 @@
 #define ISOTERRA_PLY_H
 
 #include <stddef.h>
-#include "atomic_file.h"
-#include "mesh.h"
+#include "core.h"
 
 /* Writes vertices (x y z nx ny nz float) and faces (uchar count, uint
  * indices) atomically (temp file + rename).  0 or -1 with err. */

@@ -22,7 +22,7 @@
 #include <stddef.h>
 
 #include "params.h"
-#include "image.h"
+#include "core.h"
 
 struct renderer;
 struct platform;

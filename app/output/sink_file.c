@@ -2,7 +2,7 @@
  * frame), a Y4M stream (file or stdout); and the memory sink of
  * render_to_image.  See sink.h. */
 #include "sink.h"
-#include "cli.h"
+#include "params.h"
 #include "render.h"
 #include "y4m.h"
 

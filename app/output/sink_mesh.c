@@ -3,7 +3,7 @@
  * end of a run that went well, staged until every output is ready; only
  * whole triangles (a mesh clamped at its capacity is said to be). */
 #include "sink.h"
-#include "log.h"
+#include "core.h"
 #include "ply.h"
 #include "scene.h"
 

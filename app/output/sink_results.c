@@ -10,10 +10,8 @@
  * and after its draw while results are collected, so the split is real
  * (and the frame a little slower than without --results). */
 #include "sink.h"
-#include "atomic_file.h"
-#include "clock.h"
+#include "core.h"
 #include "gpu.h"
-#include "log.h"
 #include "scene.h"
 
 #include <math.h>

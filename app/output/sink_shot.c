@@ -4,9 +4,8 @@
  * be written is a warning: the run goes on.  A name that cannot number its
  * files is refused at open. */
 #include "sink.h"
-#include "cli.h"
-#include "image.h"
-#include "log.h"
+#include "params.h"
+#include "core.h"
 #include "render.h"
 
 #include <limits.h>

@@ -4,8 +4,7 @@
 #define ISOTERRA_Y4M_H
 
 #include <stdio.h>
-#include "atomic_file.h"
-#include "image.h"
+#include "core.h"
 
 struct y4m {
 	FILE *f;               /* stdout, or af.f */

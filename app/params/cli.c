@@ -1,7 +1,6 @@
 /* isoterra — command line over the parameter table. */
 #include "cli.h"
-#include "util.h"
-#include "atomic_file.h"
+#include "core.h"
 #include "platform.h"
 
 #include <stdbool.h>

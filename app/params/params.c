@@ -1,6 +1,6 @@
 /* isoterra — parameter table, setters, config file and presets. */
 #include "params.h"
-#include "util.h"
+#include "core.h"
 
 #include <ctype.h>
 #include <errno.h>

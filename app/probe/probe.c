@@ -5,8 +5,7 @@
  * going to stderr). */
 #include "probe.h"
 #include "probe_int.h"
-#include "atomic_file.h"
-#include "log.h"
+#include "core.h"
 
 #include <string.h>
 

@@ -5,8 +5,7 @@
  * driver's counts, recorded when they link), and the program cache. */
 #include "probe_int.h"
 #include "gpu.h"
-#include "gl_limits.h"
-#include "log.h"
+#include "core.h"
 #include "platform.h"
 #include "platform_probe.h"
 #include "render.h"

@@ -2,8 +2,7 @@
  * DRM master), gpiochips and the configured knob lines, V4L2 outputs, and
  * the process's groups against the device nodes met. */
 #include "probe_int.h"
-#include "controls.h"
-#include "hal_config.h"
+#include "output.h"
 #include "hal_probe.h"
 #include "platform_probe.h"
 

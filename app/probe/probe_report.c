@@ -1,7 +1,7 @@
 /* isoterra — the probe's report: plain text to a stream, the same facts as
  * a JSON document in memory (written at the end, probe.c). */
 #include "probe_int.h"
-#include "util.h"
+#include "core.h"
 
 #include <inttypes.h>
 #include <stdarg.h>

@@ -3,8 +3,7 @@
  * indirect commands from the mesh's own, on the GPU. */
 #include "render_int.h"
 #include "gpu.h"
-#include "abi.h"
-#include "log.h"
+#include "core.h"
 
 #include <string.h>
 

@@ -4,8 +4,7 @@
 #include "render.h"
 #include "render_int.h"
 #include "gpu.h"
-#include "abi.h"
-#include "log.h"
+#include "core.h"
 
 #include <math.h>
 #include <stdlib.h>

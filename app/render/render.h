@@ -5,9 +5,8 @@
 
 #include <stddef.h>
 #include "params.h"
-#include "grid.h"
-#include "image.h"
-#include "pipeline.h"
+#include "core.h"
+#include "extract.h"
 
 struct camera {
 	float eye[3];

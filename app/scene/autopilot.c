@@ -24,9 +24,8 @@
  *    seconds (a dead end, a corner), it turns fast towards the longest free
  *    ray of a full sphere of directions and commits to it for a while. */
 #include "world.h"
-#include "util.h"
-#include "density_ref.h"
-#include "noise.h"
+#include "core.h"
+#include "terrain.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "params.h"
-#include "mesh.h"
+#include "core.h"
 
 struct renderer;
 

@@ -1,13 +1,11 @@
 /* isoterra — the volume scene: one box of the field extracted every frame
  * (the pipeline), seen by the orbit camera. */
 #include "scene.h"
-#include "pipeline.h"
+#include "extract.h"
 #include "render.h"
-#include "edits.h"
+#include "edit.h"
 #include "terrain.h"
-#include "clock.h"
-#include "density_ref.h"
-#include "noise.h"
+#include "core.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,10 +1,10 @@
 /* isoterra — the world scene: the streaming world (world.c) seen from the
  * autopilot's camera, or steered by the flight keys (camera=manual). */
 #include "scene.h"
-#include "clock.h"
+#include "core.h"
 #include "render.h"
 #include "world.h"
-#include "edits.h"
+#include "edit.h"
 #include "governor.h"
 #include "gpu.h"
 

@@ -22,9 +22,7 @@
 #include "world_int.h"
 #include "extract.h"
 #include "gpu.h"
-#include "clock.h"
-#include "heap.h"
-#include "log.h"
+#include "core.h"
 
 #include <math.h>
 #include <stdio.h>

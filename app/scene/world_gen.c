@@ -17,9 +17,8 @@
  *    HistoPyramid, output), each charged to the frame's budget, so no
  *    frame carries a whole block. */
 #include "world_int.h"
-#include "density_bound.h"
-#include "clock.h"
-#include "log.h"
+#include "terrain.h"
+#include "core.h"
 #include "gpu.h"
 
 #include <math.h>

@@ -11,9 +11,9 @@
 #include <GLES3/gl31.h>
 
 #include "world.h"
-#include "abi.h"
-#include "edits.h"
-#include "pipeline.h"
+#include "gpu.h"
+#include "edit.h"
+#include "extract.h"
 #include "terrain.h"
 
 enum bstate { B_FREE = 0, B_PENDING, B_READY, B_EMPTY };

@@ -13,7 +13,7 @@
  * blocks (draw commands, counters) stay one per slot. */
 #include "world_int.h"
 #include "gpu.h"
-#include "log.h"
+#include "core.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -2,7 +2,7 @@
  * (shaders/density_bound.glsl): which states it covers, and the bound of a
  * run of octaves (density_bound.h). */
 #include "density_bound.h"
-#include "edits.h"
+#include "edit.h"
 
 #include <math.h>
 

@@ -5,7 +5,7 @@
  * noise=texture, where the GPU's hardware trilinear filter is approximated
  * here by exact fp32 trilinear interpolation (see tests/test_density.c). */
 #include "density_ref.h"
-#include "edits.h" /* curves and heightmap: carve_ref.c */
+#include "edit.h" /* curves and heightmap: carve_ref.c */
 
 #include <math.h>
 

@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 #include <stddef.h>
-#include "abi.h" /* NOISE_TEX_SIZE: the textures' size, which the GL limits check too */
+#include "gpu.h" /* NOISE_TEX_SIZE: the textures' size, which the GL limits check too */
 
 #define NOISE_TEX_COUNT 3
 #define NOISE_TEX_TEXELS (NOISE_TEX_SIZE * NOISE_TEX_SIZE * NOISE_TEX_SIZE)

@@ -4,7 +4,7 @@
  * Perlin's seed key; UBIND_NOISE).  Perlin noise itself needs no table.
  * See noise.h and shaders/noise.glsl. */
 #include "noise.h"
-#include "abi.h"
+#include "gpu.h"
 
 #include <GLES3/gl31.h>
 #include <stdio.h>

@@ -18,8 +18,8 @@
 #ifndef ISOTERRA_TERRAIN_H
 #define ISOTERRA_TERRAIN_H
 
-#include "edits.h"
-#include "field.h"
+#include "edit.h"
+#include "extract.h"
 
 struct terrain;
 
@@ -32,8 +32,10 @@ void terrain_destroy(struct terrain *t);
 /* The field for pipeline_create(), valid while t lives; NULL for NULL. */
 const struct field *terrain_field(const struct terrain *t);
 
-/* the rest of the folder: noise tables and the CPU reference of the field */
+/* the rest of the folder: noise tables, the CPU reference of the field and
+ * the bound of its density over a block (the world's empty-block skip) */
 #include "noise.h"
 #include "density_ref.h"
+#include "density_bound.h"
 
 #endif

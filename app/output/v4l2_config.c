@@ -1,7 +1,7 @@
 /* isoterra — the V4L2 output's configuration from the parameter table
  * (hal_config.h): format, colour matrix, I/O method, pacing. */
 #include "hal_config.h"
-#include "util.h"
+#include "core.h"
 
 static const int format_of[] = {
 	[V4L2_FORMAT_AUTO] = -1,	  [V4L2_FORMAT_YUYV] = CF_YUYV, [V4L2_FORMAT_UYVY] = CF_UYVY,

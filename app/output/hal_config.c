@@ -3,10 +3,8 @@
  * buttons, the keys, and hal's seams (its messages into the log, the V4L2
  * conversion's program through the shader loader). */
 #include "hal_config.h"
-#include "abi.h"
 #include "gpu.h"
-#include "log.h"
-#include "util.h"
+#include "core.h"
 
 #include <stdio.h>
 #include <string.h>

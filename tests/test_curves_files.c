@@ -1,0 +1,425 @@
+/* isoterra — test_curves (test_curves.c), the inputs: GeoJSON / CSV
+ * parsing (good files and malformed ones), sizes, geographic input, the
+ * heightmap (16-bit PNG, GeoTIFF through GDAL when the build has it) on
+ * the CPU. */
+#include "curves_test.h"
+#include "world.h"
+#include "terrain.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+#include <unistd.h>
+
+/* ---- input files ----------------------------------------------------------------------- */
+
+static void expect_parse_error(bool csv, const char *text, const char *want)
+{
+	struct curve_set s;
+	char err[512] = "";
+	int rc = csv ? curves_parse_csv(text, strlen(text), "t.csv", &s, err, sizeof(err))
+		     : curves_parse_geojson(text, strlen(text), "t.geojson", &s, err, sizeof(err));
+	CHECK(rc < 0 && strstr(err, want), "malformed %s: want '%s' in '%s'", csv ? "CSV" : "GeoJSON", want, err);
+	if (rc == 0)
+		curve_set_free(&s);
+}
+
+void test_io(void)
+{
+	const char *geo = "{ \"type\": \"FeatureCollection\", \"features\": [\n"
+			  "  { \"type\": \"Feature\", \"properties\": { \"kind\": \"river\", \"width\": 12.5, \"name\": \"x\" },\n"
+			  "    \"geometry\": { \"type\": \"LineString\", \"coordinates\": [[0, 0, 1], [10, 5, 2.5e0], [20, 0, -3]] } },\n"
+			  "  { \"type\": \"Feature\", \"properties\": null,\n"
+			  "    \"geometry\": { \"type\": \"MultiLineString\", \"coordinates\": [ [[0,0,0],[1,1,1]], [[5,5,5],[6,6,6],[7,7,7]] ] } }\n"
+			  "] }\n";
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_geojson(geo, strlen(geo), "t.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0, "valid GeoJSON: %s", err);
+	if (rc == 0) {
+		CHECK(s.npaths == 3, "3 line strings, got %d", s.npaths);
+		CHECK(s.paths[0].kind == CURVE_RIVER && s.paths[0].width == 12.5f && s.paths[0].falloff == 12.0f,
+		      "river properties (defaults for the rest)");
+		CHECK(s.paths[0].npts == 3 && s.paths[0].pts[3] == 10.0f && s.paths[0].pts[4] == 2.5f &&
+			      s.paths[0].pts[5] == -5.0f,
+		      "[east, north, up] -> (x, up, -north)");
+		CHECK(s.paths[2].npts == 3 && s.paths[1].kind == CURVE_ROAD, "MultiLineString parts");
+		curve_set_free(&s);
+	}
+	const char *csv = "# roads\npath,x,y,z,kind,width,falloff,inclination,smoothing\n"
+			  "a,0,1,0,railway,3,2,0.5,0.25\na,10,1,0,,,,,\n\n a , 20 , 2 , 5 ,,,,,\n"
+			  "b,0,0,0,,,,,\nb,1,0,1,road,,,,\n";
+	rc = curves_parse_csv(csv, strlen(csv), "t.csv", &s, err, sizeof(err));
+	CHECK(rc == 0, "valid CSV: %s", err);
+	if (rc == 0) {
+		CHECK(s.npaths == 2 && s.paths[0].npts == 3 && s.paths[1].npts == 2, "two paths (%d)", s.npaths);
+		CHECK(s.paths[0].kind == CURVE_RAILWAY && s.paths[0].width == 3.0f && s.paths[0].smoothing == 0.25f &&
+			      s.paths[0].pts[7] == 2.0f,
+		      "CSV values");
+		curve_set_free(&s);
+	}
+	/* malformed: each names the line */
+	expect_parse_error(false, "{ \"type\": \"FeatureCollection\", \"features\": [\n  { \"type\": \"Feature\",\n", "t.geojson:3");
+	expect_parse_error(false, "{\n \"type\": \"Feature\", \"geometry\": { \"type\": \"LineString\",\n \"coordinates\": [[0,0,0,0],[1,1,1,1]] } }",
+			   "t.geojson:3: feature 1: position 1 has 4 coordinates; GeoJSON positions are [x east, y north] "
+			   "(the curve follows the ground) or [x east, y north, z up] (z up, unlike the CSV's y up)");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,1,1]]}",
+			   "position 2 has 3 coordinates, position 1 has 2: a line string is all 2D [x east, y north] or all "
+			   "3D [x east, y north, z up]");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"coordinates\":[[0,0],[1,\"n\"]]}",
+			   "position 2: y (north) is not a number");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"crs\":{\"type\":\"EPSG\"},\"coordinates\":[[0,0],[1,1]]}",
+			   "\"crs\" must be");
+	expect_parse_error(false, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}},\n"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[]}}]}",
+			   "t.geojson:2: feature 2: geometry type \"Polygon\"");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"width\":-3},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}}",
+			   "\"width\" = -3 must be");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"canal\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}}",
+			   "\"kind\" must be");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[0,0,0]]}}",
+			   "2 distinct positions");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1],]}}",
+			   "trailing comma");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,01]]}}",
+			   "expected ',' or ']'");
+	expect_parse_error(false, "[1, 2]", "top level");
+	expect_parse_error(false, "", "t.geojson:1: invalid JSON");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":null}", "(it is null)");
+	expect_parse_error(true, "path,x,y\na,0,0\n", "t.csv:1: the header has no 'z' column");
+	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,zz,0\n", "t.csv:3: y 'zz' is not a number");
+	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,0\n", "t.csv:3: 3 fields, the header has 4");
+	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,0,0\nb,0,0,0\nb,1,1,1\na,5,5,5\na,6,6,6\n", "t.csv:6: rows of path 'a'");
+	expect_parse_error(true, "path,x,y,z,width\na,0,0,0,3\na,1,0,0,4\n", "t.csv:3: width of path 'a' changes");
+	expect_parse_error(true, "path,x,y,z,smoothing\na,0,0,0,2\na,1,0,0,\n", "t.csv:2: smoothing = 2 must be in [0, 1]");
+	expect_parse_error(true, "path,x,y,z\na,0,0,0\nb,0,0,0\nb,1,1,1\n", "t.csv:2: path 'a' needs at least 2");
+	expect_parse_error(true, "path,x,y,z,colour\n", "unknown column 'colour'");
+	expect_parse_error(true, "# nothing\n", "empty CSV");
+
+	/* files: extension, missing file */
+	CHECK(curves_load("/nonexistent/x.geojson", &s, err, sizeof(err)) < 0 && strstr(err, "cannot open"), "missing: %s",
+	      err);
+	CHECK(curves_load("roads.kml", &s, err, sizeof(err)) < 0 && strstr(err, "unknown format"), "kml: %s", err);
+}
+
+/* Work sized from the input and refused before it is done: a road a
+ * million units wide over a 1024^2 hash (each piece in every cell), files
+ * with more points than the tables hold; 200 000 paths read in linear time
+ * (a repeated id still found). */
+void test_sizes(void)
+{
+	char err[512] = "";
+	float pts[200 * 3];
+	for (int i = 0; i < 200; i++) {
+		pts[3 * i] = 10.0f * (float)i;
+		pts[3 * i + 1] = 0.0f;
+		pts[3 * i + 2] = 3.0f * (float)(i % 7);
+	}
+	struct curve_path wp = make_path(200, pts, 1e6f, 2, 0, 0);
+	struct curve_set ws = { &wp, 1 };
+	struct curve_quads q;
+	struct curve_hash h;
+	CHECK(curves_build(&ws, &q, err, sizeof(err)) == 0, "wide road: %s", err);
+	CHECK(curve_hash_build(&q, 1024, &h, err, sizeof(err)) == -1 && strstr(err, "curve hash too large: 416"),
+	      "wide road over 1024^2 cells refused: '%s'", err);
+	curve_quads_free(&q);
+
+	long n = CURVE_MAX_POINTS + 1;
+	size_t cap = (size_t)n * 16 + 256, len = 0;
+	char *text = malloc(cap);
+	len += (size_t)snprintf(text, cap, "path,x,y,z\n");
+	for (long i = 0; i < n; i++)
+		len += (size_t)snprintf(text + len, cap - len, "%ld,0,0,%d\n", i / 2, (int)(i % 2));
+	struct curve_set s;
+	CHECK(curves_parse_csv(text, len, "big.csv", &s, err, sizeof(err)) == -1 && strstr(err, "big.csv: 2097152 points"),
+	      "CSV with too many points: '%s'", err);
+	len = (size_t)snprintf(text, cap, "{\"type\":\"LineString\",\"coordinates\":[");
+	for (long i = 0; i < n; i++)
+		len += (size_t)snprintf(text + len, cap - len, "%s[%d,0,0]", i ? "," : "", (int)(i % 2));
+	len += (size_t)snprintf(text + len, cap - len, "]}");
+	CHECK(curves_parse_geojson(text, len, "big.geojson", &s, err, sizeof(err)) == -1 &&
+		      strstr(err, "big.geojson: 2097152 positions"),
+	      "GeoJSON with too many positions: '%s'", err);
+
+	int np = 200000;
+	len = (size_t)snprintf(text, cap, "path,x,y,z\n");
+	for (int i = 0; i < np; i++)
+		len += (size_t)snprintf(text + len, cap - len, "p%d,%d,0,0\np%d,%d,0,1\n", i, i, i, i);
+	int rc = curves_parse_csv(text, len, "many.csv", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == np, "200 000 paths: %s", err);
+	if (rc == 0)
+		curve_set_free(&s);
+	len += (size_t)snprintf(text + len, cap - len, "p17,0,0,0\np17,1,0,0\n");
+	CHECK(curves_parse_csv(text, len, "many.csv", &s, err, sizeof(err)) == -1 && strstr(err, "rows of path 'p17'"),
+	      "a repeated id among 200 000: '%s'", err);
+	free(text);
+}
+
+/* ---- geographic input ---------------------------------------------------------------------- */
+
+static int parse_geo(const char *text, struct curve_set *s)
+{
+	char err[512] = "";
+	int rc = curves_parse_geojson(text, strlen(text), "g.geojson", s, err, sizeof(err));
+	CHECK(rc == 0, "GeoJSON: %s", err);
+	return rc;
+}
+
+/* lon/lat or world units, per the rule */
+static bool geo_mode(const char *text, int mode, const char **why)
+{
+	struct curve_set s;
+	bool ll = false;
+	double c[2];
+	char err[256];
+	if (parse_geo(text, &s) == 0) {
+		CHECK(curves_geo_project(&s, mode, 1.0f, &ll, why, c, err, sizeof(err)) == 0, "project: %s", err);
+		curve_set_free(&s);
+	}
+	return ll;
+}
+
+static bool ramp_ground(void *ctx, float x, float z, float *y)
+{
+	(void)ctx;
+	*y = 0.5f * x - 0.25f * z + 3.0f;
+	return true;
+}
+
+void test_geo(void)
+{
+	/* WGS84 (crs member): 0.01 degree of longitude and of latitude at 45 N.
+	 * Expected lengths from the WGS84 radii of curvature at 45 degrees:
+	 * N = 6388838.29 m, M = 6367381.82 m, so 0.01 degree east is
+	 * N cos 45 * 0.01 pi/180 = 788.468 m, 0.01 north 1111.330 m. */
+	const char *ll = "{\"type\":\"Feature\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
+			 "\"urn:ogc:def:crs:OGC:1.3:CRS84\"}},\"geometry\":{\"type\":\"LineString\","
+			 "\"coordinates\":[[7.00,44.995],[7.01,44.995],[7.01,45.005]]}}";
+	struct curve_set s;
+	char err[512];
+	if (parse_geo(ll, &s) == 0) {
+		bool lonlat;
+		const char *why;
+		double c[2];
+		CHECK(s.paths[0].follow_ground && s.paths[0].crs == CURVE_CRS_WGS84, "2D, WGS84 named");
+		CHECK(curves_geo_project(&s, CURVES_CRS_AUTO, 1.0f, &lonlat, &why, c, err, sizeof(err)) == 0, "%s", err);
+		const float *q = s.paths[0].pts;
+		CHECK(lonlat && strstr(why, "crs"), "lon/lat from the crs member (%s)", why);
+		CHECK_NEAR(c[0], (7.00 + 2 * 7.01) / 3, 1e-9, "centroid lon");
+		CHECK_NEAR(c[1], (44.995 * 2 + 45.005) / 3, 1e-9, "centroid lat");
+		CHECK_NEAR(q[3] - q[0], 788.468, 0.05, "0.01 degree east at 45 N in metres");
+		CHECK_NEAR(-(q[8] - q[5]), 1111.330, 0.05, "0.01 degree north at 45 N in metres (world z = -north)");
+		CHECK_NEAR((q[0] + q[3] + q[6]) / 3, 0.0, 1e-3, "x centred on the centroid");
+		CHECK_NEAR((q[2] + q[5] + q[8]) / 3, 0.0, 0.5, "z near the centroid (the projection is not linear in lat)");
+		curve_set_free(&s);
+	}
+	/* the auto rule */
+	const char *why = "";
+	const char *small = "{\"type\":\"LineString\",\"coordinates\":[[-3.70,40.41,650],[-3.69,40.42,655]]}";
+	const char *local = "{\"type\":\"LineString\",\"coordinates\":[[-14,-2,1],[4,9,2]]}";
+	const char *named = "{\"type\":\"LineString\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
+			    "\"EPSG:25830\"}},\"coordinates\":[[0.1,0.2,0],[0.3,0.4,0]]}";
+	CHECK(geo_mode(small, CURVES_CRS_AUTO, &why), "small lon/lat extent, no crs: lon/lat (%s)", why);
+	CHECK(!geo_mode(local, CURVES_CRS_AUTO, &why), "a span over a degree: world units (%s)", why);
+	CHECK(!geo_mode(named, CURVES_CRS_AUTO, &why), "another crs named: world units (%s)", why);
+	CHECK(geo_mode(local, CURVES_CRS_LONLAT, &why), "forced lon/lat");
+	CHECK(!geo_mode(small, CURVES_CRS_LOCAL, &why), "forced local");
+	/* 3D lon/lat: the altitude scaled with the rest */
+	if (parse_geo(small, &s) == 0) {
+		bool lonlat;
+		double c[2];
+		CHECK(curves_geo_project(&s, CURVES_CRS_AUTO, 0.01f, &lonlat, &why, c, err, sizeof(err)) == 0, "%s", err);
+		CHECK(!s.paths[0].follow_ground && fabsf(s.paths[0].pts[1] - 6.5f) < 1e-4f, "altitude 650 m at 0.01: y 6.5");
+		curve_set_free(&s);
+	}
+	/* 2D: points every step along the line, each on the ground */
+	const char *flat = "{\"type\":\"LineString\",\"coordinates\":[[-10,0],[10,0],[10,-5]]}";
+	if (parse_geo(flat, &s) == 0) {
+		CHECK(curves_follow_ground(&s, 2.0f, ramp_ground, NULL, err, sizeof(err)) == 0, "follow: %s", err);
+		const struct curve_path *p = &s.paths[0];
+		int bad = 0;
+		for (int k = 0; k < p->npts; k++)
+			bad += fabsf(p->pts[3 * k + 1] - (0.5f * p->pts[3 * k] - 0.25f * p->pts[3 * k + 2] + 3.0f)) > 1e-5f;
+		CHECK(p->npts == 1 + 10 + 3, "20 + 5 units at most 2 apart: 14 points, got %d", p->npts);
+		CHECK(bad == 0, "%d points off the ground", bad);
+		curve_set_free(&s);
+	}
+	if (parse_geo(flat, &s) == 0) {
+		CHECK(curves_follow_ground(&s, 2.0f, NULL, NULL, err, sizeof(err)) < 0 && strstr(err, "[x east, y north, z up]"),
+		      "no ground to follow: %s", err);
+		curve_set_free(&s);
+	}
+}
+
+/* A 2D GeoJSON file through the edit state and the terrain: every point on
+ * the field's surface (CPU density: air just above, rock just below). */
+void test_geo_terrain(void)
+{
+	char path[200], err[512] = "";
+	snprintf(path, sizeof(path), "%.150s/flat.geojson", tmpdir);
+	FILE *f = fopen(path, "w");
+	CHECK(f != NULL, "write %s", path);
+	if (!f)
+		return;
+	fputs("{\"type\":\"Feature\",\"properties\":{\"kind\":\"road\",\"width\":3},\"geometry\":{\"type\":"
+	      "\"LineString\",\"coordinates\":[[-12,-9],[0,2],[13,6]]}}\n",
+	      f);
+	fclose(f);
+	struct params p;
+	params_defaults(&p);
+	set(&p, "octaves=5");
+	snprintf(p.curves, sizeof(p.curves), "%s", path);
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	CHECK(edits_load(ed, &p, err, sizeof(err)) == 0, "2D curves on the terrain: %s", err);
+	static struct noise_set ns;
+	noise_set_init(&ns, p.seed);
+	int bad = 0, n = 0;
+	if (ed->curves.npaths == 1) {
+		const struct curve_path *c = &ed->curves.paths[0];
+		for (int k = 0; k < c->npts; k++, n++) {
+			const float *q = c->pts + 3 * k;
+			bad += !(density_ref(&p, &ns, NULL, q[0], q[1] + 0.02f, q[2]) < p.iso &&
+				 density_ref(&p, &ns, NULL, q[0], q[1] - 0.02f, q[2]) >= p.iso);
+		}
+	}
+	CHECK(n > 10 && bad == 0, "2D curve on the surface: %d of %d points not", bad, n);
+	terrain_destroy(tr);
+	/* without a terrain there is no ground to follow: refused */
+	edits_clear(ed);
+	CHECK(edits_load(ed, &p, err, sizeof(err)) < 0 && strstr(err, "follow the terrain"), "no terrain: %s", err);
+	edits_destroy(ed);
+	unlink(path);
+}
+
+/* ---- heightmap (CPU) --------------------------------------------------------------------- */
+
+static void hm_path(char *buf, size_t len, const char *name)
+{
+	snprintf(buf, len, "%s/%s", tmpdir, name);
+}
+
+#define HM_W 9
+#define HM_H 7
+static uint16_t hm_data[HM_W * HM_H];
+
+#ifdef ISOTERRA_HAVE_GDAL
+#include <gdal.h>
+/* GeoTIFF through GDAL: a Float32 DEM in metres with a no-data sample is
+ * read with its valid range [min, max] mapped onto 0..65535; garbage and a
+ * band-less file are refused with a message naming the file. */
+static void test_geotiff(void)
+{
+	char path[600], err[512];
+	const int W = 7, H = 5;
+	float dem[7 * 5];
+	for (int z = 0; z < H; z++)
+		for (int x = 0; x < W; x++)
+			dem[z * W + x] = 250.0f + 3.5f * (float)x - 2.0f * (float)z; /* 242 .. 271 */
+	dem[2 * W + 3] = -9999.0f;                                                  /* no data */
+	GDALAllRegister();
+	hm_path(path, sizeof(path), "dem.tif");
+	GDALDriverH drv = GDALGetDriverByName("GTiff");
+	CHECK(drv != NULL, "GDAL has the GTiff driver");
+	if (!drv)
+		return;
+	GDALDatasetH ds = GDALCreate(drv, path, W, H, 1, GDT_Float32, NULL);
+	CHECK(ds != NULL, "create %s", path);
+	if (!ds)
+		return;
+	GDALRasterBandH b = GDALGetRasterBand(ds, 1);
+	CHECK(GDALSetRasterNoDataValue(b, -9999.0) == CE_None, "set no-data");
+	CHECK(GDALRasterIO(b, GF_Write, 0, 0, W, H, dem, W, H, GDT_Float32, 0, 0) == CE_None, "write GeoTIFF");
+	GDALClose(ds);
+	struct heightmap hm;
+	CHECK(heightmap_load(path, &hm, err, sizeof(err)) == 0, "load GeoTIFF: %s", err);
+	int bad = 0;
+	for (int i = 0; i < W * H && hm.v; i++) {
+		float want = i == 2 * W + 3 ? 0.0f : (dem[i] - 242.0f) / (271.0f - 242.0f) * 65535.0f;
+		bad += fabsf(hm.v[i] - want) > 0.05f;
+	}
+	CHECK(hm.w == W && hm.h == H && bad == 0, "GeoTIFF %dx%d: %d samples differ from the normalised DEM", hm.w, hm.h,
+	      bad);
+	heightmap_free(&hm);
+	hm_path(path, sizeof(path), "garbage.tif");
+	FILE *f = fopen(path, "w");
+	if (f) {
+		fputs("II*\\0 this is not a TIFF", f);
+		fclose(f);
+	}
+	CHECK(heightmap_load(path, &hm, err, sizeof(err)) < 0 && strstr(err, "garbage.tif") &&
+		      strstr(err, "GDAL cannot read it"),
+	      "garbage GeoTIFF refused by GDAL (through the module): %s", err);
+	printf("  GeoTIFF through GDAL: %dx%d Float32 DEM with no-data read and normalised; garbage refused (%s)\n", W,
+	       H, err);
+}
+#endif
+
+void test_heightmap_cpu(struct edits *ed, struct params *p, const struct noise_set *ns)
+{
+	char path[256], err[512];
+	for (int i = 0; i < HM_W * HM_H; i++)
+		hm_data[i] = (uint16_t)(frand() * 65535.0f);
+	hm_data[0] = 0;
+	hm_data[1] = 65535;
+	hm_path(path, sizeof(path), "hm.png");
+	CHECK(image_write_png_gray16(path, hm_data, HM_W, HM_H, err, sizeof(err)) == 0, "write png16: %s", err);
+	struct heightmap hm;
+	CHECK(heightmap_load(path, &hm, err, sizeof(err)) == 0, "load: %s", err);
+	int bad = 0;
+	for (int i = 0; i < HM_W * HM_H && hm.v; i++)
+		bad += hm.v[i] != (float)hm_data[i];
+	CHECK(hm.w == HM_W && hm.h == HM_H && bad == 0, "16-bit round trip (%dx%d, %d differ)", hm.w, hm.h, bad);
+	heightmap_free(&hm);
+	CHECK(heightmap_load("x.tif", &hm, err, sizeof(err)) < 0 && strstr(err, "GDAL"), "GeoTIFF: %s", err);
+#ifdef ISOTERRA_HAVE_GDAL
+	test_geotiff();
+#endif
+	/* load through the parameters */
+	char kv[512];
+	snprintf(kv, sizeof(kv), "field=heightmap;heightmap=%s;heightmap_scale=2;heightmap_height=50;heightmap_base=-10;"
+		 "heightmap_detail=0", path);
+	set(p, kv);
+	CHECK(edits_load(ed, p, err, sizeof(err)) == 0, "edits_load: %s", err);
+	const struct edits *e = ed;
+	/* exact at samples, with and without detail */
+	p->heightmap_detail = 3.0f;
+	double worst = 0;
+	for (int z = 0; z < HM_H; z++)
+		for (int x = 0; x < HM_W; x++) {
+			float wx = ((float)x - 0.5f * (HM_W - 1)) * 2.0f, wz = ((float)z - 0.5f * (HM_H - 1)) * 2.0f;
+			float want = -10.0f + (float)hm_data[z * HM_W + x] * 50.0f / 65535.0f;
+			worst = fmax(worst, fabs(heightmap_ref_height(e, p, ns, wx, wz, true) - want));
+		}
+	CHECK(worst < 1e-4, "fractal interpolation exact at the samples (worst %g)", worst);
+	/* between samples: detail adds roughness that bilinear lacks (magnified 16x) */
+	double rough_b = 0, rough_f = 0, mean_dev = 0;
+	int nline = 0;
+	for (int z = 1; z < HM_H - 1; z++)
+		for (int i = 1; i < 16 * (HM_W - 1) - 1; i++) {
+			float wx0 = -0.5f * (HM_W - 1) * 2.0f;
+			float wz = ((float)z - 0.5f * (HM_H - 1) + 0.37f) * 2.0f;
+			float h3[2][3];
+			for (int k = -1; k <= 1; k++) {
+				float wx = wx0 + (float)(i + k) * 2.0f / 16.0f;
+				h3[0][k + 1] = heightmap_ref_height(e, p, ns, wx, wz, false);
+				h3[1][k + 1] = heightmap_ref_height(e, p, ns, wx, wz, true);
+			}
+			if ((i - 1) / 16 != (i + 1) / 16 || i % 16 == 0)
+				continue; /* the stencil crosses a sample column: bilinear kinks there */
+			rough_b += fabs(h3[0][0] - 2 * h3[0][1] + h3[0][2]);
+			rough_f += fabs(h3[1][0] - 2 * h3[1][1] + h3[1][2]);
+			mean_dev += fabs(h3[1][1] - h3[0][1]);
+			nline++;
+		}
+	mean_dev /= nline;
+	CHECK(rough_f > 3.0 * rough_b, "detail adds sub-sample roughness: %g vs bilinear %g", rough_f, rough_b);
+	CHECK(mean_dev > 0.05 && mean_dev < 3.0, "detail deviation from bilinear %g (amplitude 3)", mean_dev);
+	printf("  heightmap: roughness with detail %.3g vs bilinear %.3g, mean deviation %.3g\n", rough_f, rough_b,
+	       mean_dev);
+	/* bump continuity across a cell edge */
+	float ex = (1.0f - 0.5f * (HM_W - 1)) * 2.0f, ez = (2.3f - 0.5f * (HM_H - 1)) * 2.0f;
+	float l = heightmap_ref_height(e, p, ns, ex - 1e-3f, ez, true), r = heightmap_ref_height(e, p, ns, ex + 1e-3f, ez, true);
+	CHECK(fabsf(l - r) < 0.05f, "continuous across a cell edge: %g vs %g", l, r);
+}
