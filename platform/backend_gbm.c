@@ -21,7 +21,7 @@
  * surface and the renderer follows (the display sink's resize). */
 #include "kms.h"
 #include "platform.h"
-#include "clock.h"
+#include "platform_util.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -36,7 +36,6 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
-#include "log.h"
 
 #define FLIP_TIMEOUT_MS 5000
 #define CONNECTOR_POLL_MS 1000
@@ -52,7 +51,7 @@ struct gbm_state {
 	struct platform *p;
 	char want_mode[32];        /* --mode ("" = the preferred one), chosen again on return */
 	bool connected;            /* the connector, as last asked */
-	double next_poll;          /* clock_ms() of the next question */
+	double next_poll;          /* platform_clock_ms() of the next question */
 };
 
 struct gbm_fb {
@@ -72,7 +71,7 @@ static void fb_destroy(struct gbm_bo *bo, void *data)
 	(void)bo;
 	struct gbm_fb *fb = data;
 	if (fb->fb_id && drmModeRmFB(fb->fd, fb->fb_id) != 0)
-		log_warn("gbm: drmModeRmFB(%u): %s", fb->fb_id, strerror(errno));
+		plog_warn("gbm: drmModeRmFB(%u): %s", fb->fb_id, strerror(errno));
 	free(fb);
 }
 
@@ -84,7 +83,7 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 		return fb->fb_id;
 	fb = calloc(1, sizeof(*fb));
 	if (!fb) {
-		log_error("gbm: out of memory");
+		plog_error("gbm: out of memory");
 		return 0;
 	}
 	fb->fd = g->kms.fd;
@@ -99,7 +98,7 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 	if (drmModeAddFB2(g->kms.fd, w, h, format, handles, strides, offsets, &fb->fb_id, 0) != 0) {
 		int e = errno;
 		if (drmModeAddFB(g->kms.fd, w, h, 24, 32, strides[0], handles[0], &fb->fb_id) != 0) {
-			log_error("gbm: cannot create a %ux%u framebuffer: drmModeAddFB2: %s, drmModeAddFB: %s",
+			plog_error("gbm: cannot create a %ux%u framebuffer: drmModeAddFB2: %s, drmModeAddFB: %s",
 			          w, h, strerror(e), strerror(errno));
 			free(fb);
 			return 0;
@@ -134,15 +133,15 @@ static int wait_flip(struct gbm_state *g)
 		if (n < 0) {
 			if (errno == EINTR)
 				continue; /* a signal: the flip still completes */
-			log_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
+			plog_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
 			return -1;
 		}
 		if (n == 0) {
-			log_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
+			plog_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
 			return -1;
 		}
 		if (drmHandleEvent(g->kms.fd, &ev) != 0) {
-			log_error("gbm: drmHandleEvent: %s", strerror(errno));
+			plog_error("gbm: drmHandleEvent: %s", strerror(errno));
 			return -1;
 		}
 	}
@@ -152,28 +151,28 @@ static int wait_flip(struct gbm_state *g)
 static void hide_cursor(struct gbm_state *g)
 {
 	if (drmModeSetCursor(g->kms.fd, g->kms.crtc_id, 0, 0, 0) != 0)
-		log_debug("gbm: hiding the cursor: %s", strerror(errno));
+		plog_debug("gbm: hiding the cursor: %s", strerror(errno));
 }
 
 static int modeset(struct gbm_state *g, uint32_t fb)
 {
 	if (g->atomic) {
 		if (kms_atomic_commit(&g->at, &g->kms, fb, true, DRM_MODE_ATOMIC_TEST_ONLY, g) != 0) {
-			log_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
+			plog_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
 			g->atomic = false;
 		} else if (kms_atomic_commit(&g->at, &g->kms, fb, true, 0, g) != 0) {
-			log_error("gbm: atomic modeset %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+			plog_error("gbm: atomic modeset %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 			          g->kms.path, strerror(errno));
 			return -1;
 		}
 	}
 	if (!g->atomic && kms_legacy_modeset(&g->kms, fb) != 0) {
-		log_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+		plog_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 		          g->kms.path, strerror(errno));
 		return -1;
 	}
 	hide_cursor(g);
-	log_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->kms.path, g->kms.conn_name, g->kms.mode.hdisplay,
+	plog_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->kms.path, g->kms.conn_name, g->kms.mode.hdisplay,
 	         g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->atomic ? "atomic" : "legacy");
 	g->modeset_done = true;
 	g->p->shown++;
@@ -187,11 +186,11 @@ static int remake_surface(struct gbm_state *g)
 	struct platform *p = g->p;
 	int w = g->kms.mode.hdisplay, h = g->kms.mode.vdisplay;
 	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, p->ctx)) {
-		log_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
+		plog_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	if (!eglDestroySurface(p->dpy, p->surface))
-		log_warn("gbm: eglDestroySurface: %s", egl_common_error_name(eglGetError()));
+		plog_warn("gbm: eglDestroySurface: %s", egl_common_error_name(eglGetError()));
 	p->surface = EGL_NO_SURFACE;
 	if (g->front)
 		gbm_surface_release_buffer(g->surf, g->front);
@@ -200,14 +199,14 @@ static int remake_surface(struct gbm_state *g)
 	g->surf = gbm_surface_create(g->gbm, (uint32_t)w, (uint32_t)h, GBM_FORMAT_XRGB8888,
 	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
 	if (!g->surf) {
-		log_error("gbm: gbm_surface_create %dx%d on %s failed", w, h, g->kms.path);
+		plog_error("gbm: gbm_surface_create %dx%d on %s failed", w, h, g->kms.path);
 		return -1;
 	}
 	PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC create_surface =
 		(PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC)eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT");
 	p->surface = create_surface ? create_surface(p->dpy, p->config, g->surf, NULL) : EGL_NO_SURFACE;
 	if (p->surface == EGL_NO_SURFACE || !eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
-		log_error("gbm: a %dx%d window surface: %s", w, h, egl_common_error_name(eglGetError()));
+		plog_error("gbm: a %dx%d window surface: %s", w, h, egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	p->width = w;
@@ -231,26 +230,26 @@ static int follow_mode(struct gbm_state *g)
  * present modesets.  0, or -1 when the surface cannot follow a new size. */
 static int watch_connector(struct gbm_state *g, bool at_once)
 {
-	double t = clock_ms();
+	double t = platform_clock_ms();
 	if (!at_once && t < g->next_poll)
 		return 0;
 	g->next_poll = t + CONNECTOR_POLL_MS;
 	bool changed = false;
 	int st = kms_output_poll(&g->kms, g->want_mode, &changed);
 	if (st < 0) {
-		log_debug("gbm: connector %u on %s: %s", g->kms.conn_id, g->kms.path, strerror(errno));
+		plog_debug("gbm: connector %u on %s: %s", g->kms.conn_id, g->kms.path, strerror(errno));
 		return 0; /* cannot tell: as before */
 	}
 	if (st == 0) {
 		if (g->connected)
-			log_warn("gbm: %s on %s disconnected%s: frames go on, not shown, until it is back",
+			plog_warn("gbm: %s on %s disconnected%s: frames go on, not shown, until it is back",
 			         g->kms.conn_name, g->kms.path, g->want_mode[0] ? " (or no longer offers --mode)" : "");
 		g->connected = false;
 		return 0;
 	}
 	if (g->connected && !changed)
 		return 0;
-	log_info("gbm: %s on %s %s: modesetting %ux%u@%u", g->kms.conn_name, g->kms.path,
+	plog_info("gbm: %s on %s %s: modesetting %ux%u@%u", g->kms.conn_name, g->kms.path,
 	         g->connected ? "changed its mode" : "connected again", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 	         g->kms.mode.vrefresh);
 	g->connected = true;
@@ -284,7 +283,7 @@ static int flip(struct gbm_state *g, uint32_t fb)
 		g->flip_pending = false;
 		if (watch_connector(g, true) == 0 && !g->connected)
 			return 1;
-		log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
+		plog_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
 		          strerror(e));
 		return -1;
 	}
@@ -301,12 +300,12 @@ static int gbm_present(struct platform *p)
 {
 	struct gbm_state *g = p->priv;
 	if (!eglSwapBuffers(p->dpy, p->surface)) {
-		log_error("gbm: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		plog_error("gbm: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	struct gbm_bo *bo = gbm_surface_lock_front_buffer(g->surf);
 	if (!bo) {
-		log_error("gbm: gbm_surface_lock_front_buffer failed");
+		plog_error("gbm: gbm_surface_lock_front_buffer failed");
 		return -1;
 	}
 	if (!g->connected) {
@@ -343,9 +342,9 @@ static void restore_crtc(struct gbm_state *g)
 		(void)wait_flip(g);
 	drmModeCrtc *s = g->saved;
 	if (kms_legacy_restore(&g->kms, s) != 0)
-		log_warn("gbm: restoring CRTC %u on %s: %s", g->kms.crtc_id, g->kms.path, strerror(errno));
+		plog_warn("gbm: restoring CRTC %u on %s: %s", g->kms.crtc_id, g->kms.path, strerror(errno));
 	else
-		log_debug("gbm: CRTC %u restored (fb %u)", g->kms.crtc_id, s ? s->buffer_id : 0);
+		plog_debug("gbm: CRTC %u restored (fb %u)", g->kms.crtc_id, s ? s->buffer_id : 0);
 }
 
 static void gbm_close(struct platform *p)
@@ -385,7 +384,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	g->p = p;
 	p->priv = g;
 	g->connected = true;
-	g->next_poll = clock_ms() + CONNECTOR_POLL_MS;
+	g->next_poll = platform_clock_ms() + CONNECTOR_POLL_MS;
 	if (opt->mode && strlen(opt->mode) >= sizeof(g->want_mode)) {
 		snprintf(err, errlen, "--mode '%.40s...' is not WxH or WxH@Hz", opt->mode);
 		goto fail;
@@ -404,7 +403,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	}
 	g->saved = drmModeGetCrtc(g->kms.fd, g->kms.crtc_id);
 	if (!g->saved)
-		log_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->kms.crtc_id,
+		plog_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->kms.crtc_id,
 		         strerror(errno));
 	g->atomic = !opt->kms_legacy && kms_atomic_init(&g->at, &g->kms);
 
@@ -429,7 +428,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	size_t len = strlen(p->device_desc);
 	if (len + strlen(g->kms.path) + 4 < sizeof(p->device_desc))
 		snprintf(p->device_desc + len, sizeof(p->device_desc) - len, " (%s)", g->kms.path);
-	log_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->kms.path, g->kms.conn_name,
+	plog_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->kms.path, g->kms.conn_name,
 	          g->kms.mode.hdisplay, g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->kms.crtc_id,
 	          g->atomic ? "atomic" : "legacy");
 	p->refresh_hz = g->kms.mode.vrefresh;

@@ -3,8 +3,7 @@
  * a whole frame (with the connector and the mode when it modesets).  After
  * kmscube's drm-atomic.c; the legacy path is kms_legacy.c. */
 #include "kms.h"
-#include "log.h"
-#include "util.h"
+#include "platform_util.h"
 
 #include <errno.h>
 #include <string.h>
@@ -58,12 +57,12 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
 {
 	if (drmSetClientCap(o->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
 	    drmSetClientCap(o->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
-		log_debug("gbm: no atomic modesetting on %s (%s); legacy", o->path, strerror(errno));
+		plog_debug("gbm: no atomic modesetting on %s (%s); legacy", o->path, strerror(errno));
 		return false;
 	}
 	a->plane_id = find_primary_plane(o);
 	if (!a->plane_id) {
-		log_debug("gbm: no primary plane for CRTC %u; legacy", o->crtc_id);
+		plog_debug("gbm: no primary plane for CRTC %u; legacy", o->crtc_id);
 		return false;
 	}
 	struct kms_atomic *pp = a;
@@ -89,12 +88,12 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
 	for (size_t i = 0; i < ARRAY_SIZE(want); i++) {
 		*want[i].id = prop_id(o->fd, want[i].obj, want[i].type, want[i].name, NULL);
 		if (!*want[i].id) {
-			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
+			plog_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
 			return false;
 		}
 	}
 	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
-		log_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
+		plog_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
 		return false;
 	}
 	return true;
@@ -141,10 +140,10 @@ int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, ui
 int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o)
 {
 	if (a->mode_blob && drmModeDestroyPropertyBlob(o->fd, a->mode_blob) != 0)
-		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+		plog_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
 	a->mode_blob = 0;
 	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
-		log_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
+		plog_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
 		return -1;
 	}
 	return 0;
@@ -153,6 +152,6 @@ int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o)
 void kms_atomic_release(struct kms_atomic *a, int fd)
 {
 	if (a->mode_blob && drmModeDestroyPropertyBlob(fd, a->mode_blob) != 0)
-		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+		plog_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
 	a->mode_blob = 0;
 }

@@ -50,6 +50,37 @@ static void open_ok(const char *name, bool debug)
 	CHECK(eglGetCurrentContext() == EGL_NO_CONTEXT, "'%s': context still current after close", label);
 }
 
+/* The log seam (platform_log.h): the platform's messages reach the
+ * callback, one line each, with their levels. */
+struct seen {
+	int n, debug_open;
+	char last[256];
+};
+
+static void catch_log(void *user, enum platform_log_level level, const char *msg)
+{
+	struct seen *s = user;
+	s->n++;
+	snprintf(s->last, sizeof(s->last), "%s", msg);
+	if (level == PLATFORM_LOG_DEBUG && strncmp(msg, "platform 'surfaceless': ", 24) == 0 && !strchr(msg, '\n'))
+		s->debug_open++;
+}
+
+static void check_log_seam(void)
+{
+	struct seen s = { 0 };
+	platform_set_log(&(struct platform_log){ .fn = catch_log, .user = &s });
+	char err[512] = "";
+	struct platform_options opt = { .name = "surfaceless" };
+	struct platform *p = platform_open(&opt, err, sizeof(err));
+	CHECK(p != NULL, "surfaceless: %s", err);
+	platform_close(p);
+	platform_set_log(NULL);
+	CHECK(s.debug_open == 1, "log seam: %d messages, %d 'platform 'surfaceless': ...' at debug level (last '%s')",
+	      s.n, s.debug_open, s.last);
+	printf("log seam: %d messages through the callback\n", s.n);
+}
+
 /* Number of EGL devices as the test sees it, -1 when the EGL cannot list them. */
 static int egl_device_count(void)
 {
@@ -177,6 +208,7 @@ int main(int argc, char **argv)
 	      !strcmp(err, "a platform is already open (one at a time per process)"), "second open: '%s'", err);
 	platform_close(first);
 
+	check_log_seam();
 	open_ok("surfaceless", false);
 	open_ok("surfaceless", true);  /* again: terminate + reinitialise works */
 	open_ok("auto", false);
