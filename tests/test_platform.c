@@ -9,6 +9,26 @@
 #include "platform.h"
 #include "tcheck.h"
 
+#ifdef ISOTERRA_HAVE_GBM
+#include <unistd.h>
+
+#include "kms.h"
+
+/* The wait on a KMS out-fence (kms_atomic.c) is a poll for POLLIN on its
+ * fd: a pipe stands in for the sync_file. */
+static void check_fence_wait(void)
+{
+	int fds[2];
+	CHECK(pipe(fds) == 0, "pipe");
+	CHECK(kms_fence_wait(fds[0], 0) == 0, "fence wait: not signalled, looked only");
+	CHECK(kms_fence_wait(fds[0], 20) == 0, "fence wait: not signalled within 20 ms");
+	CHECK(write(fds[1], "x", 1) == 1, "write");
+	CHECK(kms_fence_wait(fds[0], 1000) == 1, "fence wait: signalled");
+	close(fds[0]);
+	close(fds[1]);
+}
+#endif
+
 static void check_context(const struct platform *p, const char *what)
 {
 	CHECK(eglGetCurrentContext() == p->ctx, "%s: context not current", what);
@@ -209,6 +229,9 @@ int main(int argc, char **argv)
 	platform_close(first);
 
 	check_log_seam();
+#ifdef ISOTERRA_HAVE_GBM
+	check_fence_wait();
+#endif
 	open_ok("surfaceless", false);
 	open_ok("surfaceless", true);  /* again: terminate + reinitialise works */
 	open_ok("auto", false);
