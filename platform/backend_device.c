@@ -12,7 +12,7 @@
 
 #include <GLES3/gl31.h>
 
-#include "log.h"
+#include "platform_util.h"
 
 #define MAX_DEVICES 32
 
@@ -214,11 +214,11 @@ static int device_open(struct platform *p, const struct platform_options *opt,
 			const char *node = device_node(&api, devs[i]);
 			char why[256];
 			if (open_one(p, opt, &api, devs[i], why, sizeof(why)) == 0) {
-				log_debug("EGL device %d of %d%s%s (%s %s): %s", i, (int)n, node ? " " : "",
+				plog_debug("EGL device %d of %d%s%s (%s %s): %s", i, (int)n, node ? " " : "",
 				          node ? node : "", what, want, p->device_desc);
 				return 0;
 			}
-			log_debug("EGL device %d%s%s: %s", i, node ? " " : "", node ? node : "", why);
+			plog_debug("EGL device %d%s%s: %s", i, node ? " " : "", node ? node : "", why);
 			snprintf(err, errlen, "EGL device %d%s%s (%s %s): %s", i, node ? " " : "", node ? node : "", what,
 			         want, why);
 		}
@@ -233,11 +233,11 @@ static int device_open(struct platform *p, const struct platform_options *opt,
 				continue;
 			const char *node = device_node(&api, devs[i]);
 			if (open_one(p, opt, &api, devs[i], why, sizeof(why)) == 0) {
-				log_debug("EGL device %d of %d%s%s: %s", (int)i, (int)n,
+				plog_debug("EGL device %d of %d%s%s: %s", (int)i, (int)n,
 				          node ? " " : "", node ? node : "", p->device_desc);
 				return 0;
 			}
-			log_debug("EGL device %d%s%s: %s", (int)i, node ? " " : "", node ? node : "", why);
+			plog_debug("EGL device %d%s%s: %s", (int)i, node ? " " : "", node ? node : "", why);
 			snprintf(err, errlen, "EGL device %d%s%s: %s", (int)i, node ? " " : "",
 			         node ? node : "", why);
 		}

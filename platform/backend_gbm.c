@@ -3,11 +3,32 @@
  * Takes the output kms.c picks (a DRM card, its connector, mode and CRTC),
  * renders through a gbm_surface with EGL's GBM platform and scans the
  * buffers out: atomic modesetting (kms_atomic.c: TEST_ONLY first, then a
- * real commit; page flips with DRM_MODE_PAGE_FLIP_EVENT) with a legacy
- * drmModeSetCrtc/drmModePageFlip fallback (kms_legacy.c).  present() waits for the
- * flip event (vsync).  close() puts back the CRTC that was there before
- * (the console, usually).  Structure after kmscube (drm-common, drm-atomic,
+ * real commit) with a legacy drmModeSetCrtc/drmModePageFlip fallback
+ * (kms_legacy.c).  close() puts back the CRTC that was there before (the
+ * console, usually).  Structure after kmscube (drm-common, drm-atomic,
  * drm-legacy).
+ *
+ * Flips, three ways (said once, at info level, at the first modeset):
+ *   - atomic with the CRTC's OUT_FENCE_PTR: pipelined.  present() commits
+ *     the flip with DRM_MODE_ATOMIC_NONBLOCK and returns; the kernel's
+ *     out-fence for it is waited for (poll) only when it must be: at the
+ *     next present, before the next commit (the kernel refuses a
+ *     nonblocking commit while one is pending, EBUSY), and before anything
+ *     that reuses or releases a buffer the display may still scan out (a
+ *     new mode, the display gone, close).  So the frame loop renders the
+ *     next frame while the flip waits for vsync.  A bo goes back to the
+ *     gbm surface only once the flip that replaced it signalled; up to
+ *     three are locked (on screen, flipping, just rendered) of the
+ *     surface's four.  With EGL_ANDROID_native_fence_sync (and the plane's
+ *     IN_FENCE_FD) the GPU's render fence rides along as the plane's
+ *     IN_FENCE_FD, so the kernel, not the CPU, waits for the rendering;
+ *     without (llvmpipe / kms_swrast) the dma-buf's implicit fences do.
+ *   - atomic without OUT_FENCE_PTR, or a kernel that refuses the fences:
+ *     each flip waits for its DRM_MODE_PAGE_FLIP_EVENT in present().
+ *   - legacy: drmModePageFlip, the same wait.
+ * p->shown counts the flips the display confirmed (the out-fence or the
+ * event), the modesets too; pipelined, the last flip is confirmed one
+ * present later (or at close, which says so).
  *
  * A display that goes away (a cable pulled) does not stop the program:
  * once a second present() asks the kernel whether the connector is still
@@ -21,7 +42,7 @@
  * surface and the renderer follows (the display sink's resize). */
 #include "kms.h"
 #include "platform.h"
-#include "clock.h"
+#include "platform_util.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -36,10 +57,9 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
-#include "log.h"
-
 #define FLIP_TIMEOUT_MS 5000
 #define CONNECTOR_POLL_MS 1000
+#define EBUSY_RETRIES 100 /* of 1 ms, should the kernel still be busy with the flip before */
 
 struct gbm_state {
 	struct kms_output kms;     /* card, connector, mode, CRTC */
@@ -49,10 +69,20 @@ struct gbm_state {
 	struct kms_atomic at;      /* atomic modesetting's plane, properties, mode blob */
 	drmModeCrtc *saved;        /* the CRTC as we found it, put back on close */
 	bool atomic, modeset_done, flip_pending, restore_done;
+	/* pipelined flips (atomic with out-fences): the bo committed last and
+	 * the out-fence of its flip (-1: none in flight); with in-fences, the
+	 * EGL entry points for the GPU's render fence */
+	bool pipelined, in_fences, flips_said, fence_proven;
+	const char *no_in_fence;   /* why there are none, for the info line */
+	struct gbm_bo *pending;
+	int pending_fence;
+	PFNEGLCREATESYNCKHRPROC create_sync;
+	PFNEGLDESTROYSYNCKHRPROC destroy_sync;
+	PFNEGLDUPNATIVEFENCEFDANDROIDPROC dup_fence;
 	struct platform *p;
 	char want_mode[32];        /* --mode ("" = the preferred one), chosen again on return */
 	bool connected;            /* the connector, as last asked */
-	double next_poll;          /* clock_ms() of the next question */
+	double next_poll;          /* platform_clock_ms() of the next question */
 };
 
 struct gbm_fb {
@@ -72,7 +102,7 @@ static void fb_destroy(struct gbm_bo *bo, void *data)
 	(void)bo;
 	struct gbm_fb *fb = data;
 	if (fb->fb_id && drmModeRmFB(fb->fd, fb->fb_id) != 0)
-		log_warn("gbm: drmModeRmFB(%u): %s", fb->fb_id, strerror(errno));
+		plog_warn("gbm: drmModeRmFB(%u): %s", fb->fb_id, strerror(errno));
 	free(fb);
 }
 
@@ -84,7 +114,7 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 		return fb->fb_id;
 	fb = calloc(1, sizeof(*fb));
 	if (!fb) {
-		log_error("gbm: out of memory");
+		plog_error("gbm: out of memory");
 		return 0;
 	}
 	fb->fd = g->kms.fd;
@@ -99,7 +129,7 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 	if (drmModeAddFB2(g->kms.fd, w, h, format, handles, strides, offsets, &fb->fb_id, 0) != 0) {
 		int e = errno;
 		if (drmModeAddFB(g->kms.fd, w, h, 24, 32, strides[0], handles[0], &fb->fb_id) != 0) {
-			log_error("gbm: cannot create a %ux%u framebuffer: drmModeAddFB2: %s, drmModeAddFB: %s",
+			plog_error("gbm: cannot create a %ux%u framebuffer: drmModeAddFB2: %s, drmModeAddFB: %s",
 			          w, h, strerror(e), strerror(errno));
 			free(fb);
 			return 0;
@@ -134,47 +164,175 @@ static int wait_flip(struct gbm_state *g)
 		if (n < 0) {
 			if (errno == EINTR)
 				continue; /* a signal: the flip still completes */
-			log_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
+			plog_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
 			return -1;
 		}
 		if (n == 0) {
-			log_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
+			plog_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
 			return -1;
 		}
 		if (drmHandleEvent(g->kms.fd, &ev) != 0) {
-			log_error("gbm: drmHandleEvent: %s", strerror(errno));
+			plog_error("gbm: drmHandleEvent: %s", strerror(errno));
 			return -1;
 		}
 	}
 	return 0;
 }
 
+/* The bo shown now: the one before goes back to the surface. */
+static void show(struct gbm_state *g, struct gbm_bo *bo)
+{
+	if (g->front)
+		gbm_surface_release_buffer(g->surf, g->front);
+	g->front = bo;
+}
+
+static void close_fd(int *fd)
+{
+	if (*fd >= 0 && close(*fd) != 0)
+		plog_debug("gbm: close(fence %d): %s", *fd, strerror(errno));
+	*fd = -1;
+}
+
+/* Pipelined: the flip in flight is on screen (its out-fence signalled):
+ * its bo is the front, the one it replaced goes back.  confirmed: false
+ * when it is only taken as done (the display gone, the fence never came). */
+static void flip_done(struct gbm_state *g, bool confirmed)
+{
+	close_fd(&g->pending_fence);
+	show(g, g->pending);
+	g->pending = NULL;
+	if (confirmed)
+		g->p->shown++;
+}
+
+/* Pipelined: waits (up to FLIP_TIMEOUT_MS) for the flip in flight, if any.
+ * 0, or -1 when its out-fence did not signal or cannot be waited for
+ * (logged; the flip is then taken as done, unconfirmed). */
+static int finish_flip(struct gbm_state *g)
+{
+	if (!g->pending)
+		return 0;
+	int rc = kms_fence_wait(g->pending_fence, FLIP_TIMEOUT_MS);
+	if (rc > 0) {
+		g->fence_proven = true;
+		flip_done(g, true);
+		return 0;
+	}
+	if (rc == 0)
+		plog_error("gbm: no page flip on %s within %d ms (its out-fence did not signal)", g->kms.path,
+		           FLIP_TIMEOUT_MS);
+	else
+		plog_error("gbm: waiting for the page flip's out-fence on %s: %s", g->kms.path, strerror(errno));
+	flip_done(g, false);
+	return -1;
+}
+
+/* The flip path, once (see the top of this file). */
+static void say_flips(struct gbm_state *g)
+{
+	if (g->flips_said)
+		return;
+	g->flips_said = true;
+	if (!g->atomic)
+		plog_info("kms: legacy, each flip waits for its page-flip event");
+	else if (!g->pipelined)
+		plog_info("kms: atomic, each flip waits for its page-flip event (no OUT_FENCE_PTR on CRTC %u)",
+		          g->kms.crtc_id);
+	else if (g->in_fences)
+		plog_info("kms: atomic, flips pipelined with out-fences and in-fences (EGL_ANDROID_native_fence_sync)");
+	else
+		plog_info("kms: atomic, flips pipelined with out-fences (no in-fence: %s)", g->no_in_fence);
+}
+
+/* Atomic: pipelined when the CRTC has OUT_FENCE_PTR; in-fences too when
+ * the plane has IN_FENCE_FD and the EGL EGL_ANDROID_native_fence_sync. */
+static void choose_flips(struct gbm_state *g)
+{
+	g->pipelined = g->atomic && g->at.crtc_out_fence_ptr;
+	if (!g->pipelined)
+		return;
+	const char *dexts = eglQueryString(g->p->dpy, EGL_EXTENSIONS);
+	if (!g->at.plane_in_fence_fd) {
+		g->no_in_fence = "the plane has no IN_FENCE_FD";
+		return;
+	}
+	if (!egl_common_has_ext(dexts, "EGL_ANDROID_native_fence_sync")) {
+		g->no_in_fence = "EGL_ANDROID_native_fence_sync missing";
+		return;
+	}
+	g->create_sync = (PFNEGLCREATESYNCKHRPROC)eglGetProcAddress("eglCreateSyncKHR");
+	g->destroy_sync = (PFNEGLDESTROYSYNCKHRPROC)eglGetProcAddress("eglDestroySyncKHR");
+	g->dup_fence = (PFNEGLDUPNATIVEFENCEFDANDROIDPROC)eglGetProcAddress("eglDupNativeFenceFDANDROID");
+	if (!g->create_sync || !g->destroy_sync || !g->dup_fence) {
+		g->no_in_fence = "no eglCreateSyncKHR / eglDupNativeFenceFDANDROID";
+		return;
+	}
+	g->in_fences = true;
+}
+
+/* In-fences fail at run time: said once, the flips go on without (the
+ * dma-buf's implicit fences still order rendering and scanout). */
+static void no_more_in_fences(struct gbm_state *g, const char *what, const char *why)
+{
+	plog_warn("kms: %s: %s; flips go on without in-fences", what, why);
+	g->in_fences = false;
+	g->no_in_fence = "they failed";
+}
+
+/* The GPU's render fence, made before eglSwapBuffers (which flushes it). */
+static EGLSyncKHR render_sync(struct gbm_state *g)
+{
+	static const EGLint attribs[] = { EGL_SYNC_NATIVE_FENCE_FD_ANDROID, EGL_NO_NATIVE_FENCE_FD_ANDROID, EGL_NONE };
+	EGLSyncKHR s = g->create_sync(g->p->dpy, EGL_SYNC_NATIVE_FENCE_ANDROID, attribs);
+	if (s == EGL_NO_SYNC_KHR)
+		no_more_in_fences(g, "eglCreateSyncKHR(EGL_SYNC_NATIVE_FENCE_ANDROID)", egl_common_error_name(eglGetError()));
+	return s;
+}
+
+/* Its fd after the swap (-1 when none), the EGL sync destroyed. */
+static int render_fence_fd(struct gbm_state *g, EGLSyncKHR s)
+{
+	if (s == EGL_NO_SYNC_KHR)
+		return -1;
+	int fd = g->dup_fence(g->p->dpy, s);
+	if (fd < 0)
+		no_more_in_fences(g, "eglDupNativeFenceFDANDROID", egl_common_error_name(eglGetError()));
+	if (!g->destroy_sync(g->p->dpy, s))
+		plog_debug("gbm: eglDestroySyncKHR: %s", egl_common_error_name(eglGetError()));
+	return fd < 0 ? -1 : fd;
+}
+
 static void hide_cursor(struct gbm_state *g)
 {
 	if (drmModeSetCursor(g->kms.fd, g->kms.crtc_id, 0, 0, 0) != 0)
-		log_debug("gbm: hiding the cursor: %s", strerror(errno));
+		plog_debug("gbm: hiding the cursor: %s", strerror(errno));
 }
 
 static int modeset(struct gbm_state *g, uint32_t fb)
 {
+	(void)finish_flip(g); /* (none in flight: watch_connector waited for it) */
 	if (g->atomic) {
-		if (kms_atomic_commit(&g->at, &g->kms, fb, true, DRM_MODE_ATOMIC_TEST_ONLY, g) != 0) {
-			log_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
+		if (kms_atomic_commit(&g->at, &g->kms, fb, true, DRM_MODE_ATOMIC_TEST_ONLY, g, -1, NULL) != 0) {
+			plog_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
 			g->atomic = false;
-		} else if (kms_atomic_commit(&g->at, &g->kms, fb, true, 0, g) != 0) {
-			log_error("gbm: atomic modeset %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+			g->pipelined = false;
+			g->in_fences = false;
+		} else if (kms_atomic_commit(&g->at, &g->kms, fb, true, 0, g, -1, NULL) != 0) {
+			plog_error("gbm: atomic modeset %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 			          g->kms.path, strerror(errno));
 			return -1;
 		}
 	}
 	if (!g->atomic && kms_legacy_modeset(&g->kms, fb) != 0) {
-		log_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
+		plog_error("gbm: drmModeSetCrtc %ux%u on %s: %s", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 		          g->kms.path, strerror(errno));
 		return -1;
 	}
 	hide_cursor(g);
-	log_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->kms.path, g->kms.conn_name, g->kms.mode.hdisplay,
+	plog_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->kms.path, g->kms.conn_name, g->kms.mode.hdisplay,
 	         g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->atomic ? "atomic" : "legacy");
+	say_flips(g);
 	g->modeset_done = true;
 	g->p->shown++;
 	return 0;
@@ -187,27 +345,26 @@ static int remake_surface(struct gbm_state *g)
 	struct platform *p = g->p;
 	int w = g->kms.mode.hdisplay, h = g->kms.mode.vdisplay;
 	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, p->ctx)) {
-		log_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
+		plog_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	if (!eglDestroySurface(p->dpy, p->surface))
-		log_warn("gbm: eglDestroySurface: %s", egl_common_error_name(eglGetError()));
+		plog_warn("gbm: eglDestroySurface: %s", egl_common_error_name(eglGetError()));
 	p->surface = EGL_NO_SURFACE;
-	if (g->front)
-		gbm_surface_release_buffer(g->surf, g->front);
-	g->front = NULL;
+	(void)finish_flip(g); /* (none in flight: watch_connector waited for it) */
+	show(g, NULL);
 	gbm_surface_destroy(g->surf);
 	g->surf = gbm_surface_create(g->gbm, (uint32_t)w, (uint32_t)h, GBM_FORMAT_XRGB8888,
 	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
 	if (!g->surf) {
-		log_error("gbm: gbm_surface_create %dx%d on %s failed", w, h, g->kms.path);
+		plog_error("gbm: gbm_surface_create %dx%d on %s failed", w, h, g->kms.path);
 		return -1;
 	}
 	PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC create_surface =
 		(PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC)eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT");
 	p->surface = create_surface ? create_surface(p->dpy, p->config, g->surf, NULL) : EGL_NO_SURFACE;
 	if (p->surface == EGL_NO_SURFACE || !eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
-		log_error("gbm: a %dx%d window surface: %s", w, h, egl_common_error_name(eglGetError()));
+		plog_error("gbm: a %dx%d window surface: %s", w, h, egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	p->width = w;
@@ -231,26 +388,30 @@ static int follow_mode(struct gbm_state *g)
  * present modesets.  0, or -1 when the surface cannot follow a new size. */
 static int watch_connector(struct gbm_state *g, bool at_once)
 {
-	double t = clock_ms();
+	double t = platform_clock_ms();
 	if (!at_once && t < g->next_poll)
 		return 0;
 	g->next_poll = t + CONNECTOR_POLL_MS;
 	bool changed = false;
 	int st = kms_output_poll(&g->kms, g->want_mode, &changed);
 	if (st < 0) {
-		log_debug("gbm: connector %u on %s: %s", g->kms.conn_id, g->kms.path, strerror(errno));
+		plog_debug("gbm: connector %u on %s: %s", g->kms.conn_id, g->kms.path, strerror(errno));
 		return 0; /* cannot tell: as before */
 	}
 	if (st == 0) {
+		/* the flip in flight, if any, is over (or given up) before the
+		 * frames go on unshown */
+		(void)finish_flip(g);
 		if (g->connected)
-			log_warn("gbm: %s on %s disconnected%s: frames go on, not shown, until it is back",
+			plog_warn("gbm: %s on %s disconnected%s: frames go on, not shown, until it is back",
 			         g->kms.conn_name, g->kms.path, g->want_mode[0] ? " (or no longer offers --mode)" : "");
 		g->connected = false;
 		return 0;
 	}
 	if (g->connected && !changed)
 		return 0;
-	log_info("gbm: %s on %s %s: modesetting %ux%u@%u", g->kms.conn_name, g->kms.path,
+	(void)finish_flip(g); /* before the modeset, and before a new size's surface */
+	plog_info("gbm: %s on %s %s: modesetting %ux%u@%u", g->kms.conn_name, g->kms.path,
 	         g->connected ? "changed its mode" : "connected again", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 	         g->kms.mode.vrefresh);
 	g->connected = true;
@@ -268,15 +429,77 @@ static void drop_frame(struct gbm_state *g, struct gbm_bo *bo)
 		;
 }
 
-/* A page flip of fb: 0 committed (fb is the front now), 1 refused because
- * the display is gone (the connector unplugged), -1 error.  A flip whose
- * event never comes counts as committed when the connector is gone. */
-static int flip(struct gbm_state *g, uint32_t fb)
+/* Pipelined: the flip of bo (fb) committed with DRM_MODE_ATOMIC_NONBLOCK
+ * and an out-fence (and in_fence, the GPU's render fence, when >= 0); the
+ * flip before waited for first.  0 committed (bo is in flight), 1 refused
+ * because the display is gone, -1 error, 2 the kernel refused the fences
+ * on the first flip (the caller goes on with events). */
+static int flip_pipelined(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence)
 {
+	if (finish_flip(g) < 0) {
+		/* given up on (taken as done): the display gone, or an error */
+		if (watch_connector(g, true) == 0 && !g->connected)
+			return 1;
+		return -1;
+	}
+	int fence = -1, rc;
+	for (int tries = 0;; tries++) {
+		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_ATOMIC_NONBLOCK, g, in_fence, &fence);
+		if (rc == 0 || errno != EBUSY || tries >= EBUSY_RETRIES)
+			break;
+		struct timespec ms = { 0, 1000000L };
+		nanosleep(&ms, NULL);
+	}
+	if (rc == 0 && fence < 0) {
+		/* committed, but no fence to wait for: the flip is done once
+		 * the kernel takes the next commit; from now on events */
+		plog_warn("kms: the atomic commit on %s gave no out-fence; flips wait for their events from now on",
+		          g->kms.path);
+		g->pipelined = false;
+		g->in_fences = false;
+		show(g, bo);
+		return 0;
+	}
+	if (rc != 0) {
+		int e = errno;
+		if (watch_connector(g, true) == 0 && !g->connected)
+			return 1;
+		if (!g->fence_proven && g->modeset_done && (e == EINVAL || e == EOPNOTSUPP)) {
+			/* no flip with fences went through yet: the kernel may
+			 * not take them after all */
+			if (in_fence >= 0) {
+				no_more_in_fences(g, "the kernel refused the in-fence", strerror(e));
+				return flip_pipelined(g, fb, bo, -1);
+			}
+			plog_info("kms: atomic, each flip waits for its page-flip event (the kernel refused the out-fence: %s)",
+			          strerror(e));
+			g->pipelined = false;
+			return 2;
+		}
+		plog_error("gbm: atomic page flip on %s: %s", g->kms.path, strerror(e));
+		return -1;
+	}
+	g->pending = bo;
+	g->pending_fence = fence;
+	return 0;
+}
+
+/* A page flip of bo (fb): 0 committed (bo is the front now, or in flight
+ * when pipelined), 1 refused because the display is gone (the connector
+ * unplugged), -1 error.  A flip whose event never comes counts as
+ * committed when the connector is gone. */
+static int flip(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence)
+{
+	if (g->pipelined) {
+		int rc = flip_pipelined(g, fb, bo, g->in_fences ? in_fence : -1);
+		if (rc != 2)
+			return rc;
+	}
 	g->flip_pending = true;
 	int rc;
 	if (g->atomic)
-		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK, g);
+		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK, g,
+		                       -1, NULL);
 	else
 		rc = kms_legacy_flip(&g->kms, fb, g);
 	if (rc != 0) {
@@ -284,14 +507,17 @@ static int flip(struct gbm_state *g, uint32_t fb)
 		g->flip_pending = false;
 		if (watch_connector(g, true) == 0 && !g->connected)
 			return 1;
-		log_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
+		plog_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
 		          strerror(e));
 		return -1;
 	}
-	if (wait_flip(g) == 0)
+	if (wait_flip(g) == 0) {
+		show(g, bo);
 		return 0;
+	}
 	if (watch_connector(g, true) == 0 && !g->connected) {
 		g->flip_pending = false; /* its event may still come */
+		show(g, bo);
 		return 0;
 	}
 	return -1;
@@ -300,16 +526,23 @@ static int flip(struct gbm_state *g, uint32_t fb)
 static int gbm_present(struct platform *p)
 {
 	struct gbm_state *g = p->priv;
+	/* in-fences: the GPU's render fence of this frame, for its flip */
+	EGLSyncKHR sync = g->in_fences && g->connected && g->modeset_done ? render_sync(g) : EGL_NO_SYNC_KHR;
 	if (!eglSwapBuffers(p->dpy, p->surface)) {
-		log_error("gbm: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		plog_error("gbm: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		if (sync != EGL_NO_SYNC_KHR && !g->destroy_sync(p->dpy, sync))
+			plog_debug("gbm: eglDestroySyncKHR: %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
+	int in_fence = render_fence_fd(g, sync);
 	struct gbm_bo *bo = gbm_surface_lock_front_buffer(g->surf);
 	if (!bo) {
-		log_error("gbm: gbm_surface_lock_front_buffer failed");
+		plog_error("gbm: gbm_surface_lock_front_buffer failed");
+		close_fd(&in_fence);
 		return -1;
 	}
 	if (!g->connected) {
+		close_fd(&in_fence);
 		drop_frame(g, bo);
 		return watch_connector(g, false);
 	}
@@ -319,16 +552,16 @@ static int gbm_present(struct platform *p)
 		rc = modeset(g, fb);
 		if (rc < 0 && watch_connector(g, true) == 0 && !g->connected)
 			rc = 1; /* gone again before it could be shown */
+		if (rc == 0)
+			show(g, bo);
 	} else if (rc == 0) {
-		rc = flip(g, fb);
+		rc = flip(g, fb, bo, in_fence); /* bo shown, or in flight */
 	}
+	close_fd(&in_fence); /* the kernel holds its own reference */
 	if (rc != 0) {
 		gbm_surface_release_buffer(g->surf, bo);
 		return rc < 0 ? -1 : 0;
 	}
-	if (g->front)
-		gbm_surface_release_buffer(g->surf, g->front);
-	g->front = bo;
 	return watch_connector(g, false);
 }
 
@@ -341,11 +574,16 @@ static void restore_crtc(struct gbm_state *g)
 	g->restore_done = true;
 	if (g->flip_pending)
 		(void)wait_flip(g);
+	if (g->pipelined) {
+		(void)finish_flip(g);
+		plog_info("kms: no flip in flight when the CRTC was restored: %lu of %lu frames shown", g->p->shown,
+		          g->p->presented);
+	}
 	drmModeCrtc *s = g->saved;
 	if (kms_legacy_restore(&g->kms, s) != 0)
-		log_warn("gbm: restoring CRTC %u on %s: %s", g->kms.crtc_id, g->kms.path, strerror(errno));
+		plog_warn("gbm: restoring CRTC %u on %s: %s", g->kms.crtc_id, g->kms.path, strerror(errno));
 	else
-		log_debug("gbm: CRTC %u restored (fb %u)", g->kms.crtc_id, s ? s->buffer_id : 0);
+		plog_debug("gbm: CRTC %u restored (fb %u)", g->kms.crtc_id, s ? s->buffer_id : 0);
 }
 
 static void gbm_close(struct platform *p)
@@ -356,6 +594,9 @@ static void gbm_close(struct platform *p)
 	egl_common_release(p);
 	if (!g)
 		return;
+	if (g->pending)
+		gbm_surface_release_buffer(g->surf, g->pending);
+	close_fd(&g->pending_fence);
 	if (g->front)
 		gbm_surface_release_buffer(g->surf, g->front);
 	if (g->surf)
@@ -382,10 +623,11 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 		return -1;
 	}
 	g->kms.fd = -1;
+	g->pending_fence = -1;
 	g->p = p;
 	p->priv = g;
 	g->connected = true;
-	g->next_poll = clock_ms() + CONNECTOR_POLL_MS;
+	g->next_poll = platform_clock_ms() + CONNECTOR_POLL_MS;
 	if (opt->mode && strlen(opt->mode) >= sizeof(g->want_mode)) {
 		snprintf(err, errlen, "--mode '%.40s...' is not WxH or WxH@Hz", opt->mode);
 		goto fail;
@@ -404,7 +646,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	}
 	g->saved = drmModeGetCrtc(g->kms.fd, g->kms.crtc_id);
 	if (!g->saved)
-		log_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->kms.crtc_id,
+		plog_warn("gbm: cannot read CRTC %u (%s); it will be turned off on exit", g->kms.crtc_id,
 		         strerror(errno));
 	g->atomic = !opt->kms_legacy && kms_atomic_init(&g->at, &g->kms);
 
@@ -429,10 +671,11 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	size_t len = strlen(p->device_desc);
 	if (len + strlen(g->kms.path) + 4 < sizeof(p->device_desc))
 		snprintf(p->device_desc + len, sizeof(p->device_desc) - len, " (%s)", g->kms.path);
-	log_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->kms.path, g->kms.conn_name,
+	plog_debug("gbm: %s connector %s, mode %ux%u@%u, CRTC %u, %s", g->kms.path, g->kms.conn_name,
 	          g->kms.mode.hdisplay, g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->kms.crtc_id,
 	          g->atomic ? "atomic" : "legacy");
 	p->refresh_hz = g->kms.mode.vrefresh;
+	choose_flips(g);
 	return 0;
 fail:
 	gbm_close(p);

@@ -15,7 +15,7 @@
 #include <wayland-client.h>
 #include <wayland-egl.h>
 
-#include "log.h"
+#include "platform_util.h"
 #include "xdg-shell-client-protocol.h"
 
 struct wl_state {
@@ -181,7 +181,7 @@ static void xdg_surface_configure(void *data, struct xdg_surface *s, uint32_t se
 	xdg_surface_ack_configure(s, serial);
 	w->configured = true;
 	if (w->pending_w > 0 && w->pending_h > 0 && (w->pending_w != p->width || w->pending_h != p->height)) {
-		log_debug("wayland: configured to %dx%d", w->pending_w, w->pending_h);
+		plog_debug("wayland: configured to %dx%d", w->pending_w, w->pending_h);
 		p->width = w->pending_w;
 		p->height = w->pending_h;
 		if (w->egl_window)
@@ -227,11 +227,11 @@ static int wayland_dispatch(struct platform *p)
 {
 	struct wl_state *w = p->priv;
 	if (pump(w) < 0) {
-		log_error("wayland: connection to the compositor lost (%s)", strerror(wl_display_get_error(w->display)));
+		plog_error("wayland: connection to the compositor lost (%s)", strerror(wl_display_get_error(w->display)));
 		return -1;
 	}
 	if (w->closed) {
-		log_info("wayland: window closed");
+		plog_info("wayland: window closed");
 		return 1;
 	}
 	return 0;
@@ -242,13 +242,13 @@ static int wayland_present(struct platform *p)
 	struct wl_state *w = p->priv;
 	struct wl_callback *cb = wl_surface_frame(w->surface);
 	if (!cb) {
-		log_error("wayland: wl_surface_frame failed");
+		plog_error("wayland: wl_surface_frame failed");
 		return -1;
 	}
 	wl_callback_add_listener(cb, &frame_listener, w);
 	w->callbacks_pending++;
 	if (!eglSwapBuffers(p->dpy, p->surface)) {
-		log_error("wayland: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		plog_error("wayland: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	return 0;
@@ -357,7 +357,7 @@ static int wayland_open(struct platform *p, const struct platform_options *opt, 
 	    egl_common_make_window_context(p, opt, 0, NULL, err, errlen) < 0 ||
 	    egl_common_make_window_context(p, opt, 0, w->egl_window, err, errlen) < 0)
 		goto fail;
-	log_debug("wayland: %dx%d%s on '%s'", p->width, p->height, opt->fullscreen ? " fullscreen" : "",
+	plog_debug("wayland: %dx%d%s on '%s'", p->width, p->height, opt->fullscreen ? " fullscreen" : "",
 	          name ? name : "wayland-0");
 	return 0;
 fail:

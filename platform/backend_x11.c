@@ -12,7 +12,7 @@
 #include <X11/Xlib-xcb.h>
 #include <xcb/xcb.h>
 
-#include "log.h"
+#include "platform_util.h"
 
 struct x11_state {
 	Display *xdpy;
@@ -58,7 +58,7 @@ static int handle_event(struct platform *p, struct x11_state *x, xcb_generic_eve
 		xcb_configure_notify_event_t *c = (xcb_configure_notify_event_t *)ev;
 		if (c->window == x->win && c->width > 0 && c->height > 0 &&
 		    (c->width != p->width || c->height != p->height)) {
-			log_debug("x11: window resized to %ux%u", c->width, c->height);
+			plog_debug("x11: window resized to %ux%u", c->width, c->height);
 			p->width = c->width;
 			p->height = c->height;
 		}
@@ -71,7 +71,7 @@ static int handle_event(struct platform *p, struct x11_state *x, xcb_generic_eve
 		xcb_client_message_event_t *m = (xcb_client_message_event_t *)ev;
 		if (m->window == x->win && m->type == x->wm_protocols && m->format == 32 &&
 		    m->data.data32[0] == x->wm_delete) {
-			log_info("x11: window closed");
+			plog_info("x11: window closed");
 			return 1;
 		}
 		break;
@@ -92,7 +92,7 @@ static int x11_dispatch(struct platform *p)
 		free(ev);
 	}
 	if (xcb_connection_has_error(x->conn)) {
-		log_error("x11: connection to the X server lost");
+		plog_error("x11: connection to the X server lost");
 		return -1;
 	}
 	return quit;
@@ -287,7 +287,7 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 	x->native = (Window)x->win;
 	if (egl_common_make_window_context(p, opt, vid, &x->native, err, errlen) < 0)
 		goto fail;
-	log_debug("x11: window 0x%x %dx%d, visual 0x%x depth %u%s", (unsigned)x->win, p->width, p->height,
+	plog_debug("x11: window 0x%x %dx%d, visual 0x%x depth %u%s", (unsigned)x->win, p->width, p->height,
 	          (unsigned)vid, depth, opt->fullscreen ? ", fullscreen" : "");
 	return 0;
 fail:
@@ -298,7 +298,7 @@ fail:
 static int x11_present(struct platform *p)
 {
 	if (!eglSwapBuffers(p->dpy, p->surface)) {
-		log_error("x11: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
+		plog_error("x11: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
 	p->shown++;

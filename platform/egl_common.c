@@ -7,7 +7,7 @@
 
 #include <GLES3/gl31.h>
 
-#include "log.h"
+#include "platform_util.h"
 
 bool egl_common_has_ext(const char *list, const char *ext)
 {
@@ -80,17 +80,17 @@ static void EGLAPIENTRY debug_cb(EGLenum error, const char *command, EGLint type
 	const char *msg = message ? message : "";
 	switch (type) {
 	case EGL_DEBUG_MSG_CRITICAL_KHR:
-		log_error("EGL: %s: %s (%s)", cmd, msg, egl_common_error_name((EGLint)error));
+		plog_error("EGL: %s: %s (%s)", cmd, msg, egl_common_error_name((EGLint)error));
 		break;
 	case EGL_DEBUG_MSG_ERROR_KHR:
 		snprintf(last_error, sizeof(last_error), "%s", msg);
-		log_debug("EGL: %s: %s (%s)", cmd, msg, egl_common_error_name((EGLint)error));
+		plog_debug("EGL: %s: %s (%s)", cmd, msg, egl_common_error_name((EGLint)error));
 		break;
 	case EGL_DEBUG_MSG_WARN_KHR:
-		log_warn("EGL: %s: %s", cmd, msg);
+		plog_warn("EGL: %s: %s", cmd, msg);
 		break;
 	default:
-		log_debug("EGL: %s: %s", cmd, msg);
+		plog_debug("EGL: %s: %s", cmd, msg);
 		break;
 	}
 }
@@ -112,7 +112,7 @@ void egl_common_debug_callback(bool enable, bool verbose)
 	};
 	EGLint rc = enable ? control(debug_cb, attribs) : control(NULL, NULL);
 	if (rc != EGL_SUCCESS)
-		log_warn("eglDebugMessageControlKHR failed: %s", egl_common_error_name(rc));
+		plog_warn("eglDebugMessageControlKHR failed: %s", egl_common_error_name(rc));
 }
 
 /* ---- display ------------------------------------------------------------- */
@@ -144,7 +144,7 @@ int egl_common_open_display(struct platform *p, EGLenum platform, void *native,
 		return -1;
 	}
 	p->dpy = dpy;
-	log_debug("EGL %d.%d, vendor '%s'", major, minor, eglQueryString(dpy, EGL_VENDOR));
+	plog_debug("EGL %d.%d, vendor '%s'", major, minor, eglQueryString(dpy, EGL_VENDOR));
 	return 0;
 }
 
@@ -172,7 +172,7 @@ static int choose_config(struct platform *p, EGLint renderable, EGLint surface_t
 		return 0;
 	if (no_config_ok) {
 		p->config = EGL_NO_CONFIG_KHR;
-		log_debug("no OpenGL ES 3 EGLConfig; using EGL_KHR_no_config_context");
+		plog_debug("no OpenGL ES 3 EGLConfig; using EGL_KHR_no_config_context");
 		return 0;
 	}
 	snprintf(err, errlen, "no EGLConfig supports OpenGL ES 3 on this display");
@@ -216,7 +216,7 @@ static int make_context(struct platform *p, bool egl15, bool khr_cc, bool debug,
 	last_error_clear();
 	p->ctx = create_context(p, egl15, khr_cc, debug);
 	if (p->ctx == EGL_NO_CONTEXT && debug) {
-		log_warn("cannot create a debug GLES context (%s); continuing without",
+		plog_warn("cannot create a debug GLES context (%s); continuing without",
 		         egl_common_error_name(eglGetError()));
 		last_error_clear();
 		p->ctx = create_context(p, egl15, khr_cc, false);
@@ -256,7 +256,7 @@ static int check_gl_version(struct platform *p, char *err, size_t errlen)
 	if (!ver)
 		return -1;
 	snprintf(p->device_desc, sizeof(p->device_desc), "%s", ren ? ren : "unknown renderer");
-	log_debug("GL_VERSION '%s', GL_RENDERER '%s'", ver, p->device_desc);
+	plog_debug("GL_VERSION '%s', GL_RENDERER '%s'", ver, p->device_desc);
 	return 0;
 }
 
@@ -302,7 +302,7 @@ int egl_common_make_context(struct platform *p, const struct platform_options *o
 			egl_fail(err, errlen, "no EGL_KHR_surfaceless_context and eglCreatePbufferSurface");
 			return -1;
 		}
-		log_debug("no EGL_KHR_surfaceless_context: using a 1x1 pbuffer");
+		plog_debug("no EGL_KHR_surfaceless_context: using a 1x1 pbuffer");
 	}
 	last_error_clear();
 	if (!eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
@@ -367,7 +367,7 @@ static int choose_window_config(struct platform *p, EGLint renderable, EGLint vi
 	EGLint id = 0, alpha = 0;
 	eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, &id);
 	eglGetConfigAttrib(p->dpy, p->config, EGL_ALPHA_SIZE, &alpha);
-	log_debug("EGL window config %d of %d: native visual 0x%x, alpha %d", pick, (int)n, (unsigned)id, (int)alpha);
+	plog_debug("EGL window config %d of %d: native visual 0x%x, alpha %d", pick, (int)n, (unsigned)id, (int)alpha);
 	return 0;
 }
 
@@ -418,7 +418,7 @@ int egl_common_make_window_context(struct platform *p, const struct platform_opt
 	/* vsync where the window system has it (a no-op on GBM: the backend
 	 * waits for page flips itself) */
 	if (!eglSwapInterval(p->dpy, 1))
-		log_debug("eglSwapInterval(1): %s", egl_common_error_name(eglGetError()));
+		plog_debug("eglSwapInterval(1): %s", egl_common_error_name(eglGetError()));
 	p->headless = false;
 	return check_gl_version(p, err, errlen);
 }
@@ -428,15 +428,15 @@ void egl_common_release(struct platform *p)
 	if (p->dpy == EGL_NO_DISPLAY)
 		return;
 	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
-		log_warn("eglMakeCurrent(none) failed: %s", egl_common_error_name(eglGetError()));
+		plog_warn("eglMakeCurrent(none) failed: %s", egl_common_error_name(eglGetError()));
 	if (p->ctx != EGL_NO_CONTEXT && !eglDestroyContext(p->dpy, p->ctx))
-		log_warn("eglDestroyContext failed: %s", egl_common_error_name(eglGetError()));
+		plog_warn("eglDestroyContext failed: %s", egl_common_error_name(eglGetError()));
 	if (p->surface != EGL_NO_SURFACE && !eglDestroySurface(p->dpy, p->surface))
-		log_warn("eglDestroySurface failed: %s", egl_common_error_name(eglGetError()));
+		plog_warn("eglDestroySurface failed: %s", egl_common_error_name(eglGetError()));
 	if (!eglTerminate(p->dpy))
-		log_warn("eglTerminate failed: %s", egl_common_error_name(eglGetError()));
+		plog_warn("eglTerminate failed: %s", egl_common_error_name(eglGetError()));
 	if (!eglReleaseThread())
-		log_warn("eglReleaseThread failed: %s", egl_common_error_name(eglGetError()));
+		plog_warn("eglReleaseThread failed: %s", egl_common_error_name(eglGetError()));
 	p->ctx = EGL_NO_CONTEXT;
 	p->surface = EGL_NO_SURFACE;
 	p->config = NULL;

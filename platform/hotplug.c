@@ -6,7 +6,7 @@
  * libudev, the connector is probed again only when it comes back from
  * disconnected.  See kms.h. */
 #include "kms.h"
-#include "log.h"
+#include "platform_util.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -25,7 +25,7 @@ struct hotplug *hotplug_open(int card_fd)
 {
 	struct stat st;
 	if (fstat(card_fd, &st) != 0) {
-		log_debug("hotplug: fstat of the card failed: no hotplug events");
+		plog_debug("hotplug: fstat of the card failed: no hotplug events");
 		return NULL;
 	}
 	struct hotplug *h = calloc(1, sizeof(*h));
@@ -36,7 +36,7 @@ struct hotplug *hotplug_open(int card_fd)
 	h->mon = h->udev ? udev_monitor_new_from_netlink(h->udev, "kernel") : NULL;
 	if (!h->mon || udev_monitor_filter_add_match_subsystem_devtype(h->mon, "drm", NULL) < 0 ||
 	    udev_monitor_enable_receiving(h->mon) < 0) {
-		log_warn("gbm: cannot listen for display hotplug events (netlink uevents): a new monitor's modes are "
+		plog_warn("gbm: cannot listen for display hotplug events (netlink uevents): a new monitor's modes are "
 		         "learnt only when it comes back from unplugged");
 		hotplug_close(h);
 		return NULL;
@@ -77,7 +77,7 @@ void hotplug_close(struct hotplug *h)
 struct hotplug *hotplug_open(int card_fd)
 {
 	(void)card_fd;
-	log_debug("gbm: built without libudev: a new monitor's modes are learnt when it comes back from unplugged");
+	plog_debug("gbm: built without libudev: a new monitor's modes are learnt when it comes back from unplugged");
 	return NULL;
 }
 

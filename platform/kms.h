@@ -46,16 +46,30 @@ struct kms_atomic {
 	uint32_t mode_blob; /* the mode as a property blob */
 	uint32_t conn_crtc_id, crtc_mode_id, crtc_active; /* property ids */
 	uint32_t fb_id, crtc_id, src_x, src_y, src_w, src_h, crtc_x, crtc_y, crtc_w, crtc_h;
+	/* explicit fencing, 0 where the driver lacks the property: the CRTC's
+	 * OUT_FENCE_PTR (a fence that signals when the commit is on screen)
+	 * and the plane's IN_FENCE_FD (a fence the flip waits for) */
+	uint32_t crtc_out_fence_ptr, plane_in_fence_fd;
 };
 /* The atomic client cap, o's CRTC's primary plane, every property id a
- * frame sets and the mode blob.  false (why: logged): use legacy. */
+ * frame sets and the mode blob; the fence properties when there are.
+ * false (why: logged): use legacy. */
 bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o);
 /* The frame with fb on the primary plane at the mode's size; modeset: the
  * connector, the mode and the CRTC's activation too
  * (DRM_MODE_ATOMIC_ALLOW_MODESET).  flags: DRM_MODE_ATOMIC_* and
- * DRM_MODE_PAGE_FLIP_EVENT, whose event carries user.  0, or -1 (errno). */
+ * DRM_MODE_PAGE_FLIP_EVENT, whose event carries user.  in_fence: -1, or a
+ * sync_file fd the plane waits for before it shows fb (IN_FENCE_FD; needs
+ * a->plane_in_fence_fd; the caller still owns and closes it).  out_fence:
+ * NULL, or where the kernel puts the fd of a fence that signals when the
+ * commit is on screen (OUT_FENCE_PTR; needs a->crtc_out_fence_ptr; not with
+ * DRM_MODE_ATOMIC_TEST_ONLY), -1 when the commit failed; the caller closes
+ * it.  0, or -1 (errno). */
 int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
-		      uint32_t flags, void *user);
+		      uint32_t flags, void *user, int in_fence, int *out_fence);
+/* Waits up to timeout_ms (0: only looks) for a sync_file fence fd to
+ * signal.  1 signalled, 0 not yet, -1 error (errno). */
+int kms_fence_wait(int fd, int timeout_ms);
 /* o->mode changed: its blob made again.  0, or -1 (logged). */
 int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o);
 void kms_atomic_release(struct kms_atomic *a, int fd);

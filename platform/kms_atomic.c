@@ -1,13 +1,16 @@
 /* isoterra — atomic modesetting (kms.h): the CRTC's primary plane and the
  * property ids a frame sets, the mode as a property blob, and the commit of
- * a whole frame (with the connector and the mode when it modesets).  After
- * kmscube's drm-atomic.c; the legacy path is kms_legacy.c. */
+ * a whole frame (with the connector and the mode when it modesets), with
+ * the fences of explicit fencing when asked (OUT_FENCE_PTR, IN_FENCE_FD).
+ * After kmscube's drm-atomic.c; the legacy path is kms_legacy.c. */
 #include "kms.h"
-#include "log.h"
-#include "util.h"
+#include "platform_util.h"
 
 #include <errno.h>
+#include <poll.h>
+#include <stdint.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <xf86drm.h>
 #include <xf86drmMode.h>
@@ -58,12 +61,12 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
 {
 	if (drmSetClientCap(o->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
 	    drmSetClientCap(o->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
-		log_debug("gbm: no atomic modesetting on %s (%s); legacy", o->path, strerror(errno));
+		plog_debug("gbm: no atomic modesetting on %s (%s); legacy", o->path, strerror(errno));
 		return false;
 	}
 	a->plane_id = find_primary_plane(o);
 	if (!a->plane_id) {
-		log_debug("gbm: no primary plane for CRTC %u; legacy", o->crtc_id);
+		plog_debug("gbm: no primary plane for CRTC %u; legacy", o->crtc_id);
 		return false;
 	}
 	struct kms_atomic *pp = a;
@@ -89,20 +92,31 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
 	for (size_t i = 0; i < ARRAY_SIZE(want); i++) {
 		*want[i].id = prop_id(o->fd, want[i].obj, want[i].type, want[i].name, NULL);
 		if (!*want[i].id) {
-			log_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
+			plog_debug("gbm: property %s missing on object %u; legacy", want[i].name, want[i].obj);
 			return false;
 		}
 	}
+	/* explicit fencing: optional (the flips wait for their events without) */
+	a->crtc_out_fence_ptr = prop_id(o->fd, o->crtc_id, DRM_MODE_OBJECT_CRTC, "OUT_FENCE_PTR", NULL);
+	a->plane_in_fence_fd = prop_id(o->fd, a->plane_id, DRM_MODE_OBJECT_PLANE, "IN_FENCE_FD", NULL);
 	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
-		log_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
+		plog_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
 		return false;
 	}
 	return true;
 }
 
 int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
-		      uint32_t flags, void *user)
+		      uint32_t flags, void *user, int in_fence, int *out_fence)
 {
+	/* the kernel writes the fence's fd (an int) where the property points */
+	if (out_fence)
+		*out_fence = -1;
+	if ((out_fence && (!a->crtc_out_fence_ptr || (flags & DRM_MODE_ATOMIC_TEST_ONLY))) ||
+	    (in_fence >= 0 && !a->plane_in_fence_fd)) {
+		errno = EINVAL;
+		return -1;
+	}
 	drmModeAtomicReq *req = drmModeAtomicAlloc();
 	if (!req) {
 		errno = ENOMEM;
@@ -127,6 +141,11 @@ int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, ui
 	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_y, 0) > 0;
 	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_w, w) > 0;
 	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_h, h) > 0;
+	if (in_fence >= 0)
+		ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->plane_in_fence_fd, (uint64_t)in_fence) > 0;
+	if (out_fence)
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_out_fence_ptr,
+					       (uint64_t)(uintptr_t)out_fence) > 0;
 	int rc;
 	if (!ok) {
 		errno = ENOMEM;
@@ -135,16 +154,46 @@ int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, ui
 		rc = drmModeAtomicCommit(o->fd, req, flags, user);
 	}
 	drmModeAtomicFree(req);
+	if (rc != 0 && out_fence && *out_fence >= 0) {
+		/* (the kernel installs none when the commit fails) */
+		int e = errno;
+		close(*out_fence);
+		*out_fence = -1;
+		errno = e;
+	}
 	return rc;
+}
+
+int kms_fence_wait(int fd, int timeout_ms)
+{
+	double end = platform_clock_ms() + timeout_ms;
+	for (;;) {
+		struct pollfd pfd = { .fd = fd, .events = POLLIN };
+		int n = poll(&pfd, 1, timeout_ms);
+		if (n > 0) {
+			if (pfd.revents & (POLLERR | POLLNVAL)) {
+				errno = EINVAL;
+				return -1;
+			}
+			return 1;
+		}
+		if (n == 0)
+			return 0;
+		if (errno != EINTR)
+			return -1;
+		/* a signal: on with the time left */
+		double left = end - platform_clock_ms();
+		timeout_ms = left > 0 ? (int)left : 0;
+	}
 }
 
 int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o)
 {
 	if (a->mode_blob && drmModeDestroyPropertyBlob(o->fd, a->mode_blob) != 0)
-		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+		plog_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
 	a->mode_blob = 0;
 	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
-		log_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
+		plog_error("gbm: drmModeCreatePropertyBlob: %s", strerror(errno));
 		return -1;
 	}
 	return 0;
@@ -153,6 +202,6 @@ int kms_atomic_set_mode(struct kms_atomic *a, const struct kms_output *o)
 void kms_atomic_release(struct kms_atomic *a, int fd)
 {
 	if (a->mode_blob && drmModeDestroyPropertyBlob(fd, a->mode_blob) != 0)
-		log_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
+		plog_debug("gbm: drmModeDestroyPropertyBlob: %s", strerror(errno));
 	a->mode_blob = 0;
 }

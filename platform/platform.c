@@ -1,12 +1,10 @@
 /* isoterra — backend table and selection ("auto"). */
 #include "platform.h"
-#include "util.h"
+#include "platform_util.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include "log.h"
 
 /* Display backends behind their meson options (-Dgbm, -Dwayland, -Dx11),
  * then the headless ones. */
@@ -58,7 +56,7 @@ static int try_backend(struct platform *p, const struct platform_backend *b,
 		reset(p);
 		return -1;
 	}
-	log_debug("platform '%s': %s", b->name, p->device_desc);
+	plog_debug("platform '%s': %s", b->name, p->device_desc);
 	return 0;
 }
 
@@ -92,7 +90,7 @@ static int open_auto(struct platform *p, const struct platform_options *opt, cha
 		char why[256];
 		if (try_backend(p, b, opt, why, sizeof(why)) == 0)
 			return 0;
-		log_warn("platform auto: %s: %s; trying the next platform", b->name, why);
+		plog_warn("platform auto: %s: %s; trying the next platform", b->name, why);
 	}
 	char e_dev[256] = "no EGL device is a GPU", e_sl[256] = "EGL_MESA_platform_surfaceless not supported by this EGL";
 	bool tried_device = false;

@@ -4,7 +4,11 @@
  * Backends are plain structs of function pointers (kmscube style).  The
  * renderer never sees which one is active: headless backends render into the
  * application's FBO; windowed ones (GBM/KMS, Wayland, X11) also give a
- * window surface and a present() that swaps/flips. */
+ * window surface and a present() that swaps/flips.
+ *
+ * A library below the program: its only include folder is platform/ (it
+ * includes nothing of app/); its messages go through the seam of
+ * platform_log.h, which the program fills at start. */
 #ifndef ISOTERRA_PLATFORM_H
 #define ISOTERRA_PLATFORM_H
 
@@ -14,6 +18,8 @@
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+
+#include "platform_log.h" /* its messages: platform_set_log */
 
 struct platform;
 
@@ -135,7 +141,7 @@ int egl_common_make_window_context(struct platform *p, const struct platform_opt
                                    EGLint visual, void *native_window, char *err, size_t errlen);
 /* Releases whatever egl_common_* created (safe on partial state). */
 void egl_common_release(struct platform *p);
-/* enable: route EGL_KHR_debug messages to log_* (verbose: also warnings and
+/* enable: route EGL_KHR_debug messages to the platform's log (verbose: also warnings and
  * info); !enable: remove the callback.  No-op without EGL_KHR_debug. */
 void egl_common_debug_callback(bool enable, bool verbose);
 

@@ -9,6 +9,26 @@
 #include "platform.h"
 #include "tcheck.h"
 
+#ifdef ISOTERRA_HAVE_GBM
+#include <unistd.h>
+
+#include "kms.h"
+
+/* The wait on a KMS out-fence (kms_atomic.c) is a poll for POLLIN on its
+ * fd: a pipe stands in for the sync_file. */
+static void check_fence_wait(void)
+{
+	int fds[2];
+	CHECK(pipe(fds) == 0, "pipe");
+	CHECK(kms_fence_wait(fds[0], 0) == 0, "fence wait: not signalled, looked only");
+	CHECK(kms_fence_wait(fds[0], 20) == 0, "fence wait: not signalled within 20 ms");
+	CHECK(write(fds[1], "x", 1) == 1, "write");
+	CHECK(kms_fence_wait(fds[0], 1000) == 1, "fence wait: signalled");
+	close(fds[0]);
+	close(fds[1]);
+}
+#endif
+
 static void check_context(const struct platform *p, const char *what)
 {
 	CHECK(eglGetCurrentContext() == p->ctx, "%s: context not current", what);
@@ -48,6 +68,37 @@ static void open_ok(const char *name, bool debug)
 	CHECK(platform_present(p) == 0, "present on headless '%s'", label);
 	platform_close(p);
 	CHECK(eglGetCurrentContext() == EGL_NO_CONTEXT, "'%s': context still current after close", label);
+}
+
+/* The log seam (platform_log.h): the platform's messages reach the
+ * callback, one line each, with their levels. */
+struct seen {
+	int n, debug_open;
+	char last[256];
+};
+
+static void catch_log(void *user, enum platform_log_level level, const char *msg)
+{
+	struct seen *s = user;
+	s->n++;
+	snprintf(s->last, sizeof(s->last), "%s", msg);
+	if (level == PLATFORM_LOG_DEBUG && strncmp(msg, "platform 'surfaceless': ", 24) == 0 && !strchr(msg, '\n'))
+		s->debug_open++;
+}
+
+static void check_log_seam(void)
+{
+	struct seen s = { 0 };
+	platform_set_log(&(struct platform_log){ .fn = catch_log, .user = &s });
+	char err[512] = "";
+	struct platform_options opt = { .name = "surfaceless" };
+	struct platform *p = platform_open(&opt, err, sizeof(err));
+	CHECK(p != NULL, "surfaceless: %s", err);
+	platform_close(p);
+	platform_set_log(NULL);
+	CHECK(s.debug_open == 1, "log seam: %d messages, %d 'platform 'surfaceless': ...' at debug level (last '%s')",
+	      s.n, s.debug_open, s.last);
+	printf("log seam: %d messages through the callback\n", s.n);
 }
 
 /* Number of EGL devices as the test sees it, -1 when the EGL cannot list them. */
@@ -177,6 +228,10 @@ int main(int argc, char **argv)
 	      !strcmp(err, "a platform is already open (one at a time per process)"), "second open: '%s'", err);
 	platform_close(first);
 
+	check_log_seam();
+#ifdef ISOTERRA_HAVE_GBM
+	check_fence_wait();
+#endif
 	open_ok("surfaceless", false);
 	open_ok("surfaceless", true);  /* again: terminate + reinitialise works */
 	open_ok("auto", false);
