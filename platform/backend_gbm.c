@@ -8,27 +8,7 @@
  * console, usually).  Structure after kmscube (drm-common, drm-atomic,
  * drm-legacy).
  *
- * Flips, three ways (said once, at info level, at the first modeset):
- *   - atomic with the CRTC's OUT_FENCE_PTR: pipelined.  present() commits
- *     the flip with DRM_MODE_ATOMIC_NONBLOCK and returns; the kernel's
- *     out-fence for it is waited for (poll) only when it must be: at the
- *     next present, before the next commit (the kernel refuses a
- *     nonblocking commit while one is pending, EBUSY), and before anything
- *     that reuses or releases a buffer the display may still scan out (a
- *     new mode, the display gone, close).  So the frame loop renders the
- *     next frame while the flip waits for vsync.  A bo goes back to the
- *     gbm surface only once the flip that replaced it signalled; up to
- *     three are locked (on screen, flipping, just rendered) of the
- *     surface's four.  With EGL_ANDROID_native_fence_sync (and the plane's
- *     IN_FENCE_FD) the GPU's render fence rides along as the plane's
- *     IN_FENCE_FD, so the kernel, not the CPU, waits for the rendering;
- *     without (llvmpipe / kms_swrast) the dma-buf's implicit fences do.
- *   - atomic without OUT_FENCE_PTR, or a kernel that refuses the fences:
- *     each flip waits for its DRM_MODE_PAGE_FLIP_EVENT in present().
- *   - legacy: drmModePageFlip, the same wait.
- * p->shown counts the flips the display confirmed (the out-fence or the
- * event), the modesets too; pipelined, the last flip is confirmed one
- * present later (or at close, which says so).
+ * Flips: gbm_flip.c (pipelined with fences where the kernel offers them).
  *
  * A display that goes away (a cable pulled) does not stop the program:
  * once a second present() asks the kernel whether the connector is still
@@ -40,8 +20,7 @@
  * asks at once.  Plugged back, it modesets again, at the mode the connector
  * offers now (the preferred one, or --mode); a new size re-creates the
  * surface and the renderer follows (the display sink's resize). */
-#include "kms.h"
-#include "platform.h"
+#include "gbm_int.h"
 #include "platform_util.h"
 
 #include <errno.h>
@@ -57,33 +36,7 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
-#define FLIP_TIMEOUT_MS 5000
 #define CONNECTOR_POLL_MS 1000
-#define EBUSY_RETRIES 100 /* of 1 ms, should the kernel still be busy with the flip before */
-
-struct gbm_state {
-	struct kms_output kms;     /* card, connector, mode, CRTC */
-	struct gbm_device *gbm;
-	struct gbm_surface *surf;
-	struct gbm_bo *front;      /* on screen */
-	struct kms_atomic at;      /* atomic modesetting's plane, properties, mode blob */
-	drmModeCrtc *saved;        /* the CRTC as we found it, put back on close */
-	bool atomic, modeset_done, flip_pending, restore_done;
-	/* pipelined flips (atomic with out-fences): the bo committed last and
-	 * the out-fence of its flip (-1: none in flight); with in-fences, the
-	 * EGL entry points for the GPU's render fence */
-	bool pipelined, in_fences, flips_said, fence_proven;
-	const char *no_in_fence;   /* why there are none, for the info line */
-	struct gbm_bo *pending;
-	int pending_fence;
-	PFNEGLCREATESYNCKHRPROC create_sync;
-	PFNEGLDESTROYSYNCKHRPROC destroy_sync;
-	PFNEGLDUPNATIVEFENCEFDANDROIDPROC dup_fence;
-	struct platform *p;
-	char want_mode[32];        /* --mode ("" = the preferred one), chosen again on return */
-	bool connected;            /* the connector, as last asked */
-	double next_poll;          /* platform_clock_ms() of the next question */
-};
 
 struct gbm_fb {
 	int fd;
@@ -139,170 +92,6 @@ static uint32_t bo_fb(struct gbm_state *g, struct gbm_bo *bo)
 	return fb->fb_id;
 }
 
-/* ---- page flips ---------------------------------------------------------- */
-
-static void flip_handler(int fd, unsigned frame, unsigned sec, unsigned usec, void *data)
-{
-	(void)fd;
-	(void)frame;
-	(void)sec;
-	(void)usec;
-	struct gbm_state *g = data;
-	g->flip_pending = false;
-	g->p->shown++;
-}
-
-static int wait_flip(struct gbm_state *g)
-{
-	drmEventContext ev = {
-		.version = 2,
-		.page_flip_handler = flip_handler,
-	};
-	while (g->flip_pending) {
-		struct pollfd pfd = { .fd = g->kms.fd, .events = POLLIN };
-		int n = poll(&pfd, 1, FLIP_TIMEOUT_MS);
-		if (n < 0) {
-			if (errno == EINTR)
-				continue; /* a signal: the flip still completes */
-			plog_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
-			return -1;
-		}
-		if (n == 0) {
-			plog_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
-			return -1;
-		}
-		if (drmHandleEvent(g->kms.fd, &ev) != 0) {
-			plog_error("gbm: drmHandleEvent: %s", strerror(errno));
-			return -1;
-		}
-	}
-	return 0;
-}
-
-/* The bo shown now: the one before goes back to the surface. */
-static void show(struct gbm_state *g, struct gbm_bo *bo)
-{
-	if (g->front)
-		gbm_surface_release_buffer(g->surf, g->front);
-	g->front = bo;
-}
-
-static void close_fd(int *fd)
-{
-	if (*fd >= 0 && close(*fd) != 0)
-		plog_debug("gbm: close(fence %d): %s", *fd, strerror(errno));
-	*fd = -1;
-}
-
-/* Pipelined: the flip in flight is on screen (its out-fence signalled):
- * its bo is the front, the one it replaced goes back.  confirmed: false
- * when it is only taken as done (the display gone, the fence never came). */
-static void flip_done(struct gbm_state *g, bool confirmed)
-{
-	close_fd(&g->pending_fence);
-	show(g, g->pending);
-	g->pending = NULL;
-	if (confirmed)
-		g->p->shown++;
-}
-
-/* Pipelined: waits (up to FLIP_TIMEOUT_MS) for the flip in flight, if any.
- * 0, or -1 when its out-fence did not signal or cannot be waited for
- * (logged; the flip is then taken as done, unconfirmed). */
-static int finish_flip(struct gbm_state *g)
-{
-	if (!g->pending)
-		return 0;
-	int rc = kms_fence_wait(g->pending_fence, FLIP_TIMEOUT_MS);
-	if (rc > 0) {
-		g->fence_proven = true;
-		flip_done(g, true);
-		return 0;
-	}
-	if (rc == 0)
-		plog_error("gbm: no page flip on %s within %d ms (its out-fence did not signal)", g->kms.path,
-		           FLIP_TIMEOUT_MS);
-	else
-		plog_error("gbm: waiting for the page flip's out-fence on %s: %s", g->kms.path, strerror(errno));
-	flip_done(g, false);
-	return -1;
-}
-
-/* The flip path, once (see the top of this file). */
-static void say_flips(struct gbm_state *g)
-{
-	if (g->flips_said)
-		return;
-	g->flips_said = true;
-	if (!g->atomic)
-		plog_info("kms: legacy, each flip waits for its page-flip event");
-	else if (!g->pipelined)
-		plog_info("kms: atomic, each flip waits for its page-flip event (no OUT_FENCE_PTR on CRTC %u)",
-		          g->kms.crtc_id);
-	else if (g->in_fences)
-		plog_info("kms: atomic, flips pipelined with out-fences and in-fences (EGL_ANDROID_native_fence_sync)");
-	else
-		plog_info("kms: atomic, flips pipelined with out-fences (no in-fence: %s)", g->no_in_fence);
-}
-
-/* Atomic: pipelined when the CRTC has OUT_FENCE_PTR; in-fences too when
- * the plane has IN_FENCE_FD and the EGL EGL_ANDROID_native_fence_sync. */
-static void choose_flips(struct gbm_state *g)
-{
-	g->pipelined = g->atomic && g->at.crtc_out_fence_ptr;
-	if (!g->pipelined)
-		return;
-	const char *dexts = eglQueryString(g->p->dpy, EGL_EXTENSIONS);
-	if (!g->at.plane_in_fence_fd) {
-		g->no_in_fence = "the plane has no IN_FENCE_FD";
-		return;
-	}
-	if (!egl_common_has_ext(dexts, "EGL_ANDROID_native_fence_sync")) {
-		g->no_in_fence = "EGL_ANDROID_native_fence_sync missing";
-		return;
-	}
-	g->create_sync = (PFNEGLCREATESYNCKHRPROC)eglGetProcAddress("eglCreateSyncKHR");
-	g->destroy_sync = (PFNEGLDESTROYSYNCKHRPROC)eglGetProcAddress("eglDestroySyncKHR");
-	g->dup_fence = (PFNEGLDUPNATIVEFENCEFDANDROIDPROC)eglGetProcAddress("eglDupNativeFenceFDANDROID");
-	if (!g->create_sync || !g->destroy_sync || !g->dup_fence) {
-		g->no_in_fence = "no eglCreateSyncKHR / eglDupNativeFenceFDANDROID";
-		return;
-	}
-	g->in_fences = true;
-}
-
-/* In-fences fail at run time: said once, the flips go on without (the
- * dma-buf's implicit fences still order rendering and scanout). */
-static void no_more_in_fences(struct gbm_state *g, const char *what, const char *why)
-{
-	plog_warn("kms: %s: %s; flips go on without in-fences", what, why);
-	g->in_fences = false;
-	g->no_in_fence = "they failed";
-}
-
-/* The GPU's render fence, made before eglSwapBuffers (which flushes it). */
-static EGLSyncKHR render_sync(struct gbm_state *g)
-{
-	static const EGLint attribs[] = { EGL_SYNC_NATIVE_FENCE_FD_ANDROID, EGL_NO_NATIVE_FENCE_FD_ANDROID, EGL_NONE };
-	EGLSyncKHR s = g->create_sync(g->p->dpy, EGL_SYNC_NATIVE_FENCE_ANDROID, attribs);
-	if (s == EGL_NO_SYNC_KHR)
-		no_more_in_fences(g, "eglCreateSyncKHR(EGL_SYNC_NATIVE_FENCE_ANDROID)", egl_common_error_name(eglGetError()));
-	return s;
-}
-
-/* Its fd after the swap (-1 when none), the EGL sync destroyed. */
-static int render_fence_fd(struct gbm_state *g, EGLSyncKHR s)
-{
-	if (s == EGL_NO_SYNC_KHR)
-		return -1;
-	int fd = g->dup_fence(g->p->dpy, s);
-	if (fd < 0)
-		no_more_in_fences(g, "eglDupNativeFenceFDANDROID", egl_common_error_name(eglGetError()));
-	if (!g->destroy_sync(g->p->dpy, s))
-		plog_debug("gbm: eglDestroySyncKHR: %s", egl_common_error_name(eglGetError()));
-	return fd < 0 ? -1 : fd;
-}
-
 static void hide_cursor(struct gbm_state *g)
 {
 	if (drmModeSetCursor(g->kms.fd, g->kms.crtc_id, 0, 0, 0) != 0)
@@ -311,7 +100,7 @@ static void hide_cursor(struct gbm_state *g)
 
 static int modeset(struct gbm_state *g, uint32_t fb)
 {
-	(void)finish_flip(g); /* (none in flight: watch_connector waited for it) */
+	(void)gbm_finish_flip(g); /* (none in flight: watch_connector waited for it) */
 	if (g->atomic) {
 		if (kms_atomic_commit(&g->at, &g->kms, fb, true, DRM_MODE_ATOMIC_TEST_ONLY, g, -1, NULL) != 0) {
 			plog_debug("gbm: atomic TEST_ONLY commit refused (%s); legacy modesetting", strerror(errno));
@@ -332,7 +121,7 @@ static int modeset(struct gbm_state *g, uint32_t fb)
 	hide_cursor(g);
 	plog_info("gbm: %s %s %ux%u@%u (%s modesetting)", g->kms.path, g->kms.conn_name, g->kms.mode.hdisplay,
 	         g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->atomic ? "atomic" : "legacy");
-	say_flips(g);
+	gbm_say_flips(g);
 	g->modeset_done = true;
 	g->p->shown++;
 	return 0;
@@ -351,8 +140,8 @@ static int remake_surface(struct gbm_state *g)
 	if (!eglDestroySurface(p->dpy, p->surface))
 		plog_warn("gbm: eglDestroySurface: %s", egl_common_error_name(eglGetError()));
 	p->surface = EGL_NO_SURFACE;
-	(void)finish_flip(g); /* (none in flight: watch_connector waited for it) */
-	show(g, NULL);
+	(void)gbm_finish_flip(g); /* (none in flight: watch_connector waited for it) */
+	gbm_show(g, NULL);
 	gbm_surface_destroy(g->surf);
 	g->surf = gbm_surface_create(g->gbm, (uint32_t)w, (uint32_t)h, GBM_FORMAT_XRGB8888,
 	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
@@ -386,7 +175,7 @@ static int follow_mode(struct gbm_state *g)
 /* Is the connector still there (asked once a second, or at once)?  Gone:
  * said once, frames go on unshown.  Back, or at another mode: the next
  * present modesets.  0, or -1 when the surface cannot follow a new size. */
-static int watch_connector(struct gbm_state *g, bool at_once)
+int gbm_watch_connector(struct gbm_state *g, bool at_once)
 {
 	double t = platform_clock_ms();
 	if (!at_once && t < g->next_poll)
@@ -401,7 +190,7 @@ static int watch_connector(struct gbm_state *g, bool at_once)
 	if (st == 0) {
 		/* the flip in flight, if any, is over (or given up) before the
 		 * frames go on unshown */
-		(void)finish_flip(g);
+		(void)gbm_finish_flip(g);
 		if (g->connected)
 			plog_warn("gbm: %s on %s disconnected%s: frames go on, not shown, until it is back",
 			         g->kms.conn_name, g->kms.path, g->want_mode[0] ? " (or no longer offers --mode)" : "");
@@ -410,7 +199,7 @@ static int watch_connector(struct gbm_state *g, bool at_once)
 	}
 	if (g->connected && !changed)
 		return 0;
-	(void)finish_flip(g); /* before the modeset, and before a new size's surface */
+	(void)gbm_finish_flip(g); /* before the modeset, and before a new size's surface */
 	plog_info("gbm: %s on %s %s: modesetting %ux%u@%u", g->kms.conn_name, g->kms.path,
 	         g->connected ? "changed its mode" : "connected again", g->kms.mode.hdisplay, g->kms.mode.vdisplay,
 	         g->kms.mode.vrefresh);
@@ -429,140 +218,46 @@ static void drop_frame(struct gbm_state *g, struct gbm_bo *bo)
 		;
 }
 
-/* Pipelined: the flip of bo (fb) committed with DRM_MODE_ATOMIC_NONBLOCK
- * and an out-fence (and in_fence, the GPU's render fence, when >= 0); the
- * flip before waited for first.  0 committed (bo is in flight), 1 refused
- * because the display is gone, -1 error, 2 the kernel refused the fences
- * on the first flip (the caller goes on with events). */
-static int flip_pipelined(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence)
-{
-	if (finish_flip(g) < 0) {
-		/* given up on (taken as done): the display gone, or an error */
-		if (watch_connector(g, true) == 0 && !g->connected)
-			return 1;
-		return -1;
-	}
-	int fence = -1, rc;
-	for (int tries = 0;; tries++) {
-		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_ATOMIC_NONBLOCK, g, in_fence, &fence);
-		if (rc == 0 || errno != EBUSY || tries >= EBUSY_RETRIES)
-			break;
-		struct timespec ms = { 0, 1000000L };
-		nanosleep(&ms, NULL);
-	}
-	if (rc == 0 && fence < 0) {
-		/* committed, but no fence to wait for: the flip is done once
-		 * the kernel takes the next commit; from now on events */
-		plog_warn("kms: the atomic commit on %s gave no out-fence; flips wait for their events from now on",
-		          g->kms.path);
-		g->pipelined = false;
-		g->in_fences = false;
-		show(g, bo);
-		return 0;
-	}
-	if (rc != 0) {
-		int e = errno;
-		if (watch_connector(g, true) == 0 && !g->connected)
-			return 1;
-		if (!g->fence_proven && g->modeset_done && (e == EINVAL || e == EOPNOTSUPP)) {
-			/* no flip with fences went through yet: the kernel may
-			 * not take them after all */
-			if (in_fence >= 0) {
-				no_more_in_fences(g, "the kernel refused the in-fence", strerror(e));
-				return flip_pipelined(g, fb, bo, -1);
-			}
-			plog_info("kms: atomic, each flip waits for its page-flip event (the kernel refused the out-fence: %s)",
-			          strerror(e));
-			g->pipelined = false;
-			return 2;
-		}
-		plog_error("gbm: atomic page flip on %s: %s", g->kms.path, strerror(e));
-		return -1;
-	}
-	g->pending = bo;
-	g->pending_fence = fence;
-	return 0;
-}
-
-/* A page flip of bo (fb): 0 committed (bo is the front now, or in flight
- * when pipelined), 1 refused because the display is gone (the connector
- * unplugged), -1 error.  A flip whose event never comes counts as
- * committed when the connector is gone. */
-static int flip(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence)
-{
-	if (g->pipelined) {
-		int rc = flip_pipelined(g, fb, bo, g->in_fences ? in_fence : -1);
-		if (rc != 2)
-			return rc;
-	}
-	g->flip_pending = true;
-	int rc;
-	if (g->atomic)
-		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK, g,
-		                       -1, NULL);
-	else
-		rc = kms_legacy_flip(&g->kms, fb, g);
-	if (rc != 0) {
-		int e = errno;
-		g->flip_pending = false;
-		if (watch_connector(g, true) == 0 && !g->connected)
-			return 1;
-		plog_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
-		          strerror(e));
-		return -1;
-	}
-	if (wait_flip(g) == 0) {
-		show(g, bo);
-		return 0;
-	}
-	if (watch_connector(g, true) == 0 && !g->connected) {
-		g->flip_pending = false; /* its event may still come */
-		show(g, bo);
-		return 0;
-	}
-	return -1;
-}
-
 static int gbm_present(struct platform *p)
 {
 	struct gbm_state *g = p->priv;
 	/* in-fences: the GPU's render fence of this frame, for its flip */
-	EGLSyncKHR sync = g->in_fences && g->connected && g->modeset_done ? render_sync(g) : EGL_NO_SYNC_KHR;
+	EGLSyncKHR sync = g->in_fences && g->connected && g->modeset_done ? gbm_render_sync(g) : EGL_NO_SYNC_KHR;
 	if (!eglSwapBuffers(p->dpy, p->surface)) {
 		plog_error("gbm: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
 		if (sync != EGL_NO_SYNC_KHR && !g->destroy_sync(p->dpy, sync))
 			plog_debug("gbm: eglDestroySyncKHR: %s", egl_common_error_name(eglGetError()));
 		return -1;
 	}
-	int in_fence = render_fence_fd(g, sync);
+	int in_fence = gbm_render_fence_fd(g, sync);
 	struct gbm_bo *bo = gbm_surface_lock_front_buffer(g->surf);
 	if (!bo) {
 		plog_error("gbm: gbm_surface_lock_front_buffer failed");
-		close_fd(&in_fence);
+		gbm_close_fd(&in_fence);
 		return -1;
 	}
 	if (!g->connected) {
-		close_fd(&in_fence);
+		gbm_close_fd(&in_fence);
 		drop_frame(g, bo);
-		return watch_connector(g, false);
+		return gbm_watch_connector(g, false);
 	}
 	uint32_t fb = bo_fb(g, bo);
 	int rc = fb ? 0 : -1;
 	if (rc == 0 && !g->modeset_done) {
 		rc = modeset(g, fb);
-		if (rc < 0 && watch_connector(g, true) == 0 && !g->connected)
+		if (rc < 0 && gbm_watch_connector(g, true) == 0 && !g->connected)
 			rc = 1; /* gone again before it could be shown */
 		if (rc == 0)
-			show(g, bo);
+			gbm_show(g, bo);
 	} else if (rc == 0) {
-		rc = flip(g, fb, bo, in_fence); /* bo shown, or in flight */
+		rc = gbm_flip(g, fb, bo, in_fence); /* bo shown, or in flight */
 	}
-	close_fd(&in_fence); /* the kernel holds its own reference */
+	gbm_close_fd(&in_fence); /* the kernel holds its own reference */
 	if (rc != 0) {
 		gbm_surface_release_buffer(g->surf, bo);
 		return rc < 0 ? -1 : 0;
 	}
-	return watch_connector(g, false);
+	return gbm_watch_connector(g, false);
 }
 
 /* Put back the CRTC we found (the console's framebuffer and mode), or turn
@@ -573,9 +268,9 @@ static void restore_crtc(struct gbm_state *g)
 		return;
 	g->restore_done = true;
 	if (g->flip_pending)
-		(void)wait_flip(g);
+		(void)gbm_wait_flip(g);
 	if (g->pipelined) {
-		(void)finish_flip(g);
+		(void)gbm_finish_flip(g);
 		plog_info("kms: no flip in flight when the CRTC was restored: %lu of %lu frames shown", g->p->shown,
 		          g->p->presented);
 	}
@@ -596,7 +291,7 @@ static void gbm_close(struct platform *p)
 		return;
 	if (g->pending)
 		gbm_surface_release_buffer(g->surf, g->pending);
-	close_fd(&g->pending_fence);
+	gbm_close_fd(&g->pending_fence);
 	if (g->front)
 		gbm_surface_release_buffer(g->surf, g->front);
 	if (g->surf)
@@ -675,7 +370,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 	          g->kms.mode.hdisplay, g->kms.mode.vdisplay, g->kms.mode.vrefresh, g->kms.crtc_id,
 	          g->atomic ? "atomic" : "legacy");
 	p->refresh_hz = g->kms.mode.vrefresh;
-	choose_flips(g);
+	gbm_choose_flips(g);
 	return 0;
 fail:
 	gbm_close(p);

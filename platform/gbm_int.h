@@ -1,0 +1,72 @@
+/* isoterra — the GBM/KMS backend's insides, shared by backend_gbm.c (the
+ * surface, modesets, the connector, present and close) and gbm_flip.c (page
+ * flips, pipelined with fences).  Private to platform/. */
+#ifndef ISOTERRA_GBM_INT_H
+#define ISOTERRA_GBM_INT_H
+
+#include "kms.h"
+#include "platform.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <gbm.h>
+#include <xf86drmMode.h>
+
+#define FLIP_TIMEOUT_MS 5000
+#define EBUSY_RETRIES 100 /* of 1 ms, should the kernel still be busy with the flip before */
+
+struct gbm_state {
+	struct kms_output kms;     /* card, connector, mode, CRTC */
+	struct gbm_device *gbm;
+	struct gbm_surface *surf;
+	struct gbm_bo *front;      /* on screen */
+	struct kms_atomic at;      /* atomic modesetting's plane, properties, mode blob */
+	drmModeCrtc *saved;        /* the CRTC as we found it, put back on close */
+	bool atomic, modeset_done, flip_pending, restore_done;
+	/* pipelined flips (atomic with out-fences): the bo committed last and
+	 * the out-fence of its flip (-1: none in flight); with in-fences, the
+	 * EGL entry points for the GPU's render fence */
+	bool pipelined, in_fences, flips_said, fence_proven;
+	const char *no_in_fence;   /* why there are none, for the info line */
+	struct gbm_bo *pending;
+	int pending_fence;
+	PFNEGLCREATESYNCKHRPROC create_sync;
+	PFNEGLDESTROYSYNCKHRPROC destroy_sync;
+	PFNEGLDUPNATIVEFENCEFDANDROIDPROC dup_fence;
+	struct platform *p;
+	char want_mode[32];        /* --mode ("" = the preferred one), chosen again on return */
+	bool connected;            /* the connector, as last asked */
+	double next_poll;          /* platform_clock_ms() of the next question */
+};
+
+/* ---- gbm_flip.c ---------------------------------------------------------- */
+
+/* Waits for the page-flip event of the flip in flight (flip_pending). */
+int gbm_wait_flip(struct gbm_state *g);
+/* bo is on screen now: the one before goes back to the surface. */
+void gbm_show(struct gbm_state *g, struct gbm_bo *bo);
+/* Closes a fence fd (>= 0) and sets it to -1. */
+void gbm_close_fd(int *fd);
+/* Pipelined: waits for the flip in flight, if any; 0, or -1 (logged; the
+ * flip is then taken as done, unconfirmed). */
+int gbm_finish_flip(struct gbm_state *g);
+/* The flip path, said once at info level. */
+void gbm_say_flips(struct gbm_state *g);
+/* Chooses the flip path after the atomic setup (pipelined, in-fences). */
+void gbm_choose_flips(struct gbm_state *g);
+/* In-fences: the GPU's render fence, made before eglSwapBuffers, and its
+ * fd after it (-1 when none). */
+EGLSyncKHR gbm_render_sync(struct gbm_state *g);
+int gbm_render_fence_fd(struct gbm_state *g, EGLSyncKHR s);
+/* A page flip of bo (fb): 0 committed (bo is the front now, or in flight
+ * when pipelined), 1 refused because the display is gone, -1 error. */
+int gbm_flip(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence);
+
+/* ---- backend_gbm.c ------------------------------------------------------- */
+
+/* Is the connector still there (asked once a second, or at once)?  0, or
+ * -1 when the surface cannot follow a new size. */
+int gbm_watch_connector(struct gbm_state *g, bool at_once);
+
+#endif
