@@ -77,5 +77,11 @@ void check_curves_switch(void);
 
 /* test_pipeline.c */
 extern struct noise_set ns;
+/* The pipeline's densities as the GPU left them (dg) and the CPU
+ * reference's at the same samples (dc), grid_dens_count(g) floats each
+ * (the caller frees both), and the largest |dg - dc| (a NaN counts, and
+ * stays): *dmax; *scale the largest |dc|. */
+void density_vs_reference(struct pipeline *pl, struct edits *ed, const struct grid *g, const struct params *p,
+			  const char *what, float **dg, float **dc, double *dmax, double *scale);
 
 #endif

@@ -198,6 +198,31 @@ static void check_comparison(const char *what, const struct grid *g, float iso, 
 
 /* One field on one grid, every check. closed: surface never touches the border.
  * self_check: the comparison with the reference is itself checked too. */
+
+void density_vs_reference(struct pipeline *pl, struct edits *ed, const struct grid *g, const struct params *p,
+			  const char *what, float **dg, float **dc, double *dmax, double *scale)
+{
+	long nd = grid_dens_count(g);
+	*dg = malloc(sizeof(float) * (size_t)nd);
+	*dc = malloc(sizeof(float) * (size_t)nd);
+	*dmax = 0;
+	*scale = 0;
+	if (!*dg || !*dc) {
+		CHECK(false, "%s: out of memory", what);
+		*dmax = NAN;
+		return;
+	}
+	CHECK(pipeline_read_density(pl, *dg) == 0, "%s: read density", what);
+	noise_set_init(&ns, p->seed);
+	density_ref_volume(p, &ns, ed, g->origin, g->cell, g->nx, g->ny, g->nz, *dc);
+	for (long i = 0; i < nd; i++) {
+		double e = fabs((double)(*dg)[i] - (*dc)[i]);
+		if (!isnan(*dmax) && !(e <= *dmax))
+			*dmax = e; /* a NaN counts, and stays */
+		*scale = fmax(*scale, fabs((double)(*dc)[i]));
+	}
+}
+
 static void check_field(const char *what, const struct params *p, const struct grid *g, int closed, bool self_check)
 {
 	char err[512] = "";
@@ -211,18 +236,9 @@ static void check_field(const char *what, const struct params *p, const struct g
 		return;
 	}
 	CHECK(fixture_run(pl, p) == 0, "%s: pipeline_run", what);
-	long nd = grid_dens_count(g);
-	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
-	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read density", what);
-	noise_set_init(&ns, p->seed);
-	density_ref_volume(p, &ns, ed, g->origin, g->cell, g->nx, g->ny, g->nz, dc);
-	double dmax = 0, scale = 0;
-	for (long i = 0; i < nd; i++) {
-		double e = fabs((double)dg[i] - dc[i]);
-		if (!isnan(dmax) && !(e <= dmax))
-			dmax = e; /* a NaN counts, and stays */
-		scale = fmax(scale, fabs((double)dc[i]));
-	}
+	float *dg, *dc;
+	double dmax, scale;
+	density_vs_reference(pl, ed, g, p, what, &dg, &dc, &dmax, &scale);
 	CHECK(dmax <= 1e-5 * fmax(scale, 1.0) + 1e-6, "%s: GPU vs CPU density max error %g (scale %g)", what, dmax, scale);
 
 	struct extract_stats st;

@@ -40,18 +40,9 @@ static GLuint density_with(struct pipeline *pl, struct edits *ed, const struct g
 	unsigned c0 = pipeline_compiles(pl);
 	CHECK(fixture_density(pl, p) == 0, "%s: density pass", what);
 	*compiled = pipeline_compiles(pl) - c0;
-	long nd = grid_dens_count(g);
-	float *dg = malloc(sizeof(float) * (size_t)nd), *dc = malloc(sizeof(float) * (size_t)nd);
-	CHECK(pipeline_read_density(pl, dg) == 0, "%s: read density", what);
-	noise_set_init(&ns, p->seed);
-	density_ref_volume(p, &ns, ed, g->origin, g->cell, g->nx, g->ny, g->nz, dc);
-	double dmax = 0, scale = 0;
-	for (long i = 0; i < nd; i++) {
-		double e = fabs((double)dg[i] - dc[i]);
-		if (!isnan(dmax) && !(e <= dmax))
-			dmax = e; /* a NaN counts, and stays */
-		scale = fmax(scale, fabs((double)dc[i]));
-	}
+	float *dg, *dc;
+	double dmax, scale;
+	density_vs_reference(pl, ed, g, p, what, &dg, &dc, &dmax, &scale);
 	/* texture noise: the sampler's filter weights (see test_density.c) */
 	double tol = p->noise == NOISE_TEXTURE ? 2e-2 * p->noise_amp : 1e-5 * fmax(scale, 1.0) + 1e-6;
 	CHECK(dmax <= tol, "%s: GPU vs CPU density max error %g (scale %g)", what, dmax, scale);
