@@ -62,15 +62,12 @@ void check_cache(void)
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
-	struct edits *ed = edits_create();
-	struct terrain *tr = terrain_create(ed);
-	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
-	CHECK(pl != NULL, "cache: pipeline_create: %s", err);
-	if (!pl) {
-		terrain_destroy(tr);
-		edits_destroy(ed);
+	struct fixture_terrain ft;
+	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "cache: pipeline_create: %s", err);
+	if (!ft.pl)
 		return;
-	}
+	struct edits *ed = ft.ed;
+	struct pipeline *pl = ft.pl;
 	unsigned c;
 	GLuint off = density_with(pl, ed, &g, &p, "warp_amp=0", &c);
 	CHECK(c == 0, "warp_amp 0: pipeline_create's variant is used (%u compiles)", c);
@@ -124,9 +121,7 @@ void check_cache(void)
 		CHECK(fixture_density(pl, &p) == 0 && pipeline_density_program(pl) == keep && pipeline_compiles(pl) == c0,
 		      "cache: after %s the frame's own variant is still there", states[i]);
 	}
-	pipeline_destroy(pl);
-	terrain_destroy(tr);
-	edits_destroy(ed);
+	fixture_terrain_close(&ft);
 }
 
 /* Every term off and on: off leaves none of its uniforms in the density
@@ -244,10 +239,10 @@ void check_curves_switch(void)
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
-	struct edits *ed = edits_create();
-	struct terrain *tr = terrain_create(ed);
-	struct pipeline *pl = pipeline_create(&g, &p, terrain_field(tr), err, sizeof(err));
-	CHECK(pl != NULL, "curves switch: %s", err);
+	struct fixture_terrain ft;
+	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "curves switch: %s", err);
+	struct edits *ed = ft.ed;
+	struct pipeline *pl = ft.pl;
 	if (pl) {
 		unsigned c;
 		GLuint none = density_with(pl, ed, &g, &p, "no curves", &c);
@@ -272,7 +267,6 @@ void check_curves_switch(void)
 		CHECK(density_with(pl, ed, &g, &p, "curves cleared", &c) == none && c == 0,
 		      "curves cleared: the first variant again (%u compiles)", c);
 	}
-	pipeline_destroy(pl);
-	terrain_destroy(tr);
-	edits_destroy(ed);
+	if (pl)
+		fixture_terrain_close(&ft);
 }
