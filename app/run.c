@@ -12,17 +12,49 @@
 #include "scene.h"
 #include "output.h"
 
+#include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
+
+/* The realtime clock's frame (--clock realtime): the tick now, or the next
+ * one when this tick was drawn already (slept for: every frame a new
+ * instant, the same on every board).  Its time within the period, and
+ * its number there (what a %d in --out takes). */
+static double realtime_frame(const struct params *p, long long *last_tick, int *number)
+{
+	long long tick = clock_realtime_tick(p->fps);
+	if (tick <= *last_tick) {
+		tick = *last_tick + 1;
+		if (clock_realtime_sleep_until(tick, p->fps) < 0)
+			log_warn("clock_nanosleep: %s", strerror(errno));
+	}
+	*last_tick = tick;
+	long long period = (long long)llround(p->clock_period * p->fps);
+	if (period < 1)
+		period = 1;
+	long long in = tick % period;
+	*number = (int)in;
+	return (double)in / p->fps;
+}
+
+/* The frame's part of the wall (params/wall.h) at the loop's size now. */
+static int frame_view(const struct frame_loop *lp, struct wall_view *v, char *err, size_t errlen)
+{
+	int across = lp->across > 1 ? lp->across : 1;
+	int tw = across > 1 ? lp->tile_w : lp->w, th = across > 1 ? lp->tile_h : lp->h;
+	return wall_view(lp->p, tw, th, across, v, err, errlen);
+}
 
 int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 {
 	struct params *p = lp->p;
 	double start = clock_ms() / 1e3;
 	struct pause_clock frame_clock = { 0 }, wall_clock = { 0 };
+	long long last_tick = LLONG_MIN;
 	lp->frames = 0;
 	err[0] = 0;
 	for (int f = 0; p->count == 0 || f < p->count; f++) {
@@ -36,22 +68,37 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			log_error("%s", msg);
 			controls_notice(lp->ctl, p, "shader error", msg);
 		}
-		kiosk_frame_begin(lp->kiosk, p, lp->r, lp->live ? clock_ms() / 1e3 - start : (double)f / p->fps);
+		/* the animation clocks: the realtime one (every board the same
+		 * instant, no pause), or frame time and the live world's wall
+		 * clock, stopped while the controls pause */
+		int number = f;
+		float frame_time;
+		double clock_time, show_time;
+		if (wall_clock_realtime(p, err, errlen) > 0) {
+			clock_time = show_time = realtime_frame(p, &last_tick, &number);
+			frame_time = (float)clock_time;
+		} else {
+			bool paused = controls_paused(lp->ctl);
+			frame_time = pause_clock_time(&frame_clock, (float)f / p->fps, paused);
+			double ct = lp->live ? clock_ms() / 1e3 - start : (double)f / p->fps;
+			clock_time = ct - (double)((float)ct - pause_clock_time(&wall_clock, (float)ct, paused));
+			show_time = ct;
+		}
+		kiosk_frame_begin(lp->kiosk, p, lp->r, show_time);
 		bool last = p->count > 0 && f == p->count - 1;
+		struct wall_view view;
+		if (frame_view(lp, &view, err, errlen) < 0)
+			return -1;
 		struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = lp->w,
-					  .h = lp->h, .refresh_hz = lp->refresh_hz, .timing = lp->timing ? &tm : NULL };
-		/* the animation clocks, stopped while the controls pause: frame
-		 * time, and the live world's wall clock */
-		bool paused = controls_paused(lp->ctl);
-		sf.frame_time = pause_clock_time(&frame_clock, (float)f / p->fps, paused);
-		double ct = lp->live ? clock_ms() / 1e3 - start : (double)f / p->fps;
-		sf.clock_time = ct - (double)((float)ct - pause_clock_time(&wall_clock, (float)ct, paused));
+					  .h = lp->h, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
+					  .refresh_hz = lp->refresh_hz, .timing = lp->timing ? &tm : NULL };
 		controls_flight(lp->ctl, sf.move, sf.turn);
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 		    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
 		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
 			return -1;
-		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .count = p->count,
+		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .number = number,
+					 .count = p->count,
 					 .last = last, .update_ms = tm.update_ms,
 					 .draw_ms = tm.draw_ms, .screenshot = controls_take_screenshot(lp->ctl) };
 		if (lp->scene->ops->status)

@@ -26,6 +26,10 @@ struct frame_loop {
 	struct renderer *r;      /* the frame's target; a display's resize replaces it */
 	struct shader_watch *shaders; /* live shader editing; NULL: none */
 	int w, h;
+	int tile_w, tile_h;      /* a wall's tile when the frame spans several
+	                          * (outputs of one board, `across` of them along
+	                          * the row); 0: the frame is one tile, w x h */
+	int across;              /* 0 or 1: one tile */
 	bool live;               /* a display: wall-clock time, and its sink sees SIGINT/SIGTERM */
 	bool watch_signals;      /* headless: SIGINT/SIGTERM end the loop (signals.h) */
 	double refresh_hz;       /* the display's, when known (else 0) */

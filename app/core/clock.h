@@ -1,7 +1,9 @@
-/* isoterra — the one monotonic clock every part of the program reads. */
+/* isoterra — the one monotonic clock every part of the program reads, and
+ * the wall clock that the boards of a video wall share (NTP/PTP). */
 #ifndef ISOTERRA_CLOCK_H
 #define ISOTERRA_CLOCK_H
 
+#include <errno.h>
 #include <time.h>
 
 /* CLOCK_MONOTONIC in milliseconds. */
@@ -10,6 +12,30 @@ static inline double clock_ms(void)
 	struct timespec ts;
 	clock_gettime(CLOCK_MONOTONIC, &ts);
 	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+/* The CLOCK_REALTIME tick now: whole periods of 1/fps since the Unix
+ * epoch (every board of a wall agrees on it to their clocks' sync). */
+static inline long long clock_realtime_tick(double fps)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_REALTIME, &ts);
+	return (long long)(((double)ts.tv_sec + (double)ts.tv_nsec / 1e9) * fps);
+}
+
+/* Sleeps until tick `tick` of 1/fps begins on CLOCK_REALTIME (an absolute
+ * deadline: a late wake-up does not add up).  0, or -1 (errno). */
+static inline int clock_realtime_sleep_until(long long tick, double fps)
+{
+	double s = (double)tick / fps;
+	struct timespec ts = { .tv_sec = (time_t)s };
+	ts.tv_nsec = (long)((s - (double)ts.tv_sec) * 1e9);
+	if (ts.tv_nsec >= 1000000000L)
+		ts.tv_nsec = 999999999L;
+	int rc;
+	while ((rc = clock_nanosleep(CLOCK_REALTIME, TIMER_ABSTIME, &ts, NULL)) == EINTR)
+		;
+	return rc ? -1 : 0;
 }
 
 #endif

@@ -33,6 +33,10 @@ struct sink_frame {
 	struct renderer *r; /* a display's resize re-creates the renderer: r, w, h follow */
 	int w, h;
 	int index;          /* 0, 1, ... */
+	int number;         /* what a %d in --out takes: index, or with the
+	                     * realtime clock the frame's tick within its period
+	                     * (the same instant has the same number on every
+	                     * board of a wall) */
 	int count;          /* frames the run renders, 0 = until stopped */
 	bool last;          /* the run's last frame */
 	char status[96];    /* the scene's state for the frame rate reports (or "") */

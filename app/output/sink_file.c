@@ -109,7 +109,7 @@ static int file_frame(struct sink *s, struct sink_frame *fr, char *err, size_t e
 {
 	struct file_sink *fs = (struct file_sink *)s;
 	if (fs->kind != CLI_OUT_PNG || fr->last) {
-		if (write_frame(fs, fr->r, fr->index, err, errlen) < 0) {
+		if (write_frame(fs, fr->r, fr->number, err, errlen) < 0) {
 			if (fs->progress && fr->index > 0)
 				fputc('\n', stderr); /* the error on a line of its own */
 			return -1;

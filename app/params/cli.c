@@ -299,6 +299,14 @@ static int validate(const struct params *p, char *err, size_t errlen)
 	}
 	if (platform_device_check(p->device, err, errlen) < 0)
 		return -1;
+	struct wall_view wv;
+	if (wall_view(p, w, h, 1, &wv, err, errlen) < 0 || wall_clock_realtime(p, err, errlen) < 0)
+		return -1;
+	if (wv.on && p->governor == GOVERNOR_ON) {
+		snprintf(err, errlen, "governor: on a %s wall every tile holds one quality (--quality N, the same on "
+			 "every board), not a governor of its own", p->wall);
+		return -1;
+	}
 	if (p->device[0] && strcmp(p->platform, "device") && strcmp(p->platform, "auto")) {
 		snprintf(err, errlen, "device: '%s' names an EGL device of --platform device, not of '%s'%s", p->device,
 			 p->platform, !strcmp(p->platform, "gbm") ? " (gbm's card: --drm-device)" : "");

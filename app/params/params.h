@@ -103,5 +103,7 @@ int params_load_config_file(struct params *p, const char *path, char *err, size_
 
 /* the command line over the table */
 #include "cli.h"
+/* the video wall's geometry */
+#include "wall.h"
 
 #endif

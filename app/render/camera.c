@@ -89,6 +89,23 @@ void camera_look_up(struct camera *c, const float eye[3], const float at[3], con
 	mat4_mul(c->viewproj, c->proj, c->view);
 }
 
+void camera_window(struct camera *c, const struct wall_view *v)
+{
+	if (!v || !v->on)
+		return;
+	/* the frame's rectangle of the whole screen's clip space stretched
+	 * over the frame: x' = (2x - (x0 + x1) w) / (x1 - x0), the same in y
+	 * (an off-axis frustum, exactly the whole screen's for those pixels) */
+	float sx = 2.0f / (v->ndc[2] - v->ndc[0]), ox = -(v->ndc[0] + v->ndc[2]) / (v->ndc[2] - v->ndc[0]);
+	float sy = 2.0f / (v->ndc[3] - v->ndc[1]), oy = -(v->ndc[1] + v->ndc[3]) / (v->ndc[3] - v->ndc[1]);
+	for (int col = 0; col < 4; col++) {
+		float *m = &c->proj[col * 4];
+		m[0] = sx * m[0] + ox * m[3];
+		m[1] = sy * m[1] + oy * m[3];
+	}
+	mat4_mul(c->viewproj, c->proj, c->view);
+}
+
 int mat4_invert(float out[16], const float m[16])
 {
 	float inv[16];

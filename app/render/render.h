@@ -17,6 +17,10 @@ struct camera {
  * yaw advancing cam_spin degrees per second of time t. */
 void camera_orbit(struct camera *c, const struct params *p, const struct grid *g, float t, float aspect);
 void mat4_mul(float out[16], const float a[16], const float b[16]);
+/* A video wall's tile (params/wall.h): the camera, made with the whole
+ * virtual screen's aspect (v->aspect), narrowed to the frame's rectangle of
+ * it, an off-axis frustum.  No-op without a wall (v NULL or off). */
+void camera_window(struct camera *c, const struct wall_view *v);
 int mat4_invert(float out[16], const float m[16]);
 /* Camera at eye looking at `at` (y up), vertical fov in degrees. */
 void camera_look(struct camera *c, const float eye[3], const float at[3], float fov, float aspect, float zn, float zf);

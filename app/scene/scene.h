@@ -27,6 +27,9 @@ struct scene_frame {
 	                          * forward, right, up; yaw right, pitch up */
 	struct renderer *r;      /* draw into it */
 	int w, h;
+	const struct wall_view *view; /* the frame's part of a video wall's
+	                               * virtual screen (camera_window); NULL or
+	                               * off: the whole screen, aspect w / h */
 	double refresh_hz;       /* the display's refresh rate when known, else 0 */
 	struct scene_timing *timing; /* NULL, or the scene waits for the GPU after
 	                              * its update and after its draw and says how
@@ -35,6 +38,12 @@ struct scene_frame {
 struct scene_timing {
 	double update_ms, draw_ms;
 };
+/* The camera's aspect for the frame: a wall's virtual screen's, else w / h. */
+static inline float scene_frame_aspect(const struct scene_frame *fr)
+{
+	return fr->view && fr->view->on ? fr->view->aspect : (float)fr->w / (float)fr->h;
+}
+
 /* What a scene counts, for the results file. */
 struct scene_counts {
 	unsigned long long triangles;        /* the volume's mesh (0 for the world) */

@@ -124,10 +124,11 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 		float at[3] = { vs->eye[0] + vs->look[0] * c - vs->look[2] * sn, vs->eye[1] + vs->look[1],
 				vs->eye[2] + vs->look[0] * sn + vs->look[2] * c };
 		float size = vs->g.cell * (float)vs->g.nx;
-		camera_look(&cam, vs->eye, at, p->fov, (float)fr->w / (float)fr->h, 0.002f * size, 2.0f * size);
+		camera_look(&cam, vs->eye, at, p->fov, scene_frame_aspect(fr), 0.002f * size, 2.0f * size);
 	} else {
-		camera_orbit(&cam, p, &vs->g, t, (float)fr->w / (float)fr->h);
+		camera_orbit(&cam, p, &vs->g, t, scene_frame_aspect(fr));
 	}
+	camera_window(&cam, fr->view);
 	if (renderer_draw(fr->r, &d, &cam, p) < 0)
 		return -1;
 	if (fr->timing) {

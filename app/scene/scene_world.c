@@ -31,9 +31,16 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 			   struct params *eff, char *err, size_t errlen)
 {
 	*eff = *p;
-	if (!fr->live || p->governor == GOVERNOR_OFF) {
+	/* offline frames, a governor turned off, a wall (its tiles must not
+	 * differ): the configured level of the ladder, the same every frame */
+	if (!fr->live || p->governor == GOVERNOR_OFF || (fr->view && fr->view->on)) {
 		ws->governed = false;
-		return 0;
+		if (p->quality == 0)
+			return 0;
+		ws->q = governor_level(p->quality);
+		governor_apply(&ws->q, p, eff);
+		world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
+		return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
 	}
 	if (!ws->governed) {
 		double fps = p->target_fps > 0 ? p->target_fps : fr->refresh_hz > 0 ? fr->refresh_hz : 30.0;
@@ -74,8 +81,18 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	if (p->camera == CAMERA_MANUAL) /* manual: the keys steer, rock still stops */
 		autopilot_steer(&ws->ap, fr->move, fr->turn);
 	struct camera cam;
+	if (t + 0.5 / 60.0 < ws->ap.t) { /* the realtime clock's period began again: so does the flight */
+		autopilot_free(&ws->ap);
+		ws->ap_ready = false;
+		if (autopilot_init(&ws->ap, p, ws->ed) < 0) {
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		ws->ap_ready = true;
+	}
 	autopilot_advance(&ws->ap, t);
-	autopilot_camera(&ws->ap, &cam, p->fov, (float)fr->w / (float)fr->h, ws->far);
+	autopilot_camera(&ws->ap, &cam, p->fov, scene_frame_aspect(fr), ws->far);
+	camera_window(&cam, fr->view);
 	err[0] = 0;
 	struct params eff;
 	if (governed_params(ws, p, fr, &eff, err, errlen) < 0)

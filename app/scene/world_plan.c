@@ -251,8 +251,13 @@ int plan_blocks(struct world *w, const struct params *p, const struct camera *c)
 	float pl[6][4], wide[6][4], proj[16], vp[16];
 	frustum(c->viewproj, pl);
 	memcpy(proj, c->proj, sizeof(proj));
-	proj[0] /= p->prefetch;
-	proj[5] /= p->prefetch;
+	/* clip x and y shrunk about the centre: a wider view around the
+	 * frame's own (a wall's off-axis tile too: its rows 0 and 1 carry
+	 * the shift) */
+	for (int col = 0; col < 4; col++) {
+		proj[col * 4 + 0] /= p->prefetch;
+		proj[col * 4 + 1] /= p->prefetch;
+	}
 	mat4_mul(vp, proj, c->view);
 	frustum(vp, wide);
 	w->nwant = 0;
