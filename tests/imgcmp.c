@@ -2,10 +2,13 @@
  * from QEMU's screendump) with app/image.c's image_compare, or convert one
  * to PNG.
  *
- *   imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--diff OUT.png]
+ *   imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB]
+ *              [--at X,Y] [--diff OUT.png]
  *       prints "imgcmp: WxH mean_abs .. rmse .. psnr .. max .. frac_over(T) .."
  *       exit 0 within tolerance, 1 over it, 2 on bad input (sizes differ,
- *       unreadable file).  Defaults: T 24, M 1.0, F 0.005.
+ *       unreadable file).  Defaults: T 24, M 1.0, F 0.005.  --min-psnr: the
+ *       verdict is the PSNR alone.  --at: B is compared with the rectangle
+ *       of A at X,Y of B's size (a video wall's tile in the whole screen).
  *   imgcmp --to-png IN OUT.png
  *   imgcmp --info IN          prints "WxH mean R G B" (for diagnostics) */
 #include <errno.h>
@@ -204,7 +207,8 @@ static int load(struct image *img, const char *path, char *err, size_t errlen)
 
 static int usage(void)
 {
-	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--diff OUT.png]\n"
+	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
+	                "[--diff OUT.png]\n"
 	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN\n");
 	return 2;
 }
@@ -241,9 +245,17 @@ int main(int argc, char **argv)
 	int threshold = 24;
 	double max_mean = 1.0, max_frac = 0.005;
 	const char *diff_path = NULL;
+	double min_psnr = -1.0;
+	int at_x = -1, at_y = -1;
 	for (int i = 3; i < argc; i += 2) {
 		if (i + 1 >= argc)
 			return usage();
+		if (strcmp(argv[i], "--at") == 0) {
+			char tail;
+			if (sscanf(argv[i + 1], "%d,%d%c", &at_x, &at_y, &tail) != 2 || at_x < 0 || at_y < 0)
+				return usage();
+			continue;
+		}
 		char *end;
 		errno = 0;
 		double v = strtod(argv[i + 1], &end);
@@ -254,6 +266,8 @@ int main(int argc, char **argv)
 			max_mean = v;
 		else if (strcmp(argv[i], "--max-frac") == 0 && num_ok && v <= 1)
 			max_frac = v;
+		else if (strcmp(argv[i], "--min-psnr") == 0 && num_ok)
+			min_psnr = v;
 		else if (strcmp(argv[i], "--diff") == 0)
 			diff_path = argv[i + 1];
 		else
@@ -270,13 +284,34 @@ int main(int argc, char **argv)
 	}
 	int rc = 2;
 	struct image_diff d;
+	if (at_x >= 0) { /* A's rectangle at X,Y of B's size */
+		if (at_x + b.width > a.width || at_y + b.height > a.height) {
+			fprintf(stderr, "imgcmp: %dx%d at %d,%d is outside %s (%dx%d)\n", b.width, b.height, at_x, at_y,
+			        argv[1], a.width, a.height);
+			image_free(&a);
+			image_free(&b);
+			return 2;
+		}
+		struct image c = { b.width, b.height, malloc((size_t)b.width * b.height * 4) };
+		if (!c.rgba) {
+			fprintf(stderr, "imgcmp: out of memory\n");
+			image_free(&a);
+			image_free(&b);
+			return 2;
+		}
+		for (int y = 0; y < b.height; y++)
+			memcpy(c.rgba + (size_t)y * b.width * 4, a.rgba + ((size_t)(at_y + y) * a.width + at_x) * 4,
+			       (size_t)b.width * 4);
+		image_free(&a);
+		a = c;
+	}
 	if (a.width != b.width || a.height != b.height) {
 		fprintf(stderr, "imgcmp: sizes differ: %s is %dx%d, %s is %dx%d\n", argv[1], a.width, a.height, argv[2],
 		        b.width, b.height);
 	} else if (image_compare(&a, &b, threshold, &d) < 0) {
 		fprintf(stderr, "imgcmp: image_compare failed\n");
 	} else {
-		bool ok = d.mean_abs <= max_mean && d.frac_over <= max_frac;
+		bool ok = min_psnr >= 0 ? d.psnr >= min_psnr : d.mean_abs <= max_mean && d.frac_over <= max_frac;
 		printf("imgcmp: %dx%d mean_abs %.3f rmse %.3f psnr %.1f dB max %d frac_over(%d) %.5f -> %s "
 		       "(limits: mean %.3f, frac %.5f)\n",
 		       a.width, a.height, d.mean_abs, d.rmse, d.psnr, d.max_abs, threshold, d.frac_over,
