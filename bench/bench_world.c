@@ -9,9 +9,12 @@
  *  4. the world's own rate: a fresh world filling the autopilot's first
  *     view, blocks settled per second (generated, or proven empty by the
  *     coarse pre-pass without being generated), wall and CPU time.
- * usage: bench_world [--quick] [--no-program] [--fill-only] [--fly WxH]
+ *  5. a 2x2 video wall: each tile's frame against the whole screen's, the
+ *     same offline flight (a tile's cost: its share of the pixels plus what
+ *     does not shrink with them).
+ * usage: bench_world [--quick] [--no-program] [--fill-only] [--wall] [--fly WxH]
  *                    [--scale S] [--shader-dir DIR] [--platform NAME]
- * (--fill-only: measure 4 alone, three times; --fly: only the two
+ * (--fill-only: measure 4 alone, three times; --wall: 5 alone; --fly: only the two
  * fly-throughs of 2, at that size; --scale: the full-quality one drawn at
  * that render scale, upscaled; --shader-dir: shaders read from DIR) */
 #include "app.h"
@@ -187,6 +190,116 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	return p50;
 }
 
+/* One offline flight (frame f at f / 30 s, blocks generated as an offline
+ * run does: gen_per_frame a frame, so each run does the same work) of the
+ * whole wall (tile NULL) or of one tile of it: mean frame ms (update +
+ * draw, the GPU finished), its CPU ms, into *mean / *cpu; p50 returned. */
+static double wall_flight(const struct params *p_in, int tw, int th, const char *tile, int frames, double *mean,
+			  double *cpu)
+{
+	char err[512];
+	struct params p = *p_in;
+	struct wall_view v;
+	int cols = 1, rows = 1;
+	sscanf(p.wall, "%dx%d", &cols, &rows);
+	int w = tw, h = th;
+	if (tile) {
+		snprintf(p.tile, sizeof(p.tile), "%s", tile);
+	} else { /* the whole virtual screen as one frame */
+		w = cols * tw;
+		h = rows * th;
+		snprintf(p.wall, sizeof(p.wall), "1x1");
+	}
+	if (wall_view(&p, w, h, 1, &v, err, sizeof(err)) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		return -1;
+	}
+	struct renderer *r = renderer_create(w, h, p.antialias, err, sizeof(err));
+	struct edits *ed = edits_create();
+	struct world *wd = world_create(&p, ed, err, sizeof(err));
+	struct autopilot ap;
+	if (!r || !wd || autopilot_init(&ap, &p, ed) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		renderer_destroy(r);
+		world_destroy(wd);
+		edits_destroy(ed);
+		return -1;
+	}
+	struct camera c;
+	float far = p.view_distance * 1.2f;
+	autopilot_camera(&ap, &c, p.fov, v.aspect, far);
+	camera_window(&c, &v);
+	world_fill(wd, &p, &c, 0.0);
+	double *ft = malloc(sizeof(double) * (size_t)frames);
+	double sum = 0.0, cpu0 = bench_cpu_ms();
+	for (int f = 0; f < frames && ft; f++) {
+		double t0 = clock_ms(), t = f / 30.0;
+		autopilot_advance(&ap, t);
+		autopilot_camera(&ap, &c, p.fov, v.aspect, far);
+		camera_window(&c, &v);
+		world_update(wd, &p, &c, t, true);
+		world_draw(wd, r, &c, &p, t);
+		glFinish();
+		ft[f] = clock_ms() - t0;
+		sum += ft[f];
+	}
+	*cpu = (bench_cpu_ms() - cpu0) / frames;
+	*mean = sum / frames;
+	double p50 = -1;
+	if (ft) {
+		qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
+		p50 = ft[frames / 2];
+	}
+	free(ft);
+	autopilot_free(&ap);
+	world_destroy(wd);
+	edits_destroy(ed);
+	renderer_destroy(r);
+	return p50;
+}
+
+/* A 2x2 wall of tw x th tiles: each tile's frame against the whole
+ * screen's (one frame of 2tw x 2th), the same flight, interleaved
+ * (whole, the tiles, whole, ...), `rounds` times; medians. */
+static void wall_cost(const struct params *p_in, int tw, int th, int frames, int rounds)
+{
+	struct params p = *p_in;
+	snprintf(p.wall, sizeof(p.wall), "2x2");
+	static const char *tiles[4] = { "0,0", "1,0", "0,1", "1,1" };
+	double whole[8], wcpu[8], tile[4][8], tcpu[4][8];
+	printf("\na 2x2 video wall of %dx%d tiles (docs/WALL.md), offline flight of %d frames, %d interleaved rounds,\n"
+	       "full quality; a frame's mean ms (update + draw), medians of the rounds:\n",
+	       tw, th, frames, rounds);
+	for (int k = 0; k < rounds && k < 8; k++) {
+		if (wall_flight(&p, tw, th, NULL, frames, &whole[k], &wcpu[k]) < 0)
+			return;
+		for (int i = 0; i < 4; i++)
+			if (wall_flight(&p, tw, th, tiles[i], frames, &tile[i][k], &tcpu[i][k]) < 0)
+				return;
+	}
+	qsort(whole, (size_t)rounds, sizeof(double), bench_cmp_double);
+	qsort(wcpu, (size_t)rounds, sizeof(double), bench_cmp_double);
+	double wm = whole[rounds / 2], share = wm / 4.0;
+	printf("  whole screen %dx%d   %7.1f ms  (spread %.1f-%.1f)  CPU %.1f ms   the baseline: a tile's share %.1f ms\n",
+	       2 * tw, 2 * th, wm, whole[0], whole[rounds - 1], wcpu[rounds / 2], share);
+	double sum = 0.0, sum_cpu = 0.0;
+	for (int i = 0; i < 4; i++) {
+		qsort(tile[i], (size_t)rounds, sizeof(double), bench_cmp_double);
+		qsort(tcpu[i], (size_t)rounds, sizeof(double), bench_cmp_double);
+		double tm = tile[i][rounds / 2];
+		sum += tm;
+		sum_cpu += tcpu[i][rounds / 2];
+		printf("  tile %s %dx%d     %7.1f ms  (spread %.1f-%.1f)  CPU %.1f ms   %.2f of its pixel share\n", tiles[i],
+		       tw, th, tm, tile[i][0], tile[i][rounds - 1], tcpu[i][rounds / 2], tm / share);
+	}
+	/* the tiles differ by what they show (sky is cheap, near rock is not):
+	 * their sum against the whole is the like-for-like figure */
+	printf("  the four tiles together %.1f ms, CPU %.1f ms: %.2f x the whole screen's frame; a tile costs its\n"
+	       "  share of the pixels plus %.1f ms on average (%.0f %% of a share): the flight, the block plan and\n"
+	       "  the blocks each tile's frustum holds, which do not shrink with the pixels\n",
+	       sum, sum_cpu, sum / wm, (sum - wm) / 4.0, 100.0 * (sum - wm) / 4.0 / share);
+}
+
 /* The program run as a user runs it: wall time to its exit (the PNG
  * written) and its peak RSS; -1 when it failed.  cache: $XDG_CACHE_HOME
  * for the run (Mesa's shader cache and isoterra's program cache). */
@@ -262,11 +375,14 @@ int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
 	int quick = 0, program = 1, fill_only = 0, fly_w = 0, fly_h = 0;
+	bool wall_only = false;
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--quick"))
 			quick = 1;
 		else if (!strcmp(argv[i], "--no-program"))
 			program = 0;
+		else if (!strcmp(argv[i], "--wall"))
+			wall_only = true;
 		else if (!strcmp(argv[i], "--fill-only"))
 			fill_only = 1;
 		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
@@ -280,7 +396,7 @@ int main(int argc, char **argv)
 			 fly_w >= 16 && fly_h >= 16 && fly_w <= 8192 && fly_h <= 8192)
 			i++;
 		else {
-			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--fly WxH] [--scale S]\n"
+			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--wall] [--fly WxH] [--scale S]\n"
 				"       [--shader-dir DIR] [--platform NAME]\n",
 				argv[0]);
 			return 2;
@@ -298,6 +414,11 @@ int main(int argc, char **argv)
 		double gov = flythrough(&p, fly_w, fly_h, fr, true);
 		if (full > 0 && gov > 0)
 			printf("  %dx%d: p50 governed / full = %.3f\n", fly_w, fly_h, gov / full);
+		platform_close(plat);
+		return 0;
+	}
+	if (wall_only) {
+		wall_cost(&p, 640, 360, quick ? 30 : 90, quick ? 3 : 5);
 		platform_close(plat);
 		return 0;
 	}
@@ -334,6 +455,8 @@ int main(int argc, char **argv)
 		if (full > 0 && gov > 0)
 			printf("  %dx%d: p50 governed / full = %.3f\n", sizes[i][0], sizes[i][1], gov / full);
 	}
+
+	wall_cost(&p, 640, 360, quick ? 30 : 90, quick ? 3 : 5);
 
 	struct rusage ru;
 	getrusage(RUSAGE_SELF, &ru);
