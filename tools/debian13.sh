@@ -83,14 +83,14 @@ case "$gpiod" in
 esac
 
 t1=$(date +%s)
-# every test of the suites but vm, display, soak and gallery (the plain
-# build of tools/test-all.sh runs the VM tests, the soak and the README's
-# pictures once; the VM test that needs Debian 13's libgpiod 2 runs below),
-# and but autopilot: 168 flights of plain C over the CPU density, no GL,
-# no library of trixie's (80 s of CPU; the host's release and sanitizer
-# builds fly it)
+# every test of the suites but vm, display, soak, gallery and pictures (the
+# plain build of tools/test-all.sh runs the VM tests, the soak, the
+# README's pictures and the wall's stitched tiles once; the VM test that
+# needs Debian 13's libgpiod 2 runs below), and but autopilot: 168
+# flights of plain C over the CPU density, no GL, no library of trixie's
+# (80 s of CPU; the host's release and sanitizer builds fly it)
 tests=$(d13_in "$D13_ROOT" sh -c "cd $B && meson test --no-rebuild --list --no-suite vm --no-suite display --no-suite soak \
-	--no-suite gallery" 2>/dev/null |
+	--no-suite gallery --no-suite pictures" 2>/dev/null |
 	sed 's|.* / ||' | grep -vx autopilot | tr '\n' ' ')
 d13_in "$D13_ROOT" sh -c "cd $B && EGL_LOG_LEVEL=fatal meson test --no-rebuild --print-errorlogs --num-processes 2 \
 	$tests" >"$D13_LOGS/native-test.log" 2>&1
