@@ -49,17 +49,101 @@ static int frame_view(const struct frame_loop *lp, struct wall_view *v, char *er
 	return wall_view(lp->p, tw, th, across, v, err, errlen);
 }
 
+/* The frame cap: sleeps until this frame's absolute deadline (CLOCK_MONOTONIC),
+ * 1/cap after the last one's, before the frame goes to the sinks (a
+ * display presents it then: the intervals the viewer sees are the cap's,
+ * whatever each frame's work took); a frame more than one period late
+ * starts the schedule again from now (no burst to catch up). */
+static void pace(double cap, double *deadline)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	double now = (double)ts.tv_sec + (double)ts.tv_nsec / 1e9, period = 1.0 / cap;
+	double next = *deadline + period;
+	if (*deadline <= 0.0 || now > next + period) { /* the first frame, or late */
+		*deadline = now;
+		return;
+	}
+	*deadline = next;
+	if (now >= next)
+		return;
+	struct timespec dl = { .tv_sec = (time_t)next };
+	dl.tv_nsec = (long)((next - (double)dl.tv_sec) * 1e9);
+	if (dl.tv_nsec > 999999999L)
+		dl.tv_nsec = 999999999L;
+	int rc;
+	while ((rc = clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &dl, NULL)) == EINTR)
+		;
+	if (rc)
+		log_warn("clock_nanosleep: %s", strerror(rc));
+}
+
+/* Paused on a display, the frame on screen already shows the pause: no
+ * frame is drawn until an input changes something (a parameter, the pause
+ * itself, quit), or a second went by (the window system's events and the
+ * watchdog are served by the frames).  Polls the inputs every 20 ms. */
+static void paused_wait(struct frame_loop *lp, int f)
+{
+	struct params *p = lp->p;
+	static struct params before; /* large: not on the stack */
+	before = *p;
+	for (int i = 0; i < 50; i++) {
+		if (lp->watch_signals && signals_quit())
+			return;
+		struct timespec d = { 0, 20 * 1000 * 1000 };
+		nanosleep(&d, NULL);
+		if (controls_poll(lp->ctl, p)) {
+			p->count = f + 1;
+			return;
+		}
+		if (!controls_paused(lp->ctl) || memcmp(&before, p, sizeof(before)))
+			return;
+	}
+}
+
+/* The battery in the top-right corner (osd, osd_battery): its level as the
+ * bar, its state below.  0, or -1 with err. */
+static int battery_osd(struct frame_loop *lp, char *err, size_t errlen)
+{
+	const struct battery *b = power_battery(lp->power);
+	if (!b->present || !lp->p->osd || !lp->p->osd_battery)
+		return 0;
+	if (!lp->battery_osd && !(lp->battery_osd = osd_create(err, errlen)))
+		return -1;
+	char title[OSD_COLS + 1], value[OSD_COLS + 1];
+	snprintf(title, sizeof(title), "battery %d%%", b->percent);
+	snprintf(value, sizeof(value), "%s", power_low(lp->power) ? "low power" : b->charging ? "charging" : "");
+	unsigned fbo;
+	int w, h;
+	renderer_target(lp->r, &fbo, &w, &h);
+	if (osd_draw_right(lp->battery_osd, fbo, w, h, title, value, (float)b->percent / 100.0f, lp->p->osd_scale,
+			   1.0f) < 0) {
+		snprintf(err, errlen, "drawing the battery's OSD failed");
+		return -1;
+	}
+	return 0;
+}
+
 int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 {
 	struct params *p = lp->p;
 	double start = clock_ms() / 1e3;
 	struct pause_clock frame_clock = { 0 }, wall_clock = { 0 };
 	long long last_tick = LLONG_MIN;
+	double deadline = 0.0;
+	bool shown_paused = false;
 	lp->frames = 0;
 	err[0] = 0;
 	for (int f = 0; p->count == 0 || f < p->count; f++) {
 		if (lp->watch_signals && signals_quit())
 			break;
+		if (lp->live && shown_paused && controls_paused(lp->ctl))
+			paused_wait(lp, f);
+		/* the frame cap in force: max_fps, lowered by the low-power profile */
+		bool low = power_update(lp->power, p, clock_ms() / 1e3);
+		double cap = p->max_fps;
+		if (low && (cap <= 0 || cap > p->low_power_fps))
+			cap = p->low_power_fps;
 		if (controls_poll(lp->ctl, p)) /* quit: this frame is the last */
 			p->count = f + 1;
 		struct scene_timing tm = { 0, 0 };
@@ -91,18 +175,27 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			return -1;
 		struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = lp->w,
 					  .h = lp->h, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
-					  .refresh_hz = lp->refresh_hz, .timing = lp->timing ? &tm : NULL };
+					  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
+					  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
 		controls_flight(lp->ctl, sf.move, sf.turn);
 		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 		    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
-		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0)
+		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0 || battery_osd(lp, err, errlen) < 0)
 			return -1;
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .number = number,
 					 .count = p->count,
 					 .last = last, .update_ms = tm.update_ms,
-					 .draw_ms = tm.draw_ms, .screenshot = controls_take_screenshot(lp->ctl) };
+					 .draw_ms = tm.draw_ms, .screenshot = controls_take_screenshot(lp->ctl),
+					 .battery_percent = -1, .low_power = low, .cap_fps = cap };
+		const struct battery *bat = power_battery(lp->power);
+		if (bat->present) {
+			fr.battery_percent = bat->percent;
+			snprintf(fr.battery_status, sizeof(fr.battery_status), "%s", bat->status);
+		}
 		if (lp->scene->ops->status)
 			lp->scene->ops->status(lp->scene, fr.status, sizeof(fr.status));
+		if (cap > 0) /* frames handed to the display (the sinks) at the cap's pace */
+			pace(cap, &deadline);
 		int q = sinks_frame(lp->sinks, &fr, err, errlen);
 		lp->r = fr.r; /* a display's resize */
 		lp->w = fr.w;
@@ -110,6 +203,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		if (q < 0)
 			return -1;
 		lp->frames = f + 1;
+		shown_paused = controls_paused(lp->ctl);
 		notify_frame(lp->notify);
 		if (q > 0)
 			break;
@@ -169,6 +263,7 @@ struct run {
 	struct scene *scene;
 	struct shader_watch *shaders;
 	struct kiosk *kiosk;
+	struct power *power;
 	int argc;
 	char **argv;
 };
@@ -230,6 +325,10 @@ static int open_run(struct run *rn, bool signals_ok, char *err, size_t errlen)
 	if (rn->display) {
 		sinks_add(&rn->sinks, rn->display); /* last: a resize re-creates the renderer */
 		rn->display = NULL;
+	}
+	if (!(rn->power = power_create(&rn->p, !rn->plat->headless))) {
+		snprintf(err, errlen, "out of memory");
+		return 2;
 	}
 	rn->kiosk = kiosk_create(&rn->p, rn->argc, rn->argv, err, errlen);
 	if (!rn->kiosk)
@@ -294,8 +393,10 @@ static int run_frames(struct run *rn)
 				 .shaders = rn->shaders,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,
 				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz,
-				 .timing = p->results[0] != 0, .notify = notify_open(), .kiosk = rn->kiosk };
+				 .timing = p->results[0] != 0, .notify = notify_open(), .kiosk = rn->kiosk,
+				 .power = rn->power };
 	int rc = frame_loop_run(&lp, err, sizeof(err)) < 0 ? 1 : 0;
+	osd_destroy(lp.battery_osd);
 	notify_close(lp.notify); /* STOPPING=1 */
 	rn->r = lp.r;
 	rn->w = lp.w;
@@ -326,6 +427,7 @@ static void close_run(struct run *rn)
 {
 	scene_destroy(rn->scene);
 	kiosk_destroy(rn->kiosk);
+	power_destroy(rn->power);
 	controls_destroy(rn->ctl);
 	renderer_destroy(rn->r);
 	shader_watch_close(rn->shaders);

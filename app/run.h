@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "params.h"
+#include "power.h"
 #include "core.h"
 
 struct scene;
@@ -36,6 +37,8 @@ struct frame_loop {
 	bool timing;             /* the scene waits for the GPU and times update and draw (results) */
 	struct notify *notify;   /* NULL: none; told of every finished frame (notify.h) */
 	struct kiosk *kiosk;     /* NULL: none; SIGHUP reload, the playlist and its crossfade (kiosk.h) */
+	struct power *power;     /* NULL: none; the battery and the low-power profile (power.h) */
+	struct osd *battery_osd; /* made at the first frame with a battery (freed by the loop) */
 	int frames;              /* out: frames finished */
 };
 /* Frames until p->count (0: until a sink stops), a quit from the controls

@@ -11,10 +11,12 @@
  *     coarse pre-pass without being generated), wall and CPU time.
  *  5. a 2x2 video wall: each tile's frame against the whole screen's, the
  *     same offline flight (a tile's cost: its share of the pixels plus what
- *     does not shrink with them).
- * usage: bench_world [--quick] [--no-program] [--fill-only] [--wall] [--fly WxH]
+ *     does not shrink with them);
+ *  6. the frame cap: CPU time per second at --max-fps 30 against uncapped,
+ *     the frame intervals of the paced run.
+ * usage: bench_world [--quick] [--no-program] [--fill-only] [--wall] [--power] [--fly WxH]
  *                    [--scale S] [--shader-dir DIR] [--platform NAME]
- * (--fill-only: measure 4 alone, three times; --wall: 5 alone; --fly: only the two
+ * (--fill-only: measure 4 alone, three times; --wall: 5 alone; --power: 6 alone; --fly: only the two
  * fly-throughs of 2, at that size; --scale: the full-quality one drawn at
  * that render scale, upscaled; --shader-dir: shaders read from DIR) */
 #include "app.h"
@@ -322,6 +324,82 @@ static double program_run(char *const *args, const char *cache, double *rss_mb)
 	return clock_ms() - t0;
 }
 
+/* One run of the program with extra arguments: wall and CPU ms (the child's
+ * user + system), and its results' frame interval p50 / p95 (ms).  0 or -1. */
+static int capped_run(const char *cap, double *wall, double *cpu, double *p50, double *p95)
+{
+	char results[] = "/tmp/isoterra-bench-power-XXXXXX", png[64];
+	int fd = mkstemp(results);
+	if (fd < 0)
+		return -1;
+	close(fd);
+	snprintf(png, sizeof(png), "%s.png", results);
+	char *args[] = { "isoterra", "--size", "320x240", "--grid", "32", "--count", "150", "--results", results,
+			 "--out", png, cap ? "--max-fps" : NULL, (char *)cap, NULL };
+	double t0 = clock_ms();
+	pid_t pid = fork();
+	if (pid == 0) {
+		if (!freopen("/dev/null", "w", stderr))
+			_exit(127);
+		execv(ISOTERRA_PROGRAM, args);
+		_exit(127);
+	}
+	int status = 0, rc = -1;
+	struct rusage ru;
+	if (pid > 0 && wait4(pid, &status, 0, &ru) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+		*wall = clock_ms() - t0;
+		*cpu = (ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1e3 + (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e3;
+		FILE *f = fopen(results, "r");
+		char buf[8192];
+		size_t n = f ? fread(buf, 1, sizeof(buf) - 1, f) : 0;
+		if (f)
+			fclose(f);
+		buf[n] = 0;
+		const char *fm = strstr(buf, "\"frame_ms\"");
+		if (fm && sscanf(fm, "\"frame_ms\": {\"p50\": %lf, \"p95\": %lf", p50, p95) == 2)
+			rc = 0;
+	}
+	unlink(results);
+	unlink(png);
+	return rc;
+}
+
+/* The frame cap (--max-fps 30) against the same run uncapped: the volume
+ * at 320x240, grid 32 (a frame far under the cap's 33 ms here), 150
+ * frames, interleaved, n rounds; CPU time per second of the run and the
+ * frame intervals. */
+static void power_cost(int n)
+{
+	double w[2][8], c[2][8], i50[2][8], i95[2][8];
+	printf("\nthe frame cap: --max-fps 30 against uncapped, the volume at 320x240, --grid 32, 150 frames,\n"
+	       "%d interleaved rounds (medians; CPU: the process's user + system time per second of its run):\n", n);
+	for (int k = 0; k < n && k < 8; k++)
+		for (int m = 0; m < 2; m++)
+			if (capped_run(m ? "30" : NULL, &w[m][k], &c[m][k], &i50[m][k], &i95[m][k]) < 0) {
+				printf("  the program failed\n");
+				return;
+			}
+	double cps[2], fps[2];
+	for (int m = 0; m < 2; m++) {
+		double r[8], fr[8];
+		for (int k = 0; k < n; k++) {
+			r[k] = c[m][k] / (w[m][k] / 1e3);
+			fr[k] = 150.0 / (w[m][k] / 1e3);
+		}
+		qsort(r, (size_t)n, sizeof(double), bench_cmp_double);
+		qsort(fr, (size_t)n, sizeof(double), bench_cmp_double);
+		qsort(i50[m], (size_t)n, sizeof(double), bench_cmp_double);
+		qsort(i95[m], (size_t)n, sizeof(double), bench_cmp_double);
+		cps[m] = r[n / 2];
+		fps[m] = fr[n / 2];
+		printf("  %-9s %6.1f fps  CPU %6.1f ms per second [%.1f-%.1f]  frame interval p50 %6.2f ms, p95 %6.2f ms%s\n",
+		       m ? "capped 30" : "uncapped", fps[m], cps[m], r[0], r[n - 1], i50[m][n / 2], i95[m][n / 2],
+		       m ? " (the cap: 33.33)" : "");
+	}
+	printf("  CPU per second capped / uncapped = %.3f; p95 interval off the cap by %.2f ms\n", cps[1] / cps[0],
+	       i95[1][n / 2] - 1000.0 / 30.0);
+}
+
 /* Start to PNG written, no flags, caches warm and empty; peak RSS of the
  * no-flag run and of a short world run (median of n runs, interleaved). */
 static void program_runs(int n)
@@ -375,7 +453,7 @@ int main(int argc, char **argv)
 {
 	const char *plat_name = "auto";
 	int quick = 0, program = 1, fill_only = 0, fly_w = 0, fly_h = 0;
-	bool wall_only = false;
+	bool wall_only = false, power_only = false;
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--quick"))
 			quick = 1;
@@ -383,6 +461,8 @@ int main(int argc, char **argv)
 			program = 0;
 		else if (!strcmp(argv[i], "--wall"))
 			wall_only = true;
+		else if (!strcmp(argv[i], "--power"))
+			power_only = true;
 		else if (!strcmp(argv[i], "--fill-only"))
 			fill_only = 1;
 		else if (!strcmp(argv[i], "--platform") && i + 1 < argc)
@@ -396,7 +476,7 @@ int main(int argc, char **argv)
 			 fly_w >= 16 && fly_h >= 16 && fly_w <= 8192 && fly_h <= 8192)
 			i++;
 		else {
-			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--wall] [--fly WxH] [--scale S]\n"
+			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--wall] [--power] [--fly WxH] [--scale S]\n"
 				"       [--shader-dir DIR] [--platform NAME]\n",
 				argv[0]);
 			return 2;
@@ -414,6 +494,11 @@ int main(int argc, char **argv)
 		double gov = flythrough(&p, fly_w, fly_h, fr, true);
 		if (full > 0 && gov > 0)
 			printf("  %dx%d: p50 governed / full = %.3f\n", fly_w, fly_h, gov / full);
+		platform_close(plat);
+		return 0;
+	}
+	if (power_only) {
+		power_cost(quick ? 2 : 5);
 		platform_close(plat);
 		return 0;
 	}
@@ -457,6 +542,7 @@ int main(int argc, char **argv)
 	}
 
 	wall_cost(&p, 640, 360, quick ? 30 : 90, quick ? 3 : 5);
+	power_cost(quick ? 2 : 5);
 
 	struct rusage ru;
 	getrusage(RUSAGE_SELF, &ru);

@@ -3,12 +3,13 @@
  * to PNG.
  *
  *   imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB]
- *              [--at X,Y] [--diff OUT.png]
+ *              [--at X,Y] [--region X,Y,W,H] [--diff OUT.png]
  *       prints "imgcmp: WxH mean_abs .. rmse .. psnr .. max .. frac_over(T) .."
  *       exit 0 within tolerance, 1 over it, 2 on bad input (sizes differ,
  *       unreadable file).  Defaults: T 24, M 1.0, F 0.005.  --min-psnr: the
  *       verdict is the PSNR alone.  --at: B is compared with the rectangle
  *       of A at X,Y of B's size (a video wall's tile in the whole screen).
+ *       --region: only that rectangle of both is compared.
  *   imgcmp --to-png IN OUT.png
  *   imgcmp --info IN          prints "WxH mean R G B" (for diagnostics) */
 #include <errno.h>
@@ -208,7 +209,7 @@ static int load(struct image *img, const char *path, char *err, size_t errlen)
 static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
-	                "[--diff OUT.png]\n"
+	                "[--region X,Y,W,H] [--diff OUT.png]\n"
 	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN\n");
 	return 2;
 }
@@ -246,10 +247,17 @@ int main(int argc, char **argv)
 	double max_mean = 1.0, max_frac = 0.005;
 	const char *diff_path = NULL;
 	double min_psnr = -1.0;
-	int at_x = -1, at_y = -1;
+	int at_x = -1, at_y = -1, rg[4] = { -1, -1, -1, -1 };
 	for (int i = 3; i < argc; i += 2) {
 		if (i + 1 >= argc)
 			return usage();
+		if (strcmp(argv[i], "--region") == 0) {
+			char tail;
+			if (sscanf(argv[i + 1], "%d,%d,%d,%d%c", &rg[0], &rg[1], &rg[2], &rg[3], &tail) != 4 || rg[0] < 0 ||
+			    rg[1] < 0 || rg[2] < 1 || rg[3] < 1)
+				return usage();
+			continue;
+		}
 		if (strcmp(argv[i], "--at") == 0) {
 			char tail;
 			if (sscanf(argv[i + 1], "%d,%d%c", &at_x, &at_y, &tail) != 2 || at_x < 0 || at_y < 0)
@@ -304,6 +312,30 @@ int main(int argc, char **argv)
 			       (size_t)b.width * 4);
 		image_free(&a);
 		a = c;
+	}
+	if (rg[0] >= 0 && a.width == b.width && a.height == b.height) { /* both cut to the region */
+		if (rg[0] + rg[2] > a.width || rg[1] + rg[3] > a.height) {
+			fprintf(stderr, "imgcmp: region %d,%d,%d,%d is outside %dx%d\n", rg[0], rg[1], rg[2], rg[3], a.width,
+			        a.height);
+			image_free(&a);
+			image_free(&b);
+			return 2;
+		}
+		struct image *im[2] = { &a, &b };
+		for (int k = 0; k < 2; k++) {
+			struct image c = { rg[2], rg[3], malloc((size_t)rg[2] * rg[3] * 4) };
+			if (!c.rgba) {
+				fprintf(stderr, "imgcmp: out of memory\n");
+				image_free(&a);
+				image_free(&b);
+				return 2;
+			}
+			for (int y = 0; y < rg[3]; y++)
+				memcpy(c.rgba + (size_t)y * rg[2] * 4,
+				       im[k]->rgba + ((size_t)(rg[1] + y) * im[k]->width + rg[0]) * 4, (size_t)rg[2] * 4);
+			image_free(im[k]);
+			*im[k] = c;
+		}
 	}
 	if (a.width != b.width || a.height != b.height) {
 		fprintf(stderr, "imgcmp: sizes differ: %s is %dx%d, %s is %dx%d\n", argv[1], a.width, a.height, argv[2],

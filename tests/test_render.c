@@ -64,6 +64,30 @@ static void test_water_waves(void)
 	image_free(&f1);
 }
 
+/* The OSD's font scale on small screens: the largest that keeps the box
+ * (cols * 6 + 8 font pixels, 2 of margin each side) inside the width,
+ * from the height's (1 below 300 rows, 2, 3 from 600, 4 from 1080). */
+static void test_osd_fit(void)
+{
+	static const struct { int w, h, cols, want; } cases[] = {
+		{ 320, 240, 40, 1 },  /* a 320x240 handheld: 248 px of box */
+		{ 480, 320, 40, 1 },  /* 2x would be 496 px, wider than the panel */
+		{ 480, 320, 20, 2 },  /* a short name: 256 px at 2x */
+		{ 1280, 720, 40, 3 }, /* as before: 744 px */
+		{ 1920, 1080, 40, 4 },
+		{ 800, 1280, 40, 3 }, /* a portrait panel: 4x (992 px) is too wide */
+		{ 100, 2000, 40, 1 }, /* never below 1 */
+	};
+	for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		int s = osd_fit_scale(cases[i].w, cases[i].h, cases[i].cols);
+		CHECK(s == cases[i].want, "OSD scale at %dx%d, %d columns: %d, want %d", cases[i].w, cases[i].h,
+		      cases[i].cols, s, cases[i].want);
+		if (s > 1)
+			CHECK((cases[i].cols * 6 + 8) * s <= cases[i].w - 4 * s, "the box fits at %dx%d", cases[i].w,
+			      cases[i].h);
+	}
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -122,6 +146,7 @@ int main(void)
 	image_free(&b);
 	image_free(&ref);
 	test_water_waves();
+	test_osd_fit();
 	platform_close(plat);
 	return tc_done("render");
 }

@@ -42,6 +42,12 @@ struct sink_frame {
 	char status[96];    /* the scene's state for the frame rate reports (or "") */
 	double update_ms, draw_ms; /* the scene's split, when the loop times it (results) */
 	bool screenshot;    /* the controls asked for a screenshot of this frame */
+	/* power (app/power.h): the battery (percent -1: none), the low-power
+	 * profile, the frame cap in force (0: none) */
+	int battery_percent;
+	char battery_status[16];
+	bool low_power;
+	double cap_fps;
 };
 
 /* The end of the run. */

@@ -30,6 +30,11 @@ struct results_sink {
 	double *ft, *up, *dr;     /* per frame, ms */
 	size_t n, cap;
 	char status[96];
+	int battery_percent;   /* the last frame's (-1: no battery) */
+	char battery_status[16];
+	bool low_power;
+	unsigned long low_power_frames;
+	double cap_fps;
 	char scene[16], size[PARAM_STR_MAX];
 	int grid;
 	struct atomic_file af; /* the staged file, renamed at commit */
@@ -75,6 +80,11 @@ static int results_frame(struct sink *s, struct sink_frame *fr, char *err, size_
 	}
 	rs->t_prev = now;
 	snprintf(rs->status, sizeof(rs->status), "%s", fr->status);
+	rs->battery_percent = fr->battery_percent;
+	snprintf(rs->battery_status, sizeof(rs->battery_status), "%s", fr->battery_status);
+	rs->low_power = fr->low_power;
+	rs->low_power_frames += fr->low_power;
+	rs->cap_fps = fr->cap_fps;
 	if (rs->report_every > 0 && (now - rs->t_report) / 1e3 >= rs->report_every) {
 		unsigned long k = (unsigned long)rs->n - rs->frames_report;
 		double dt = (now - rs->t_report) / 1e3;
@@ -186,6 +196,15 @@ static void write_json(struct results_sink *rs, FILE *f, const struct sink_end *
 	fprintf(f, "  \"blocks_probed\": %llu, \"blocks_skipped\": %llu,\n", c.blocks_probed, c.blocks_skipped);
 	fputs("  \"governor\": ", f);
 	json_str(f, rs->status);
+	fputs(",\n  \"power\": {\"battery_percent\": ", f);
+	if (rs->battery_percent >= 0)
+		fprintf(f, "%d", rs->battery_percent);
+	else
+		fputs("null", f);
+	fputs(", \"battery_status\": ", f);
+	json_str(f, rs->battery_percent >= 0 ? rs->battery_status : "none");
+	fprintf(f, ", \"low_power\": %s, \"low_power_frames\": %lu, \"frame_cap_fps\": %.3f}", rs->low_power ? "true" : "false",
+		rs->low_power_frames, rs->cap_fps);
 	fputs("\n}\n", f);
 }
 

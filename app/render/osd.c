@@ -77,8 +77,32 @@ static size_t row_len(const char *s)
 	return n > OSD_COLS ? OSD_COLS : n;
 }
 
+int osd_fit_scale(int w, int h, int cols)
+{
+	int scale = h >= 1080 ? 4 : h >= 600 ? 3 : h >= 300 ? 2 : 1;
+	/* the box (cols * 6 + 8 font pixels) and its margins (2 on each side) */
+	while (scale > 1 && (cols * 6 + 8) * scale > w - 4 * scale)
+		scale--;
+	return scale;
+}
+
+static int draw_box(struct osd *o, GLuint fbo, int w, int h, bool right, const char *title, const char *value,
+		    float bar, int scale, float alpha);
+
 int osd_draw(struct osd *o, GLuint fbo, int w, int h, const char *title, const char *value, float bar, int scale,
 	     float alpha)
+{
+	return draw_box(o, fbo, w, h, false, title, value, bar, scale, alpha);
+}
+
+int osd_draw_right(struct osd *o, GLuint fbo, int w, int h, const char *title, const char *value, float bar, int scale,
+		   float alpha)
+{
+	return draw_box(o, fbo, w, h, true, title, value, bar, scale, alpha);
+}
+
+static int draw_box(struct osd *o, GLuint fbo, int w, int h, bool right, const char *title, const char *value,
+		    float bar, int scale, float alpha)
 {
 	GLuint text[OSD_COLS * OSD_ROWS];
 	const char *rows[OSD_ROWS] = { title, value };
@@ -91,7 +115,7 @@ int osd_draw(struct osd *o, GLuint fbo, int w, int h, const char *title, const c
 			text[r * OSD_COLS + c] = c < n ? (unsigned char)rows[r][c] : ' ';
 	}
 	if (scale <= 0)
-		scale = h >= 1080 ? 4 : h >= 600 ? 3 : h >= 300 ? 2 : 1;
+		scale = osd_fit_scale(w, h, (int)cols);
 	/* box: 4 font pixels of margin, rows of 10, the bar (3 + margin) */
 	float bw = (float)((cols * 6 + 8) * (size_t)scale);
 	float bh = (float)((OSD_ROWS * 10 + 3 + 3 + (bar >= 0 ? 4 : 0)) * scale);
@@ -105,7 +129,8 @@ int osd_draw(struct osd *o, GLuint fbo, int w, int h, const char *title, const c
 	glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
 	glUseProgram(o->prog);
 	glUniform1uiv(o->l_text, OSD_COLS * OSD_ROWS, text);
-	glUniform4f(o->l_box, (float)(2 * scale), (float)(2 * scale), bw, bh);
+	float x = right ? (float)w - bw - (float)(2 * scale) : (float)(2 * scale);
+	glUniform4f(o->l_box, x < 0 ? 0.0f : x, (float)(2 * scale), bw, bh);
 	glUniform2f(o->l_fb, (float)w, (float)h);
 	glUniform1f(o->l_scale, (float)scale);
 	glUniform1f(o->l_bar, bar < 0 ? -1.0f : bar > 1 ? 1.0f : bar);

@@ -18,5 +18,13 @@ void osd_destroy(struct osd *o);
  * alpha.  Leaves the framebuffer bound.  0 or -1. */
 int osd_draw(struct osd *o, GLuint fbo, int w, int h, const char *title, const char *value, float bar, int scale,
 	     float alpha);
+/* The same in the top-right corner (the battery, app/power.h). */
+int osd_draw_right(struct osd *o, GLuint fbo, int w, int h, const char *title, const char *value, float bar, int scale,
+		   float alpha);
+/* The font scale (framebuffer pixels per font pixel) for a box of `cols`
+ * columns in a w x h frame: from the height (1 below 300 rows, 2, 3 from
+ * 600, 4 from 1080), lowered until the box fits the width (small screens:
+ * 320x240, 480x320), never below 1. */
+int osd_fit_scale(int w, int h, int cols);
 
 #endif

@@ -31,6 +31,11 @@ struct scene_frame {
 	                               * virtual screen (camera_window); NULL or
 	                               * off: the whole screen, aspect w / h */
 	double refresh_hz;       /* the display's refresh rate when known, else 0 */
+	double cap_fps;          /* the frame cap in force (max_fps, or the
+	                          * low-power profile's), 0: none; the governor
+	                          * holds its budget when no target_fps is set */
+	int min_quality;         /* the world holds at least this level of the
+	                          * governor's ladder (the low-power profile) */
 	struct scene_timing *timing; /* NULL, or the scene waits for the GPU after
 	                              * its update and after its draw and says how
 	                              * long each took (--results) */

@@ -25,6 +25,18 @@ struct world_scene {
 	double last_work_ms;
 };
 
+/* The frame rate the governor holds: target_fps; else the frame cap's (a
+ * power target: quality stepped down to keep the frame within the cap's
+ * budget), at most the refresh rate; else the refresh rate, else 30. */
+static double governor_fps(const struct params *p, const struct scene_frame *fr)
+{
+	if (p->target_fps > 0)
+		return p->target_fps;
+	if (fr->cap_fps > 0)
+		return fr->refresh_hz > 0 && fr->refresh_hz < fr->cap_fps ? fr->refresh_hz : fr->cap_fps;
+	return fr->refresh_hz > 0 ? fr->refresh_hz : 30.0;
+}
+
 /* Live frames under the governor: the frame's parameters and render scale
  * from what it holds.  0, or -1 with err. */
 static int governed_params(struct world_scene *ws, const struct params *p, const struct scene_frame *fr,
@@ -35,19 +47,22 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 	 * differ): the configured level of the ladder, the same every frame */
 	if (!fr->live || p->governor == GOVERNOR_OFF || (fr->view && fr->view->on)) {
 		ws->governed = false;
-		if (p->quality == 0)
+		int level = p->quality > fr->min_quality ? p->quality : fr->min_quality;
+		if (level == 0 && ws->q.level == 0) /* full quality, as ever (byte for byte) */
 			return 0;
-		ws->q = governor_level(p->quality);
+		ws->q = governor_level(level);
 		governor_apply(&ws->q, p, eff);
 		world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
 		return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
 	}
 	if (!ws->governed) {
-		double fps = p->target_fps > 0 ? p->target_fps : fr->refresh_hz > 0 ? fr->refresh_hz : 30.0;
-		governor_init(&ws->gov, 1000.0 / fps);
+		governor_init(&ws->gov, 1000.0 / governor_fps(p, fr));
 		ws->q = governor_level(0);
 		ws->governed = true;
 	}
+	ws->gov.target_ms = 1000.0 / governor_fps(p, fr); /* a cap that changed: its budget */
+	if (ws->q.level < fr->min_quality) /* the low-power profile's floor */
+		ws->q = governor_level(fr->min_quality);
 	governor_apply(&ws->q, p, eff);
 	world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
 	return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
