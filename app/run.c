@@ -41,11 +41,33 @@ static double realtime_frame(const struct params *p, long long *last_tick, int *
 	return (double)in / p->fps;
 }
 
+/* The picture's size for an output of w x h: turned by --rotate (odd
+ * quarter turns swap them). */
+static void upright_size(const struct params *p, int w, int h, int *pw, int *ph)
+{
+	bool odd = p->rotate == ROTATE_90 || p->rotate == ROTATE_270;
+	*pw = odd ? h : w;
+	*ph = odd ? w : h;
+}
+
+/* A renderer for an output of w x h: the upright picture's size, turned
+ * onto the output (renderer_set_rotation).  NULL with err. */
+static struct renderer *renderer_for_output(const struct params *p, int w, int h, char *err, size_t errlen)
+{
+	int pw, ph;
+	upright_size(p, w, h, &pw, &ph);
+	struct renderer *r = renderer_create(pw, ph, p->antialias, err, errlen);
+	if (r)
+		renderer_set_rotation(r, (int)p->rotate);
+	return r;
+}
+
 /* The frame's part of the wall (params/wall.h) at the loop's size now. */
 static int frame_view(const struct frame_loop *lp, struct wall_view *v, char *err, size_t errlen)
 {
-	int across = lp->across > 1 ? lp->across : 1;
-	int tw = across > 1 ? lp->tile_w : lp->w, th = across > 1 ? lp->tile_h : lp->h;
+	int across = lp->across > 1 ? lp->across : 1, pw, ph;
+	upright_size(lp->p, lp->w, lp->h, &pw, &ph);
+	int tw = across > 1 ? lp->tile_w : pw, th = across > 1 ? lp->tile_h : ph;
 	return wall_view(lp->p, tw, th, across, v, err, errlen);
 }
 
@@ -173,8 +195,10 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		struct wall_view view;
 		if (frame_view(lp, &view, err, errlen) < 0)
 			return -1;
-		struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = lp->w,
-					  .h = lp->h, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
+		int pw, ph; /* the upright picture (--rotate turns it onto the output) */
+		upright_size(p, lp->w, lp->h, &pw, &ph);
+		struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = pw,
+					  .h = ph, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
 					  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
 					  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
 		controls_flight(lp->ctl, sf.move, sf.turn);
@@ -227,7 +251,7 @@ int render_to_image(const struct params *p_in, struct image *img, char *err, siz
 	struct scene *scene = scene_create(&p, err, errlen);
 	if (!scene)
 		return -1;
-	struct renderer *r = renderer_create(w, h, p.antialias, err, errlen);
+	struct renderer *r = renderer_for_output(&p, w, h, err, errlen);
 	struct sink_set sinks = { .n = 0 };
 	int rc = -1;
 	if (r && sinks_add(&sinks, sink_memory_open(img, err, errlen)) == 0) {
@@ -294,7 +318,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	if (gpu_init(&caps, p->verbose, err, errlen) < 0)
 		return 1;
 	log_debug("platform %s on %s", rn->plat->backend->name, rn->plat->device_desc);
-	rn->r = renderer_create(rn->w, rn->h, p->antialias, err, errlen);
+	rn->r = renderer_for_output(p, rn->w, rn->h, err, errlen);
 	return rn->r ? 0 : 1;
 }
 

@@ -3,13 +3,15 @@
  * to PNG.
  *
  *   imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB]
- *              [--at X,Y] [--region X,Y,W,H] [--diff OUT.png]
+ *              [--at X,Y] [--region X,Y,W,H] [--unturn DEG] [--diff OUT.png]
  *       prints "imgcmp: WxH mean_abs .. rmse .. psnr .. max .. frac_over(T) .."
  *       exit 0 within tolerance, 1 over it, 2 on bad input (sizes differ,
  *       unreadable file).  Defaults: T 24, M 1.0, F 0.005.  --min-psnr: the
  *       verdict is the PSNR alone.  --at: B is compared with the rectangle
  *       of A at X,Y of B's size (a video wall's tile in the whole screen).
- *       --region: only that rectangle of both is compared.
+ *       --region: only that rectangle of both is compared.  --unturn DEG: B
+ *       was turned DEG (90, 180, 270) clockwise (--rotate); it is turned
+ *       back before the comparison.
  *   imgcmp --to-png IN OUT.png
  *   imgcmp --info IN          prints "WxH mean R G B" (for diagnostics) */
 #include <errno.h>
@@ -209,7 +211,7 @@ static int load(struct image *img, const char *path, char *err, size_t errlen)
 static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
-	                "[--region X,Y,W,H] [--diff OUT.png]\n"
+	                "[--region X,Y,W,H] [--unturn DEG] [--diff OUT.png]\n"
 	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN\n");
 	return 2;
 }
@@ -247,7 +249,7 @@ int main(int argc, char **argv)
 	double max_mean = 1.0, max_frac = 0.005;
 	const char *diff_path = NULL;
 	double min_psnr = -1.0;
-	int at_x = -1, at_y = -1, rg[4] = { -1, -1, -1, -1 };
+	int at_x = -1, at_y = -1, rg[4] = { -1, -1, -1, -1 }, unturn = 0;
 	for (int i = 3; i < argc; i += 2) {
 		if (i + 1 >= argc)
 			return usage();
@@ -274,6 +276,8 @@ int main(int argc, char **argv)
 			max_mean = v;
 		else if (strcmp(argv[i], "--max-frac") == 0 && num_ok && v <= 1)
 			max_frac = v;
+		else if (strcmp(argv[i], "--unturn") == 0 && num_ok && (v == 90 || v == 180 || v == 270))
+			unturn = (int)v / 90;
 		else if (strcmp(argv[i], "--min-psnr") == 0 && num_ok)
 			min_psnr = v;
 		else if (strcmp(argv[i], "--diff") == 0)
@@ -292,6 +296,27 @@ int main(int argc, char **argv)
 	}
 	int rc = 2;
 	struct image_diff d;
+	if (unturn) { /* B turned back: q quarter turns counter-clockwise */
+		int w = b.width, h = b.height, ow = unturn & 1 ? h : w, oh = unturn & 1 ? w : h;
+		uint32_t *out = malloc((size_t)w * h * 4), *in = (uint32_t *)b.rgba;
+		if (!out) {
+			fprintf(stderr, "imgcmp: out of memory\n");
+			image_free(&a);
+			image_free(&b);
+			return 2;
+		}
+		/* out(x, y) of the upright picture: where the turn put it */
+		for (int y = 0; y < oh; y++)
+			for (int x = 0; x < ow; x++) {
+				int bx = unturn == 1 ? oh - 1 - y : unturn == 2 ? ow - 1 - x : y;
+				int by = unturn == 1 ? x : unturn == 2 ? oh - 1 - y : ow - 1 - x;
+				out[(size_t)y * ow + x] = in[(size_t)by * w + bx];
+			}
+		free(b.rgba);
+		b.rgba = (uint8_t *)out;
+		b.width = ow;
+		b.height = oh;
+	}
 	if (at_x >= 0) { /* A's rectangle at X,Y of B's size */
 		if (at_x + b.width > a.width || at_y + b.height > a.height) {
 			fprintf(stderr, "imgcmp: %dx%d at %d,%d is outside %s (%dx%d)\n", b.width, b.height, at_x, at_y,

@@ -54,6 +54,8 @@ static const struct gl_pass passes[] = {
 	{ "upscale.vert + fxaa.frag", NULL, "upscale.vert", "fxaa.frag", NULL, false, NULL },
 	/* the attract playlist's crossfade (renderer_fade_kept) */
 	{ "upscale.vert + fade.frag", NULL, "upscale.vert", "fade.frag", NULL, false, NULL },
+	/* a rotated panel (--rotate: renderer_blit_to_default) */
+	{ "upscale.vert + rotate.frag", NULL, "upscale.vert", "rotate.frag", NULL, false, NULL },
 	/* the tests' own passes */
 	{ "hp_test.comp", "hp_test.comp", NULL, NULL, NULL, true, NULL },
 	{ "curve_test.comp", "curve_test.comp", NULL, NULL, NULL, true, NULL },

@@ -53,6 +53,8 @@ struct renderer {
 	struct upscale up;
 	struct upscale fx; /* --antialias fxaa: the pass at full size */
 	struct upscale kept; /* a frame kept for a crossfade (fade.frag), made on first use */
+	int quarter;         /* --rotate: quarter turns clockwise onto the output */
+	struct upscale rot;  /* its pass to a display (rotate.frag), made on first use */
 };
 
 static const char *fbo_status(GLenum s)
@@ -180,6 +182,7 @@ void renderer_destroy(struct renderer *r)
 	upscale_free(&r->up);
 	upscale_free(&r->fx);
 	upscale_free(&r->kept);
+	upscale_free(&r->rot);
 	parts_free(&r->pt);
 	GLuint fb[2] = { r->fbo, r->fbo_ms };
 	glDeleteFramebuffers(2, fb);
@@ -543,6 +546,41 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	return renderer_end(r);
 }
 
+/* The upright picture (top row first) turned q quarter turns clockwise, in
+ * place of img.  0, or -1 (out of memory; img freed). */
+static int rotate_image(struct image *img, int q)
+{
+	int w = img->width, h = img->height, ow = q & 1 ? h : w, oh = q & 1 ? w : h;
+	uint32_t *out = malloc((size_t)w * h * 4), *in = (uint32_t *)img->rgba;
+	if (!out) {
+		free(img->rgba);
+		img->rgba = NULL;
+		return -1;
+	}
+	for (int y = 0; y < oh; y++)
+		for (int x = 0; x < ow; x++) {
+			int sx = q == 1 ? y : q == 2 ? w - 1 - x : w - 1 - y;
+			int sy = q == 1 ? h - 1 - x : q == 2 ? h - 1 - y : x;
+			out[(size_t)y * ow + x] = in[(size_t)sy * w + sx];
+		}
+	free(img->rgba);
+	img->rgba = (uint8_t *)out;
+	img->width = ow;
+	img->height = oh;
+	return 0;
+}
+
+void renderer_set_rotation(struct renderer *r, int quarter)
+{
+	r->quarter = quarter & 3;
+}
+
+void renderer_output_size(const struct renderer *r, int *w, int *h)
+{
+	*w = r->quarter & 1 ? r->h : r->w;
+	*h = r->quarter & 1 ? r->w : r->h;
+}
+
 int renderer_read(struct renderer *r, struct image *img)
 {
 	if (r->samples) {
@@ -567,8 +605,11 @@ int renderer_read(struct renderer *r, struct image *img)
 	/* GL's first row is the bottom one */
 	size_t row = (size_t)r->w * 4;
 	uint8_t *tmp = malloc(row);
-	if (!tmp)
+	if (!tmp) {
+		free(img->rgba);
+		img->rgba = NULL;
 		return -1;
+	}
 	for (int y = 0; y < r->h / 2; y++) {
 		uint8_t *a = img->rgba + row * y, *b = img->rgba + row * (r->h - 1 - y);
 		memcpy(tmp, a, row);
@@ -576,7 +617,7 @@ int renderer_read(struct renderer *r, struct image *img)
 		memcpy(b, tmp, row);
 	}
 	free(tmp);
-	return 0;
+	return r->quarter ? rotate_image(img, r->quarter) : 0;
 }
 
 /* ---- display platforms: the frame to the window -------------------------- */
@@ -586,6 +627,15 @@ int renderer_blit_to_default(struct renderer *r, int w, int h)
 		glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
 		glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo);
 		glBlitFramebuffer(0, 0, r->w, r->h, 0, 0, r->w, r->h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+	}
+	if (r->quarter) { /* a rotated panel: the frame through rotate.frag */
+		char err[256];
+		if (!r->rot.prog && upscale_init(&r->rot, "rotate.frag", r->w, r->h, err, sizeof(err)) < 0) {
+			log_error("%s", err);
+			return -1;
+		}
+		upscale_grab(&r->rot, r->fbo, r->w, r->h);
+		return upscale_draw_rotated(&r->rot, 0, w, h, r->quarter);
 	}
 	/* both are bottom-up: no flip */
 	glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);

@@ -93,8 +93,15 @@ int renderer_fade_kept(struct renderer *r, float alpha);
 /* Resolves and reads the last frame (top row first).  0 or -1. */
 int renderer_read(struct renderer *r, struct image *img);
 
+/* A panel turned `quarter` quarter turns clockwise (--rotate): the renderer
+ * draws the upright picture at its own size, and renderer_read and
+ * renderer_blit_to_default give the turned frame, of renderer_output_size
+ * (width and height swapped for odd turns).  renderer_target stays the
+ * upright picture's (overlays draw into it and turn with it). */
+void renderer_set_rotation(struct renderer *r, int quarter);
+void renderer_output_size(const struct renderer *r, int *w, int *h);
 /* Resolves the last frame and blits it to the default framebuffer (the
- * window surface), scaled to w x h.  0 or -1. */
+ * window surface), scaled to w x h (turned, with a rotation).  0 or -1. */
 int renderer_blit_to_default(struct renderer *r, int w, int h);
 
 /* the on-screen display */

@@ -28,6 +28,9 @@ int upscale_run(struct upscale *u, GLuint target, int sw, int sh);
  * (u_alpha of the fragment shader). */
 void upscale_grab(struct upscale *u, GLuint target, int sw, int sh);
 int upscale_draw(struct upscale *u, GLuint target, int sw, int sh, float alpha);
+/* The whole texture (rotate.frag) over target's w x h, turned quarter
+ * quarter turns clockwise.  0 or -1. */
+int upscale_draw_rotated(struct upscale *u, GLuint target, int w, int h, int quarter);
 void upscale_free(struct upscale *u);
 
 /* ---- a mesh drawn in parts (parts.c, shaders/draw_parts.comp) -------------

@@ -75,6 +75,22 @@ int upscale_draw(struct upscale *u, GLuint target, int sw, int sh, float alpha)
 	return gpu_check("full-screen pass");
 }
 
+int upscale_draw_rotated(struct upscale *u, GLuint target, int w, int h, int quarter)
+{
+	glBindFramebuffer(GL_FRAMEBUFFER, target);
+	glViewport(0, 0, w, h);
+	glDisable(GL_DEPTH_TEST);
+	glDisable(GL_BLEND);
+	glUseProgram(u->prog);
+	glUniform1i(glGetUniformLocation(u->prog, "u_quarter"), quarter);
+	glActiveTexture(GL_TEXTURE0 + TEX_FRAME);
+	glBindTexture(GL_TEXTURE_2D, u->tex);
+	glDrawArrays(GL_TRIANGLES, 0, 3);
+	glBindTexture(GL_TEXTURE_2D, 0);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	return gpu_check("rotated pass");
+}
+
 int upscale_run(struct upscale *u, GLuint target, int sw, int sh)
 {
 	upscale_grab(u, target, sw, sh);

@@ -2,8 +2,8 @@
 # isoterra — X11 backend in Xvfb: the window's content (xwd) matches the
 # headless render of the same frame; resize (ConfigureNotify) re-renders at
 # the new size; WM_DELETE_WINDOW and SIGTERM end the app cleanly (exit 0);
-# --fullscreen fills the screen; --count N exits by itself; a missing X
-# server is one clear error.
+# --fullscreen fills the screen; --count N exits by itself; --rotate 90
+# turns the picture in the window; a missing X server is one clear error.
 . "$(dirname "$0")/lib.sh"
 need Xvfb xwd "${X11POKE:-x11poke}"
 scratch # $T; kills $APID and $SERVER_PID on exit
@@ -89,6 +89,21 @@ if "$BIN" --platform x11 --size 160x120 $ARGS --count 3 --out "$T/app3.png" >"$T
 else
 	bad "--count 3 run failed: $(cat "$T/app3.log")"
 fi
+
+# 3b. a rotated panel (--rotate 90): the window shows the upright picture
+# turned clockwise (the display's own pass, shaders/rotate.frag), the same
+# as the headless render's file
+"$BIN" --platform x11 --size 120x160 --rotate 90 $ARGS --count 0 --fps-report 0.2 >"$T/app4.log" 2>&1 &
+APID=$!
+if wait_frames "$T/app4.log" 2 60 "$APID"; then
+	xwd -display "$DISPLAY" -name isoterra -out "$T/rot.xwd" 2>"$T/xwd.log" || bad "xwd: $(cat "$T/xwd.log")"
+	headless "$T/ref-rot.png" 120x160 --rotate 90 $ARGS && compare "x11 --rotate 90 window vs headless" "$T/rot.xwd" "$T/ref-rot.png"
+	headless "$T/ref-up.png" 160x120 $ARGS && compare "x11 --rotate 90 window turned back vs the upright render" "$T/ref-up.png" "$T/rot.xwd" --unturn 90
+else
+	bad "--rotate 90 window: no frames: $(cat "$T/app4.log")"
+fi
+stop "$APID"
+APID=
 
 # 4. auto picks x11 when DISPLAY is set
 "$BIN" --platform auto --size 96x64 --grid 8 --count 1 --out "$T/auto.png" --verbose >"$T/auto.log" 2>&1

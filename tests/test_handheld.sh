@@ -1,5 +1,10 @@
 #!/bin/sh
-# isoterra — power care (docs/HANDHELD.md) with a fake power supply class
+# isoterra — a handheld's rotated panel and power care (docs/HANDHELD.md).
+# Rotation: --rotate 90, 180 and 270 give the upright picture turned
+# clockwise onto the output (turned back, byte for byte the upright
+# render), at the output's size (PNG and the Y4M header), the OSD turned
+# with it.
+# Power, with a fake power supply class
 # folder ($ISOTERRA_POWER_SUPPLY, as /sys/class/power_supply lays it out):
 #   - a battery at 42 % discharging: the results file names it, the OSD
 #     shows it in the top-right corner (only there: the rest of the picture
@@ -94,6 +99,30 @@ supply 10 Discharging
 echo 0 >ps/BAT0/present
 run p0 $SMALL
 want "a battery not present" "$(field p0.json battery_percent)" null
+
+# ---- rotation -----------------------------------------------------------------
+R="--grid 32 --cam-spin 0"
+supply 42 Discharging
+ISOTERRA_POWER_SUPPLY=$T/ps "$BIN" $R --size 120x80 --out up.png >up.log 2>&1 || bad "upright: $(cat up.log)"
+for deg in 90 180 270; do
+	size=80x120
+	[ $deg = 180 ] && size=120x80
+	if ISOTERRA_POWER_SUPPLY=$T/ps "$BIN" $R --size $size --rotate $deg --out r$deg.png >r.log 2>&1; then
+		if line=$("$IMGCMP" up.png r$deg.png --unturn $deg --max-mean 0 --max-frac 0); then
+			ok
+		else
+			bad "--rotate $deg turned back is not the upright picture (the OSD with it): $line"
+		fi
+	else
+		bad "--rotate $deg: $(cat r.log)"
+	fi
+done
+# the Y4M stream has the output's size
+if "$BIN" $R --size 80x120 --rotate 90 --count 2 --out r.y4m >r.log 2>&1; then
+	head -c 40 r.y4m | grep -q "^YUV4MPEG2 W80 H120 " && ok || bad "--rotate 90 Y4M header: $(head -c 40 r.y4m)"
+else
+	bad "--rotate 90 to Y4M: $(cat r.log)"
+fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
