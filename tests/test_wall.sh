@@ -152,6 +152,7 @@ expect_fail "bezel: '-4' is not X or X,Y" --wall 2x1 --bezel -4 $SMALL
 expect_fail "bezel_mm: needs panel_mm" --wall 2x1 --bezel-mm 5 $SMALL
 expect_fail "governor: on a 2x2 wall every tile holds one quality" --wall 2x2 --governor on $SMALL
 expect_fail "clock: 'utc' is not auto or realtime" --clock utc $SMALL
+expect_fail "rotate: the V4L2 output" --rotate 90 --v4l2 /dev/video9 $SMALL
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

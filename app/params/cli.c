@@ -302,6 +302,11 @@ static int validate(const struct params *p, char *err, size_t errlen)
 	struct wall_view wv;
 	if (wall_view(p, w, h, 1, &wv, err, errlen) < 0 || wall_clock_realtime(p, err, errlen) < 0)
 		return -1;
+	if (p->rotate != ROTATE_0 && p->v4l2[0]) {
+		snprintf(err, errlen, "rotate: the V4L2 output (--v4l2 %s) streams the upright picture; turn it at the "
+			 "receiver, or drop --rotate", p->v4l2);
+		return -1;
+	}
 	if (wv.on && p->governor == GOVERNOR_ON) {
 		snprintf(err, errlen, "governor: on a %s wall every tile holds one quality (--quality N, the same on "
 			 "every board), not a governor of its own", p->wall);
