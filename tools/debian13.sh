@@ -83,15 +83,21 @@ case "$gpiod" in
 esac
 
 t1=$(date +%s)
-# every test of the suites but vm, display, soak, gallery and pictures (the
-# plain build of tools/test-all.sh runs the VM tests, the soak, the
-# README's pictures and the wall's stitched tiles once; the VM test that
-# needs Debian 13's libgpiod 2 runs below), and but autopilot: 168
+# every test of the suites but vm, display, soak, gallery, pictures and
+# structure (the plain build of tools/test-all.sh runs the VM tests, the
+# soak, the README's pictures, the wall's stitched tiles and the folder
+# walls once; the VM test that needs Debian 13's libgpiod 2 runs below),
+# and but autopilot: 168
 # flights of plain C over the CPU density, no GL, no library of trixie's
-# (80 s of CPU; the host's release and sanitizer builds fly it)
+# (80 s of CPU; the host's release and sanitizer builds fly it), and but
+# the command-line suites that exercise the program's options more than
+# trixie's libraries (gl_limits_cli 29 s, outputs 12, kiosk 10, cli 9,
+# hal_cli 7, results 3, wall_quick: the options' parsing and refusals,
+# the same code under any compiler; the host's two builds run them)
+D13_LEFT_OUT='autopilot|gl_limits_cli|outputs|kiosk|cli|hal_cli|results|wall_quick'
 tests=$(d13_in "$D13_ROOT" sh -c "cd $B && meson test --no-rebuild --list --no-suite vm --no-suite display --no-suite soak \
-	--no-suite gallery --no-suite pictures" 2>/dev/null |
-	sed 's|.* / ||' | grep -vx autopilot | tr '\n' ' ')
+	--no-suite gallery --no-suite pictures --no-suite structure" 2>/dev/null |
+	sed 's|.* / ||' | grep -vxE "$D13_LEFT_OUT" | tr '\n' ' ')
 d13_in "$D13_ROOT" sh -c "cd $B && EGL_LOG_LEVEL=fatal meson test --no-rebuild --print-errorlogs --num-processes 2 \
 	$tests" >"$D13_LOGS/native-test.log" 2>&1
 rc=$?
@@ -103,7 +109,7 @@ f=$(grep -hoE '[0-9]+ passed, [0-9]+ failed' "$D13_LOGS/native-testlog.txt" | aw
 d13_pass=$((d13_pass + p))
 d13_fail=$((d13_fail + f))
 if [ $rc -eq 0 ]; then
-	d13_ok "meson test, suites but vm, display, soak and gallery ($(($(date +%s) - t1)) s)"
+	d13_ok "meson test, suites but vm, display, soak, gallery, pictures, structure ($(($(date +%s) - t1)) s)"
 else
 	sed -n '/Summary of Failures/,$p' "$D13_LOGS/native-test.log"
 	d13_bad "meson test (log: $D13_LOGS/native-testlog.txt)"

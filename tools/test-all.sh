@@ -128,8 +128,9 @@ if [ $chroot_suites = 1 ]; then
 	prepare_pid=$!
 fi
 # Tests that boot a kernel under QEMU (meson suite "vm"), the soak (suite
-# "soak"), the gallery's pictures and the wall's stitched tiles (suite
-# "pictures") run once, against the release build;
+# "soak"), the gallery's pictures, the wall's stitched tiles (suite
+# "pictures") and the folder walls (suite "structure") run once, against
+# the release build;
 # the sanitizer build runs everything else.  The soak runs later, beside
 # the fuzzers (see there).
 TEST_ARGS="--no-suite soak"
@@ -199,7 +200,7 @@ if [ -x build-ci/isoterra ]; then
 	[ -z "$zink_xdg" ] || { rm -rf "$zink_xdg"; unset XDG_RUNTIME_DIR; }
 fi
 part_done "zink: tests"
-TEST_ARGS="--no-suite vm --no-suite gallery --no-suite pictures --no-suite soak"
+TEST_ARGS="--no-suite vm --no-suite gallery --no-suite pictures --no-suite structure --no-suite soak"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
