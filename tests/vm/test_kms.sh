@@ -78,6 +78,8 @@ RH=300
 cat >"$T/config.sh" <<CONF
 BIN='$BIN'
 ARGS='$ARGS'
+W=$W
+H=$H
 RW=$RW
 RH=$RH
 CONF
