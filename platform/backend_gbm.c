@@ -485,8 +485,15 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 		g->n = 1;
 		snprintf(g->h[0].want_mode, sizeof(g->h[0].want_mode), "%s", opt->mode ? opt->mode : "");
 	} else {
-		if (kms_outputs_open(&g->h[0].kms, PLATFORM_MAX_OUTPUTS, &g->n, opt->drm_device, opt->outputs, opt->mode,
-		                     err, errlen) < 0)
+		struct kms_output ko[PLATFORM_MAX_OUTPUTS];
+		memset(ko, 0, sizeof(ko));
+		ko[0].fd = -1;
+		int rc = kms_outputs_open(ko, PLATFORM_MAX_OUTPUTS, &g->n, opt->drm_device, opt->outputs, opt->mode, err,
+		                          errlen);
+		g->h[0].kms = ko[0]; /* (the card's fd, closed with it) */
+		for (int i = 1; i < g->n; i++)
+			g->h[i].kms = ko[i];
+		if (rc < 0)
 			goto fail;
 		g->mirror = opt->outputs_mirror;
 		/* each output comes back only at the size they share */
