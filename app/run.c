@@ -300,6 +300,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	struct platform_options po = { .name = p->platform, .width = rn->w, .height = rn->h, .debug = p->verbose,
 		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .drm_device = p->drm_device,
 		.mode = p->mode, .kms_legacy = p->kms_legacy, .device = p->device };
+	sink_display_outputs(p, &po); /* --outputs: the connectors and their layout */
 	rn->plat = platform_open(&po, err, errlen);
 	if (!rn->plat)
 		return 1;
@@ -419,6 +420,7 @@ static int run_frames(struct run *rn)
 				 .watch_signals = rn->plat->headless, .refresh_hz = rn->plat->refresh_hz,
 				 .timing = p->results[0] != 0, .notify = notify_open(), .kiosk = rn->kiosk,
 				 .power = rn->power };
+	sink_display_tiles(rn->plat, &lp.tile_w, &lp.tile_h, &lp.across); /* --outputs along a wall's row */
 	int rc = frame_loop_run(&lp, err, sizeof(err)) < 0 ? 1 : 0;
 	osd_destroy(lp.battery_osd);
 	notify_close(lp.notify); /* STOPPING=1 */

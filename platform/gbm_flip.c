@@ -33,37 +33,72 @@
 
 #include <xf86drm.h>
 
-static void flip_handler(int fd, unsigned frame, unsigned sec, unsigned usec, void *data)
+/* One CRTC's page-flip event (the flip's, or a modeset's): the frame is
+ * shown once every CRTC of the flip has said so. */
+static void flip_handler(int fd, unsigned frame, unsigned sec, unsigned usec, unsigned crtc_id, void *data)
 {
 	(void)fd;
 	(void)frame;
 	(void)sec;
 	(void)usec;
 	struct gbm_state *g = data;
+	for (int i = 0; i < g->n; i++)
+		if (g->h[i].kms.crtc_id == crtc_id)
+			g->h[i].flips++;
+	if (g->events > 0)
+		g->events--;
+	if (g->events > 0)
+		return;
 	g->flip_pending = false;
 	g->p->shown++;
+}
+
+bool gbm_any_connected(const struct gbm_state *g)
+{
+	for (int i = 0; i < g->n; i++)
+		if (g->h[i].connected)
+			return true;
+	return false;
+}
+
+/* The outputs a flip shows: connected and modeset. */
+static int live_heads(struct gbm_state *g, struct kms_atomic_head *ah, int *idx)
+{
+	int n = 0;
+	for (int i = 0; i < g->n; i++) {
+		struct gbm_head *h = &g->h[i];
+		if (!h->connected || !h->modeset_done)
+			continue;
+		if (ah)
+			ah[n] = (struct kms_atomic_head){ .a = &h->at, .o = &h->kms };
+		if (idx)
+			idx[n] = i;
+		n++;
+	}
+	return n;
 }
 
 int gbm_wait_flip(struct gbm_state *g)
 {
 	drmEventContext ev = {
-		.version = 2,
-		.page_flip_handler = flip_handler,
+		.version = 3,
+		.page_flip_handler2 = flip_handler,
 	};
+	const struct kms_output *k = &g->h[0].kms;
 	while (g->flip_pending) {
-		struct pollfd pfd = { .fd = g->kms.fd, .events = POLLIN };
+		struct pollfd pfd = { .fd = k->fd, .events = POLLIN };
 		int n = poll(&pfd, 1, FLIP_TIMEOUT_MS);
 		if (n < 0) {
 			if (errno == EINTR)
 				continue; /* a signal: the flip still completes */
-			plog_error("gbm: poll on %s: %s", g->kms.path, strerror(errno));
+			plog_error("gbm: poll on %s: %s", k->path, strerror(errno));
 			return -1;
 		}
 		if (n == 0) {
-			plog_error("gbm: no page-flip event from %s within %d ms", g->kms.path, FLIP_TIMEOUT_MS);
+			plog_error("gbm: no page-flip event from %s within %d ms", k->path, FLIP_TIMEOUT_MS);
 			return -1;
 		}
-		if (drmHandleEvent(g->kms.fd, &ev) != 0) {
+		if (drmHandleEvent(k->fd, &ev) != 0) {
 			plog_error("gbm: drmHandleEvent: %s", strerror(errno));
 			return -1;
 		}
@@ -91,7 +126,8 @@ void gbm_close_fd(int *fd)
  * when it is only taken as done (the display gone, the fence never came). */
 static void flip_done(struct gbm_state *g, bool confirmed)
 {
-	gbm_close_fd(&g->pending_fence);
+	for (int i = 0; i < g->n; i++)
+		gbm_close_fd(&g->h[i].fence);
 	gbm_show(g, g->pending);
 	g->pending = NULL;
 	if (confirmed)
@@ -105,19 +141,30 @@ int gbm_finish_flip(struct gbm_state *g)
 {
 	if (!g->pending)
 		return 0;
-	int rc = kms_fence_wait(g->pending_fence, FLIP_TIMEOUT_MS);
-	if (rc > 0) {
-		g->fence_proven = true;
-		flip_done(g, true);
-		return 0;
+	int failed = 0;
+	for (int i = 0; i < g->n; i++) {
+		struct gbm_head *h = &g->h[i];
+		if (h->fence < 0)
+			continue;
+		/* several outputs: which one */
+		char where[96];
+		snprintf(where, sizeof(where), "%s%s%s", h->kms.path, g->n > 1 ? " " : "", g->n > 1 ? h->kms.conn_name : "");
+		int rc = kms_fence_wait(h->fence, FLIP_TIMEOUT_MS);
+		if (rc > 0) {
+			h->flips++;
+			continue;
+		}
+		failed = 1;
+		if (rc == 0)
+			plog_error("gbm: no page flip on %s within %d ms (its out-fence did not signal)", where,
+			           FLIP_TIMEOUT_MS);
+		else
+			plog_error("gbm: waiting for the page flip's out-fence on %s: %s", where, strerror(errno));
 	}
-	if (rc == 0)
-		plog_error("gbm: no page flip on %s within %d ms (its out-fence did not signal)", g->kms.path,
-		           FLIP_TIMEOUT_MS);
-	else
-		plog_error("gbm: waiting for the page flip's out-fence on %s: %s", g->kms.path, strerror(errno));
-	flip_done(g, false);
-	return -1;
+	if (!failed)
+		g->fence_proven = true;
+	flip_done(g, !failed);
+	return failed ? -1 : 0;
 }
 
 /* The flip path, once (see the top of this file). */
@@ -130,7 +177,7 @@ void gbm_say_flips(struct gbm_state *g)
 		plog_info("kms: legacy, each flip waits for its page-flip event");
 	else if (!g->pipelined)
 		plog_info("kms: atomic, each flip waits for its page-flip event (no OUT_FENCE_PTR on CRTC %u)",
-		          g->kms.crtc_id);
+		          g->h[0].kms.crtc_id);
 	else if (g->in_fences)
 		plog_info("kms: atomic, flips pipelined with out-fences and in-fences (EGL_ANDROID_native_fence_sync)");
 	else
@@ -141,11 +188,16 @@ void gbm_say_flips(struct gbm_state *g)
  * the plane has IN_FENCE_FD and the EGL EGL_ANDROID_native_fence_sync. */
 void gbm_choose_flips(struct gbm_state *g)
 {
-	g->pipelined = g->atomic && g->at.crtc_out_fence_ptr;
+	g->pipelined = g->atomic;
+	bool in_fence_fd = true;
+	for (int i = 0; i < g->n; i++) {
+		g->pipelined = g->pipelined && g->h[i].at.crtc_out_fence_ptr;
+		in_fence_fd = in_fence_fd && g->h[i].at.plane_in_fence_fd;
+	}
 	if (!g->pipelined)
 		return;
 	const char *dexts = eglQueryString(g->p->dpy, EGL_EXTENSIONS);
-	if (!g->at.plane_in_fence_fd) {
+	if (!in_fence_fd) {
 		g->no_in_fence = "the plane has no IN_FENCE_FD";
 		return;
 	}
@@ -205,23 +257,32 @@ static int flip_pipelined(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, i
 {
 	if (gbm_finish_flip(g) < 0) {
 		/* given up on (taken as done): the display gone, or an error */
-		if (gbm_watch_connector(g, true) == 0 && !g->connected)
+		if (gbm_watch_connector(g, true) == 0 && (!gbm_any_connected(g) || g->lost))
 			return 1;
 		return -1;
 	}
-	int fence = -1, rc;
+	struct kms_atomic_head ah[PLATFORM_MAX_OUTPUTS];
+	int idx[PLATFORM_MAX_OUTPUTS];
+	int n = live_heads(g, ah, idx), rc;
+	for (int i = 0; i < n; i++)
+		ah[i].out_fence = &g->h[idx[i]].fence;
 	for (int tries = 0;; tries++) {
-		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_ATOMIC_NONBLOCK, g, in_fence, &fence);
+		rc = kms_atomic_commit_heads(ah, n, fb, DRM_MODE_ATOMIC_NONBLOCK, g, in_fence);
 		if (rc == 0 || errno != EBUSY || tries >= EBUSY_RETRIES)
 			break;
 		struct timespec ms = { 0, 1000000L };
 		nanosleep(&ms, NULL);
 	}
-	if (rc == 0 && fence < 0) {
+	bool unfenced = false;
+	for (int i = 0; i < n && rc == 0; i++)
+		unfenced = unfenced || g->h[idx[i]].fence < 0;
+	if (rc == 0 && unfenced) {
 		/* committed, but no fence to wait for: the flip is done once
 		 * the kernel takes the next commit; from now on events */
 		plog_warn("kms: the atomic commit on %s gave no out-fence; flips wait for their events from now on",
-		          g->kms.path);
+		          g->h[0].kms.path);
+		for (int i = 0; i < g->n; i++)
+			gbm_close_fd(&g->h[i].fence);
 		g->pipelined = false;
 		g->in_fences = false;
 		gbm_show(g, bo);
@@ -229,9 +290,9 @@ static int flip_pipelined(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, i
 	}
 	if (rc != 0) {
 		int e = errno;
-		if (gbm_watch_connector(g, true) == 0 && !g->connected)
+		if (gbm_watch_connector(g, true) == 0 && (!gbm_any_connected(g) || g->lost))
 			return 1;
-		if (!g->fence_proven && g->modeset_done && (e == EINVAL || e == EOPNOTSUPP)) {
+		if (!g->fence_proven && g->h[0].modeset_done && (e == EINVAL || e == EOPNOTSUPP)) {
 			/* no flip with fences went through yet: the kernel may
 			 * not take them after all */
 			if (in_fence >= 0) {
@@ -243,11 +304,10 @@ static int flip_pipelined(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, i
 			g->pipelined = false;
 			return 2;
 		}
-		plog_error("gbm: atomic page flip on %s: %s", g->kms.path, strerror(e));
+		plog_error("gbm: atomic page flip on %s: %s", g->h[0].kms.path, strerror(e));
 		return -1;
 	}
 	g->pending = bo;
-	g->pending_fence = fence;
 	return 0;
 }
 
@@ -262,19 +322,32 @@ int gbm_flip(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence)
 		if (rc != 2)
 			return rc;
 	}
+	struct kms_atomic_head ah[PLATFORM_MAX_OUTPUTS];
+	int idx[PLATFORM_MAX_OUTPUTS];
+	int n = live_heads(g, ah, idx);
 	g->flip_pending = true;
-	int rc;
-	if (g->atomic)
-		rc = kms_atomic_commit(&g->at, &g->kms, fb, false, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK, g,
-		                       -1, NULL);
-	else
-		rc = kms_legacy_flip(&g->kms, fb, g);
+	int rc = 0;
+	if (g->atomic) {
+		rc = kms_atomic_commit_heads(ah, n, fb, DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK, g, -1);
+		g->events = rc == 0 ? n : 0;
+	} else {
+		/* one flip per CRTC, each with its event */
+		g->events = 0;
+		for (int i = 0; i < n && rc == 0; i++) {
+			rc = kms_legacy_flip(&g->h[idx[i]].kms, fb, g);
+			if (rc == 0)
+				g->events++;
+		}
+	}
 	if (rc != 0) {
 		int e = errno;
+		if (g->events > 0)
+			(void)gbm_wait_flip(g); /* the CRTCs that did take it */
 		g->flip_pending = false;
-		if (gbm_watch_connector(g, true) == 0 && !g->connected)
+		g->events = 0;
+		if (gbm_watch_connector(g, true) == 0 && (!gbm_any_connected(g) || g->lost))
 			return 1;
-		plog_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->kms.path,
+		plog_error("gbm: %s on %s: %s", g->atomic ? "atomic page flip" : "drmModePageFlip", g->h[0].kms.path,
 		          strerror(e));
 		return -1;
 	}
@@ -282,8 +355,9 @@ int gbm_flip(struct gbm_state *g, uint32_t fb, struct gbm_bo *bo, int in_fence)
 		gbm_show(g, bo);
 		return 0;
 	}
-	if (gbm_watch_connector(g, true) == 0 && !g->connected) {
+	if (gbm_watch_connector(g, true) == 0 && (!gbm_any_connected(g) || g->lost)) {
 		g->flip_pending = false; /* its event may still come */
+		g->events = 0;
 		gbm_show(g, bo);
 		return 0;
 	}

@@ -17,7 +17,8 @@ struct kms_output {
 	char conn_name[32];    /* e.g. "HDMI-A-1" */
 	drmModeModeInfo mode;
 	bool connected;        /* at the last kms_output_poll */
-	struct hotplug *hotplug; /* the card's hotplug events, or NULL */
+	struct hotplug *hotplug; /* the card's hotplug events, or NULL (outputs after the first: NULL) */
+	int x, y;              /* its picture's top left in the framebuffer (0, 0 for one output) */
 };
 
 /* True when a DRM card with KMS has a connected output. */
@@ -29,14 +30,28 @@ bool kms_probe(void);
  * the card could be opened (the caller closes it). */
 int kms_output_open(struct kms_output *o, const char *device, const char *mode, char *err, size_t errlen);
 
+/* Several outputs of one card (--outputs): the card as kms_output_open
+ * opens it; the connectors `names` ("all": every connected one, at most
+ * max; else a comma-separated list of connector names, each connected),
+ * one mode size every one of them offers (`mode`; else the first's
+ * preferred mode when all offer it, else the first of the first's modes
+ * that all offer; each connector its own mode of that size, the first's
+ * refresh rate when it has it) and a CRTC each, all different.  *n
+ * outputs in o[0..*n); o[0] owns the card's fd and its hotplug events,
+ * the others share the fd (only kms_output_close(&o[0])).  0, or -1 with
+ * err naming the connector, or listing each one's modes when none is
+ * common. */
+int kms_outputs_open(struct kms_output *o, int max, int *n, const char *device, const char *names, const char *mode,
+                     char *err, size_t errlen);
+
 /* The connector's state now: as the kernel last probed it (no new probe:
  * cheap enough to ask once a second), or probed again (the kernel reads the
- * monitor's EDID) when a hotplug event came for the card or the connector
- * has just come back.  1 connected with modes, 0 not (or the mode asked for
+ * monitor's EDID) when a hotplug event came for the card (`event`: the
+ * caller read them, hotplug_pending) or the connector has just come back.  1 connected with modes, 0 not (or the mode asked for
  * is no longer offered), -1 the card cannot say.  When connected, o->mode
  * is chosen again as kms_output_open does (`mode`, or the preferred one)
  * and *changed says whether it differs from before. */
-int kms_output_poll(struct kms_output *o, const char *mode, bool *changed);
+int kms_output_poll(struct kms_output *o, const char *mode, bool event, bool *changed);
 /* Closes the card and stops listening for its hotplug events. */
 void kms_output_close(struct kms_output *o);
 
@@ -67,6 +82,19 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o);
  * it.  0, or -1 (errno). */
 int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
 		      uint32_t flags, void *user, int in_fence, int *out_fence);
+/* Several outputs in one commit, each showing its rectangle of fb
+ * (o->x, o->y at its mode's size): as kms_atomic_commit for each head h[i]
+ * (its own modeset and out-fence), or its CRTC turned off (off: the plane,
+ * the connector and the CRTC let go; DRM_MODE_ATOMIC_ALLOW_MODESET).
+ * in_fence rides on every plane shown.  0, or -1 (errno). */
+struct kms_atomic_head {
+	const struct kms_atomic *a;
+	const struct kms_output *o;
+	bool modeset, off;
+	int *out_fence;
+};
+int kms_atomic_commit_heads(const struct kms_atomic_head *h, int n, uint32_t fb, uint32_t flags, void *user,
+                            int in_fence);
 /* Waits up to timeout_ms (0: only looks) for a sync_file fence fd to
  * signal.  1 signalled, 0 not yet, -1 error (errno). */
 int kms_fence_wait(int fd, int timeout_ms);
@@ -79,6 +107,8 @@ void kms_atomic_release(struct kms_atomic *a, int fd);
  * (carrying user); the CRTC put back as saved (or off when it was off).
  * 0, or the ioctl's non-zero return (errno). */
 int kms_legacy_modeset(const struct kms_output *o, uint32_t fb);
+/* drmModeSetCrtc with no framebuffer: the CRTC off (an output gone). */
+int kms_legacy_off(const struct kms_output *o);
 int kms_legacy_flip(const struct kms_output *o, uint32_t fb, void *user);
 int kms_legacy_restore(const struct kms_output *o, const drmModeCrtc *saved);
 

@@ -106,62 +106,96 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
 	return true;
 }
 
-int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
-		      uint32_t flags, void *user, int in_fence, int *out_fence)
+/* One head's properties: its frame (the plane showing its rectangle of
+ * fb; with modeset the connector, mode and activation too), or its CRTC
+ * off.  false when the request could not grow. */
+static bool add_head(drmModeAtomicReq *req, const struct kms_atomic_head *h, uint32_t fb, int in_fence)
 {
-	/* the kernel writes the fence's fd (an int) where the property points */
-	if (out_fence)
-		*out_fence = -1;
-	if ((out_fence && (!a->crtc_out_fence_ptr || (flags & DRM_MODE_ATOMIC_TEST_ONLY))) ||
-	    (in_fence >= 0 && !a->plane_in_fence_fd)) {
-		errno = EINVAL;
-		return -1;
+	const struct kms_atomic *pp = h->a;
+	const struct kms_output *o = h->o;
+	int ok = 1;
+	if (h->off) {
+		ok &= drmModeAtomicAddProperty(req, o->conn_id, pp->conn_crtc_id, 0) > 0;
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_mode_id, 0) > 0;
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_active, 0) > 0;
+		ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->fb_id, 0) > 0;
+		ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_id, 0) > 0;
+		return ok;
+	}
+	uint32_t w = o->mode.hdisplay, h_ = o->mode.vdisplay;
+	if (h->modeset) {
+		ok &= drmModeAtomicAddProperty(req, o->conn_id, pp->conn_crtc_id, o->crtc_id) > 0;
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_mode_id, pp->mode_blob) > 0;
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_active, 1) > 0;
+	}
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->fb_id, fb) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_id, o->crtc_id) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_x, (uint64_t)o->x << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_y, (uint64_t)o->y << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_h, (uint64_t)h_ << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_x, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_y, 0) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_w, w) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_h, h_) > 0;
+	if (in_fence >= 0)
+		ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->plane_in_fence_fd, (uint64_t)in_fence) > 0;
+	if (h->out_fence)
+		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_out_fence_ptr,
+					       (uint64_t)(uintptr_t)h->out_fence) > 0;
+	return ok;
+}
+
+int kms_atomic_commit_heads(const struct kms_atomic_head *h, int n, uint32_t fb, uint32_t flags, void *user,
+                            int in_fence)
+{
+	/* the kernel writes each fence's fd (an int) where the property points */
+	for (int i = 0; i < n; i++) {
+		if (h[i].out_fence)
+			*h[i].out_fence = -1;
+		if ((h[i].out_fence && (!h[i].a->crtc_out_fence_ptr || (flags & DRM_MODE_ATOMIC_TEST_ONLY))) ||
+		    (in_fence >= 0 && !h[i].off && !h[i].a->plane_in_fence_fd)) {
+			errno = EINVAL;
+			return -1;
+		}
 	}
 	drmModeAtomicReq *req = drmModeAtomicAlloc();
 	if (!req) {
 		errno = ENOMEM;
 		return -1;
 	}
-	const struct kms_atomic *pp = a;
-	uint32_t w = o->mode.hdisplay, h = o->mode.vdisplay;
-	int ok = 1;
-	if (modeset) {
-		ok &= drmModeAtomicAddProperty(req, o->conn_id, pp->conn_crtc_id, o->crtc_id) > 0;
-		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_mode_id, a->mode_blob) > 0;
-		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_active, 1) > 0;
-		flags |= DRM_MODE_ATOMIC_ALLOW_MODESET;
+	bool ok = true;
+	for (int i = 0; i < n; i++) {
+		ok = ok && add_head(req, &h[i], fb, in_fence);
+		if (h[i].modeset || h[i].off)
+			flags |= DRM_MODE_ATOMIC_ALLOW_MODESET;
 	}
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->fb_id, fb) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_id, o->crtc_id) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_x, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_y, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->src_h, (uint64_t)h << 16) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_x, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_y, 0) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_w, w) > 0;
-	ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->crtc_h, h) > 0;
-	if (in_fence >= 0)
-		ok &= drmModeAtomicAddProperty(req, a->plane_id, pp->plane_in_fence_fd, (uint64_t)in_fence) > 0;
-	if (out_fence)
-		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_out_fence_ptr,
-					       (uint64_t)(uintptr_t)out_fence) > 0;
 	int rc;
 	if (!ok) {
 		errno = ENOMEM;
 		rc = -1;
 	} else {
-		rc = drmModeAtomicCommit(o->fd, req, flags, user);
+		rc = drmModeAtomicCommit(h[0].o->fd, req, flags, user);
 	}
 	drmModeAtomicFree(req);
-	if (rc != 0 && out_fence && *out_fence >= 0) {
+	if (rc != 0) {
 		/* (the kernel installs none when the commit fails) */
 		int e = errno;
-		close(*out_fence);
-		*out_fence = -1;
+		for (int i = 0; i < n; i++)
+			if (h[i].out_fence && *h[i].out_fence >= 0) {
+				close(*h[i].out_fence);
+				*h[i].out_fence = -1;
+			}
 		errno = e;
 	}
 	return rc;
+}
+
+int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, uint32_t fb, bool modeset,
+		      uint32_t flags, void *user, int in_fence, int *out_fence)
+{
+	struct kms_atomic_head h = { .a = a, .o = o, .modeset = modeset, .out_fence = out_fence };
+	return kms_atomic_commit_heads(&h, 1, fb, flags, user, in_fence);
 }
 
 int kms_fence_wait(int fd, int timeout_ms)

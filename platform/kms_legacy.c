@@ -11,7 +11,12 @@ int kms_legacy_modeset(const struct kms_output *o, uint32_t fb)
 {
 	uint32_t conn = o->conn_id;
 	drmModeModeInfo mode = o->mode;
-	return drmModeSetCrtc(o->fd, o->crtc_id, fb, 0, 0, &conn, 1, &mode);
+	return drmModeSetCrtc(o->fd, o->crtc_id, fb, (uint32_t)o->x, (uint32_t)o->y, &conn, 1, &mode);
+}
+
+int kms_legacy_off(const struct kms_output *o)
+{
+	return drmModeSetCrtc(o->fd, o->crtc_id, 0, 0, 0, NULL, 0, NULL);
 }
 
 int kms_legacy_flip(const struct kms_output *o, uint32_t fb, void *user)

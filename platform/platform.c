@@ -124,7 +124,20 @@ struct platform *platform_open(const struct platform_options *opt, char *err, si
 	}
 	const char *name = opt->name && opt->name[0] ? opt->name : "auto";
 	const struct platform_backend *b = NULL;
-	if (strcmp(name, "auto") == 0 && opt->device && opt->device[0]) {
+	if (opt->outputs && opt->outputs[0]) {
+		/* KMS connectors: the gbm backend's (auto: that one) */
+		if (strcmp(name, "auto") && strcmp(name, "gbm")) {
+			snprintf(err, errlen, "--outputs '%.64s' names KMS connectors: it needs --platform gbm (or auto), not '%s'",
+			         opt->outputs, name);
+			return NULL;
+		}
+		b = find_backend("gbm");
+		if (!b) {
+			snprintf(err, errlen, "--outputs '%.64s': this build has no gbm platform (compiled in: %s)", opt->outputs,
+			         platform_backend_names());
+			return NULL;
+		}
+	} else if (strcmp(name, "auto") == 0 && opt->device && opt->device[0]) {
 		b = &platform_backend_device; /* a device asked for: that EGL device */
 	} else if (strcmp(name, "auto") != 0) {
 		b = find_backend(name);

@@ -33,6 +33,19 @@ struct platform_options {
 	const char *drm_device;  /* gbm: "/dev/dri/cardN"; NULL or "" = first card with a connected output */
 	const char *mode;        /* gbm: "WxH" or "WxH@Hz"; NULL or "" = the connector's preferred mode */
 	bool kms_legacy;         /* gbm: legacy SetCrtc/PageFlip even where atomic works */
+	/* gbm: the connectors to drive, "all" (every connected one, up to
+	 * PLATFORM_MAX_OUTPUTS) or a comma-separated list of names
+	 * ("HDMI-A-1,HDMI-A-2"); NULL or "" = the first connected one.  Every
+	 * output runs the same mode size (one every connector offers: --mode,
+	 * else the first's preferred mode when all offer it, else the first of
+	 * its modes that all offer) and scans out its own rectangle of one
+	 * surface: side by side along a row, outputs_gap + outputs_gap_per_w *
+	 * (the mode's width) pixels apart (a wall's bezel, rounded per output:
+	 * output k at k * w + round(k * gap)), or, outputs_mirror, all the
+	 * same picture.  Another backend refuses a non-empty list. */
+	const char *outputs;
+	bool outputs_mirror;
+	double outputs_gap, outputs_gap_per_w;
 	/* device: which EGL device, "N" (an index in eglQueryDevicesEXT's
 	 * order, as --list-devices shows them) or a DRM node path
 	 * ("/dev/dri/renderD128", matched by EGL_EXT_device_drm's device file
@@ -60,6 +73,15 @@ struct platform_backend {
 	int (*dispatch)(struct platform *p);
 };
 
+#define PLATFORM_MAX_OUTPUTS 4
+
+/* One display output's rectangle of the surface (gbm). */
+struct platform_output {
+	char name[32];       /* the connector, "HDMI-A-1" */
+	int x, y, w, h;      /* its picture in the surface (p->width x p->height) */
+	bool on;             /* connected and scanning out (false while unplugged) */
+};
+
 struct platform {
 	const struct platform_backend *backend;
 	EGLDisplay dpy;
@@ -73,6 +95,11 @@ struct platform {
 	unsigned long presented;  /* frames handed to the display (present calls that succeeded) */
 	unsigned long shown;      /* frames the display confirmed: page-flip events (gbm),
 	                             frame callbacks (wayland); = presented on x11 */
+	/* gbm: the outputs, n_outputs >= 1 (one output: the whole surface,
+	 * following its mode); 0 on the other backends (one picture, the
+	 * whole surface) */
+	int n_outputs;
+	struct platform_output outputs[PLATFORM_MAX_OUTPUTS];
 	char device_desc[128];/* e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" / DRM node */
 	void *priv;           /* backend state */
 };

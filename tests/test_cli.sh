@@ -33,6 +33,10 @@ expect_fail "cannot open /nonexistent/card9|unknown platform 'gbm'" --platform g
 expect_fail "cannot open /nonexistent/card9|unknown platform 'gbm'" --platform gbm --drm-device /nonexistent/card9 --size 64x48 --grid 8
 expect_fail "option '-D' needs a value" -D
 expect_fail "count 0.*needs a display platform" --platform surfaceless --count 0 --size 64x48 --grid 8
+# --outputs: KMS connectors (gbm, or auto), a tile each along the wall's row
+expect_fail "outputs: 'all' names KMS connectors, which --platform gbm \(or auto\) drives, not 'surfaceless'" --platform surfaceless --outputs all --size 64x48 --grid 8
+expect_fail "outputs: 2 tile\(s\) along the row from tile 1,0 run past the 2x1 wall" --wall 2x1 --tile 1,0 --outputs HDMI-A-1,HDMI-A-2 --size 64x48 --grid 8
+expect_fail "cannot open /nonexistent/card9|this build has no gbm platform" --outputs HDMI-A-1,HDMI-A-2 --wall 2x1 -D /nonexistent/card9 --size 64x48 --grid 8
 # a broken shader: the message names file:line
 mkdir shaders
 cp "$SRC"/shaders/* shaders/

@@ -127,8 +127,59 @@ static const struct sink_ops display_ops = {
 	.frame = display_frame, .finish = display_finish, .destroy = display_destroy
 };
 
+void sink_display_outputs(const struct params *p, struct platform_options *po)
+{
+	po->outputs = p->outputs;
+	po->outputs_mirror = true;
+	po->outputs_gap = po->outputs_gap_per_w = 0.0;
+	/* the horizontal bezel alone: a tile large enough for any bezel (the
+	 * outputs' own size is checked in sink_display_open); a bad wall was
+	 * refused with the command line */
+	enum { BIG = 16384 };
+	struct wall_view v;
+	char e[256];
+	if (!p->outputs[0] || wall_view(p, BIG, BIG, 1, &v, e, sizeof(e)) < 0 || !v.on)
+		return;
+	po->outputs_mirror = false;
+	if (p->bezel_mm[0])
+		po->outputs_gap_per_w = (double)v.bezel[0] / BIG; /* pixels of gap per pixel of tile width */
+	else
+		po->outputs_gap = (double)v.bezel[0];
+}
+
+void sink_display_tiles(const struct platform *plat, int *tile_w, int *tile_h, int *across)
+{
+	if (plat->n_outputs < 2 || plat->outputs[1].x == plat->outputs[0].x)
+		return; /* one output, or a mirror: the frame is one tile */
+	*tile_w = plat->outputs[0].w;
+	*tile_h = plat->outputs[0].h;
+	*across = plat->n_outputs;
+}
+
+/* Several outputs along a wall's row: their tiles fit it, and the surface
+ * is the wall's frame of that many tiles.  0, or -1 with err. */
+static int check_tiles(const struct platform *plat, const struct params *p, char *err, size_t errlen)
+{
+	int tw = 0, th = 0, across = 1;
+	sink_display_tiles(plat, &tw, &th, &across);
+	if (across < 2)
+		return 0;
+	struct wall_view v;
+	if (wall_view(p, tw, th, across, &v, err, errlen) < 0)
+		return -1;
+	int fw = wall_frame_width(&v, tw);
+	if (fw != plat->width || th != plat->height) {
+		snprintf(err, errlen, "outputs: the %d outputs' surface is %dx%d, the wall's frame of %d tiles of %dx%d is "
+			 "%dx%d", plat->n_outputs, plat->width, plat->height, across, tw, th, fw, th);
+		return -1;
+	}
+	return 0;
+}
+
 struct sink *sink_display_open(struct platform *plat, const struct params *p, char *err, size_t errlen)
 {
+	if (check_tiles(plat, p, err, errlen) < 0)
+		return NULL;
 	struct display_sink *d = calloc(1, sizeof(*d));
 	if (!d) {
 		snprintf(err, errlen, "out of memory");

@@ -103,6 +103,17 @@ struct sink *sink_mesh_open(const char *path, char *err, size_t errlen);
  * every p->fps_report seconds, counted from this call: open it with the
  * platform (display.c). */
 struct sink *sink_display_open(struct platform *plat, const struct params *p, char *err, size_t errlen);
+/* --outputs (gbm): the connectors, and how the platform lays them out
+ * (platform.h): with a wall, side by side along the row with the wall's
+ * horizontal bezel between them, else one picture each (mirror); into
+ * po before platform_open.  sink_display_open then checks that the
+ * outputs' tiles fit the wall. */
+struct platform_options;
+void sink_display_outputs(const struct params *p, struct platform_options *po);
+/* The frame loop's tiles (run.h: tile_w, tile_h, across) for the
+ * platform's outputs: a row of n outputs of a wall is n tiles of the
+ * outputs' size; else one tile (across 1, tile size 0: the frame's). */
+void sink_display_tiles(const struct platform *plat, int *tile_w, int *tile_h, int *across);
 
 /* The run's results as JSON to p->results ("-": stdout; "": none) at the
  * end of a run that went well, and, headless, the frame rate every

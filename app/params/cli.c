@@ -312,6 +312,19 @@ static int validate(const struct params *p, char *err, size_t errlen)
 			 "every board), not a governor of its own", p->wall);
 		return -1;
 	}
+	if (p->outputs[0] && strcmp(p->platform, "gbm") && strcmp(p->platform, "auto")) {
+		snprintf(err, errlen, "outputs: '%s' names KMS connectors, which --platform gbm (or auto) drives, not '%s'",
+			 p->outputs, p->platform);
+		return -1;
+	}
+	if (p->outputs[0] && wv.on && strcmp(p->outputs, "all")) {
+		/* a tile each along the row ("all": checked when the connectors are known) */
+		int n = 1;
+		for (const char *c = p->outputs; *c; c++)
+			n += *c == ',';
+		if (wall_view(p, w, h, n, &wv, err, errlen) < 0)
+			return -1;
+	}
 	if (p->device[0] && strcmp(p->platform, "device") && strcmp(p->platform, "auto")) {
 		snprintf(err, errlen, "device: '%s' names an EGL device of --platform device, not of '%s'%s", p->device,
 			 p->platform, !strcmp(p->platform, "gbm") ? " (gbm's card: --drm-device)" : "");

@@ -90,6 +90,87 @@ t=$(up)
 timeout 180 glmark2-es2-drm --winsys-options drm-device=/dev/dri/card0 -b clear:duration=0.5 >"$R/glmark2.log" 2>&1
 echo $? >"$R/glmark2.rc"
 say "glmark2-es2-drm rc $(cat "$R/glmark2.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+# 4b. two outputs from one process (--outputs): QEMU's second head is
+#    enabled by the host (its own VNC server, head=1, asks for ${W}x$H:
+#    Virtual-2 becomes connected with that preferred mode).  A wall's row
+#    (--outputs all --wall 2x1 --tile 0,0 --bezel 16): a screendump of each
+#    head; Virtual-2 forced off (sysfs status) while it runs: said once,
+#    Virtual-1 goes on flipping; back (detect): Virtual-2 modeset again, a
+#    screendump of it.  Then a mirror (no --wall, a list of names): a
+#    screendump of each head.  Virtual-2 is left forced off for what
+#    follows (one connector, as before).  wall-counts.txt: presented/shown
+#    when Virtual-2 went, later while it is off, when it is back.
+st2=/sys/class/drm/card0-Virtual-2/status
+NOMODE=$(echo "$ARGS" | sed 's/--mode [^ ]*//')
+# lcounts LOG: the last "N presented, M shown" of an --fps-report log
+lcounts() { grep -oE '[0-9]+ presented, [0-9]+ shown' "$1" | tail -1 | awk '{print $1, $3}'; }
+# lwait LOG FIELD MIN SECONDS: until the log's last report's field (1
+# presented, 2 shown) reaches MIN, while $pid lives
+lwait() {
+	n=0
+	while [ $n -lt $(($4 * 10)) ] && kill -0 $pid 2>/dev/null; do
+		[ "$(lcounts "$1" | awk -v f="$2" '{print $f}')" -ge "$3" ] 2>/dev/null && return 0
+		sleep 0.1
+		n=$((n + 1))
+	done
+	return 1
+}
+t=$(up)
+shot "head1-${W}x$H"
+n=0
+while [ "$(cat $st2 2>/dev/null)" != connected ] && [ $n -lt 300 ]; do sleep 0.1; n=$((n + 1)); done
+say "Virtual-2: $(cat $st2 2>/dev/null), modes $(head -2 /sys/class/drm/card0-Virtual-2/modes 2>/dev/null | tr '\n' ' ')"
+"$BIN" --platform gbm $NOMODE --outputs all --wall 2x1 --tile 0,0 --bezel 16 --count 0 --fps-report 0.01 >"$R/wall.log" 2>&1 &
+pid=$!
+# (the first frame is a blocking modeset: on screen once it is presented)
+if wait_line "$R/wall.log" ' [1-9] presented|[0-9][0-9]+ presented' 400 $pid; then
+	shot wall0
+	shot h1-wall1
+	state wall
+	echo off >$st2
+	wait_line "$R/wall.log" 'Virtual-2 on /dev/dri/card0 disconnected' 60 $pid
+	lwait "$R/wall.log" 1 $(($(lcounts "$R/wall.log" | cut -d' ' -f1) + 1)) 120
+	c0=$(lcounts "$R/wall.log")
+	lwait "$R/wall.log" 2 $(($(echo "$c0" | cut -d' ' -f2) + 2)) 120
+	c1=$(lcounts "$R/wall.log")
+	shot wall0-off
+	echo detect >$st2
+	wait_line "$R/wall.log" 'Virtual-2 on /dev/dri/card0 connected again' 60 $pid
+	c2=$(lcounts "$R/wall.log")
+	lwait "$R/wall.log" 2 $(($(echo "$c2" | cut -d' ' -f2) + 1)) 120
+	printf '%s\n%s\n%s\n' "$c0" "$c1" "$c2" >"$R/wall-counts.txt"
+	shot h1-wall1-back
+	kill -TERM $pid
+	wait $pid
+	echo $? >"$R/wall.rc"
+else
+	say "isoterra presented no frames (--outputs all, a wall)"
+	kill -KILL $pid 2>/dev/null
+	wait $pid
+	echo "$?" >"$R/wall.rc"
+fi
+say "two outputs, a wall's row, unplug and back: rc $(cat "$R/wall.rc") in $(awk "BEGIN { print $(up) - $t }") s"
+t=$(up)
+"$BIN" --platform gbm $NOMODE --outputs Virtual-1,Virtual-2 --count 0 --fps-report 0.01 >"$R/mirror.log" 2>&1 &
+pid=$!
+if wait_line "$R/mirror.log" ' [1-9] presented|[0-9][0-9]+ presented' 400 $pid; then
+	shot mirror0
+	shot h1-mirror1
+	kill -TERM $pid
+	wait $pid
+	echo $? >"$R/mirror.rc"
+else
+	say "isoterra presented no frames (--outputs, a mirror)"
+	kill -KILL $pid 2>/dev/null
+	wait $pid
+	echo "$?" >"$R/mirror.rc"
+fi
+# a connector that is not there: one line naming it
+"$BIN" --platform gbm $NOMODE --outputs Virtual-1,HDMI-A-9 --count 0 >"$R/badout.log" 2>&1
+echo $? >"$R/badout.rc"
+echo off >$st2
+say "two outputs, a mirror: rc $(cat "$R/mirror.rc") in $(awk "BEGIN { print $(up) - $t }") s; Virtual-2 forced $(cat $st2)"
+
 # 5. the display unplugged and plugged back (sysfs status) while isoterra
 #    runs: frames go on unshown, then it modesets again; a screendump once
 #    it is back.  hotplug-counts.txt: presented/shown when unplugged, after

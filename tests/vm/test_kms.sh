@@ -24,7 +24,16 @@
 #     display is back: QEMU's display resized through its VNC server,
 #     tests/vm/vnc_resize.py; the kernel sends a hotplug event): it
 #     modesets the new mode, renders at its size, and the screendump
-#     matches the host render at that size.
+#     matches the host render at that size;
+#   - two outputs from one process (QEMU's virtio-gpu with max_outputs=2,
+#     the second head enabled through a VNC server of its own): --outputs
+#     all --wall 2x1 --tile 0,0 --bezel 16 shows tile 0,0 on head 0 and
+#     tile 1,0 on head 1 (each head's screendump vs the host's headless
+#     render of that tile); Virtual-2 forced off while it runs: said once,
+#     Virtual-1 goes on flipping and showing its tile; back: Virtual-2 is
+#     modeset again and shows its tile; a mirror (--outputs
+#     Virtual-1,Virtual-2, no wall): both heads match the single render;
+#     an unknown connector is one line naming it.
 # See tests/vm/README.md and ../shared/vm/RECIPE.md.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/../display/lib.sh"
@@ -69,6 +78,8 @@ RH=300
 cat >"$T/config.sh" <<CONF
 BIN='$BIN'
 ARGS='$ARGS'
+W=$W
+H=$H
 RW=$RW
 RH=$RH
 CONF
@@ -83,7 +94,8 @@ echo "kernel $REL, initramfs $INITRD, results in $T, shader cache ${CACHE:-none}
 qemu-system-x86_64 -machine pc -cpu max -smp 2 -m 1536 -no-reboot \
 	-display none -vga none -serial "file:$T/serial.log" \
 	-monitor "unix:$T/mon.sock,server,nowait" -vnc "unix:$T/vnc.sock" \
-	-device virtio-gpu-pci,xres=$W,yres=$H \
+	-vnc "unix:$T/vnc1.sock,id=vnc1,display=gpu0,head=1" \
+	-device virtio-gpu-pci,id=gpu0,max_outputs=2,xres=$W,yres=$H \
 	-virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
 	-virtfs "local,path=$T,mount_tag=res,security_model=none,multidevs=remap" $CACHE_ARGS \
 	-kernel "/boot/vmlinuz-$REL" -initrd "$INITRD" \
@@ -99,6 +111,17 @@ while alive "$QPID"; do
 		name=${req##*/req-}
 		[ -e "$T/ack-$name" ] && continue
 		case $name in
+		head1-*) # head1-WxH: QEMU's second head enabled at that size (its VNC server)
+			size=${name#head1-}
+			python3 "$here/vnc_resize.py" "$T/vnc1.sock" "${size%x*}" "${size#*x}" >"$T/vnc1.log" 2>&1
+			echo $? >"$T/vnc1.rc"
+			echo "head 1 enabled at $size at $(($(date +%s) - t0)) s: $(tail -1 "$T/vnc1.log")"
+			;;
+		h1-*) # h1-NAME: a screendump of head 1
+			python3 "$here/hmp.py" "$T/mon.sock" "screendump $T/$name.ppm gpu0 1" >"$T/hmp-$name.log" 2>&1 ||
+				echo "screendump $name: $(cat "$T/hmp-$name.log")" >&2
+			echo "screendump $name (head 1) at $(($(date +%s) - t0)) s"
+			;;
 		resize-*) # resize-WxH: the display asks for another size (VNC)
 			size=${name#resize-}
 			python3 "$here/vnc_resize.py" "$T/vnc.sock" "${size%x*}" "${size#*x}" >"$T/vnc.log" 2>&1
@@ -252,6 +275,90 @@ if [ -s "$T/back.ppm" ]; then
 		--threshold 32 --max-mean 2.0 --max-frac 0.01
 else
 	bad "no screendump after the display came back"
+fi
+
+# two outputs from one process (--outputs): a wall's row, then a mirror
+NM=$(echo "$ARGS" | sed 's/--mode [^ ]*//')
+WALL="--wall 2x1 --bezel 16"
+wl=$T/wall.log
+[ "$(cat "$T/vnc1.rc" 2>/dev/null)" = 0 ] && ok "head 1 enabled at ${W}x$H: $(tail -1 "$T/vnc1.log")" ||
+	bad "head 1 over VNC: rc $(cat "$T/vnc1.rc" 2>/dev/null): $(cat "$T/vnc1.log" 2>/dev/null)"
+[ "$(cat "$T/wall.rc" 2>/dev/null)" = 0 ] && ok "--outputs all --wall 2x1: SIGTERM -> exit 0" ||
+	bad "--outputs all --wall 2x1: exit '$(cat "$T/wall.rc" 2>/dev/null)': $(tail -5 "$wl" 2>/dev/null)"
+if grep -q "gbm: 2 outputs on /dev/dri/card0, side by side, ${W}x$H each: one $((2 * W + 16))x$H surface" "$wl" 2>/dev/null &&
+	grep -q "gbm: /dev/dri/card0 Virtual-1 ${W}x$H@[0-9]* (atomic modesetting), output 1 of 2 at 0,0 of the $((2 * W + 16))x$H surface" "$wl" &&
+	grep -q "gbm: /dev/dri/card0 Virtual-2 ${W}x$H@[0-9]* (atomic modesetting), output 2 of 2 at $((W + 16)),0 of the $((2 * W + 16))x$H surface" "$wl"; then
+	ok "two outputs, one surface: $(grep -m1 -o '2 outputs on.*' "$wl")"
+else
+	bad "two outputs: no layout or modeset lines: $(grep -E 'outputs|modesetting|error' "$wl" 2>/dev/null | head -5)"
+fi
+grep -q "kms: atomic, flips pipelined with out-fences" "$wl" 2>/dev/null && ok "two outputs: $(grep -m1 -o 'kms: atomic.*' "$wl")" ||
+	bad "two outputs: flip path $(grep -m1 'kms:' "$wl" 2>/dev/null)"
+for c in 0 1; do
+	headless "$T/ref-tile$c.png" ${W}x$H $NM $WALL --tile $c,0 || continue
+done
+if [ -s "$T/wall0.ppm" ] && [ -s "$T/h1-wall1.ppm" ] && [ -s "$T/ref-tile0.png" ]; then
+	compare "head 0 (Virtual-1) shows tile 0,0: screendump vs host render of --tile 0,0" "$T/wall0.ppm" "$T/ref-tile0.png" \
+		--threshold 32 --max-mean 2.0 --max-frac 0.01
+	compare "head 1 (Virtual-2) shows tile 1,0: screendump vs host render of --tile 1,0" "$T/h1-wall1.ppm" "$T/ref-tile1.png" \
+		--threshold 32 --max-mean 2.0 --max-frac 0.01
+	# the negative control: the tiles differ, so each match means its tile
+	if "$IMGCMP" "$T/ref-tile0.png" "$T/ref-tile1.png" --threshold 32 --max-mean 2.0 --max-frac 0.01 >"$T/neg2.txt" 2>&1; then
+		bad "the two tiles' renders look alike: the tile checks prove nothing ($(cat "$T/neg2.txt"))"
+	else
+		ok "the two tiles differ (negative control)"
+	fi
+else
+	bad "no screendumps of the two heads (wall)"
+fi
+nd=$(grep -c "gbm: Virtual-2 on /dev/dri/card0 disconnected" "$wl" 2>/dev/null)
+[ "$nd" = 1 ] && grep -q "its CRTC off, the other outputs go on" "$wl" &&
+	ok "Virtual-2 unplugged: said once ($(grep -m1 -o 'Virtual-2 on .* disconnected.*' "$wl" | cut -c1-110))" ||
+	bad "Virtual-2 unplugged: $nd 'disconnected' lines, want 1: $(grep -E 'disconnected|error' "$wl" 2>/dev/null | head -3)"
+if [ -s "$T/wall-counts.txt" ]; then
+	set -- $(cat "$T/wall-counts.txt")
+	if [ $# = 6 ] && [ "$3" -gt "$1" ] && [ "$4" -ge $(($2 + 2)) ]; then
+		ok "Virtual-2 unplugged: Virtual-1 goes on flipping (presented $1 -> $3, shown $2 -> $4)"
+	else
+		bad "Virtual-2 unplugged: presented/shown $* (want presented up, shown +2 or more)"
+	fi
+else
+	bad "Virtual-2 unplugged: no frame counts from the guest"
+fi
+[ -s "$T/wall0-off.ppm" ] && [ -s "$T/ref-tile0.png" ] &&
+	compare "Virtual-2 unplugged: head 0 still shows tile 0,0" "$T/wall0-off.ppm" "$T/ref-tile0.png" \
+		--threshold 32 --max-mean 2.0 --max-frac 0.01
+grep -q "gbm: Virtual-2 on /dev/dri/card0 connected again: modesetting ${W}x$H@" "$wl" 2>/dev/null &&
+	[ "$(grep -c 'Virtual-2 .*(atomic modesetting)' "$wl")" = 2 ] &&
+	ok "Virtual-2 plugged back: modeset again ($(grep -m1 -o 'Virtual-2 on .* connected again.*' "$wl"))" ||
+	bad "Virtual-2 plugged back: no second modeset: $(grep -E 'Virtual-2|error' "$wl" 2>/dev/null | tail -4)"
+[ -s "$T/h1-wall1-back.ppm" ] && [ -s "$T/ref-tile1.png" ] &&
+	compare "Virtual-2 back: head 1 shows tile 1,0 again" "$T/h1-wall1-back.ppm" "$T/ref-tile1.png" \
+		--threshold 32 --max-mean 2.0 --max-frac 0.01 || bad "no screendump of head 1 after it came back"
+fl=$(grep -oE 'frames each output.s CRTC confirmed: Virtual-1 [0-9]+, Virtual-2 [0-9]+' "$wl" 2>/dev/null)
+f1=$(echo "$fl" | awk '{print $7}' | tr -d ,)
+f2=$(echo "$fl" | awk '{print $9}')
+[ -n "$f1" ] && [ -n "$f2" ] && [ "$f1" -gt "$f2" ] && [ "$f2" -ge 2 ] &&
+	ok "per CRTC: Virtual-1 $f1 frames, Virtual-2 $f2 (fewer: it was off a while)" ||
+	bad "per-CRTC counts: '$fl'"
+ml=$T/mirror.log
+[ "$(cat "$T/mirror.rc" 2>/dev/null)" = 0 ] && grep -q "gbm: 2 outputs on /dev/dri/card0, mirrored, ${W}x$H each: one ${W}x$H surface" "$ml" &&
+	ok "--outputs Virtual-1,Virtual-2 (no wall): exit 0, $(grep -m1 -o '2 outputs on.*' "$ml")" ||
+	bad "mirror: exit '$(cat "$T/mirror.rc" 2>/dev/null)': $(grep -E 'outputs|error' "$ml" 2>/dev/null | tail -3)"
+[ -s "$T/ref.png" ] || headless "$T/ref.png" ${W}x$H $NM
+for m in mirror0 h1-mirror1; do
+	if [ -s "$T/$m.ppm" ]; then
+		compare "mirror: head ${m#*mirror} ($m) vs host headless render" "$T/$m.ppm" "$T/ref.png" \
+			--threshold 32 --max-mean 2.0 --max-frac 0.01
+	else
+		bad "mirror: no screendump $m"
+	fi
+done
+if [ "$(cat "$T/badout.rc" 2>/dev/null)" != 0 ] && grep -q "no connector HDMI-A-9 on /dev/dri/card0 (its connectors: Virtual-1 connected, Virtual-2 connected)" "$T/badout.log" &&
+	[ "$(grep -c . "$T/badout.log")" -le 2 ]; then
+	ok "--outputs Virtual-1,HDMI-A-9: exit $(cat "$T/badout.rc"), one line: $(cat "$T/badout.log")"
+else
+	bad "--outputs Virtual-1,HDMI-A-9: exit $(cat "$T/badout.rc" 2>/dev/null): $(cat "$T/badout.log" 2>/dev/null)"
 fi
 
 # clear errors (no rendering involved)
