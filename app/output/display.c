@@ -44,16 +44,20 @@ static void report(struct display_sink *d, const struct timespec *now)
 	d->frames_last = d->frames;
 }
 
-/* The window's new size: a renderer of that size replaces fr->r. */
+/* The window's new size: a renderer of that size (the upright picture's,
+ * turned onto it as the old one was: --rotate) replaces fr->r. */
 static int resize(struct display_sink *d, struct sink_frame *fr, char *err, size_t errlen)
 {
 	struct platform *plat = d->plat;
 	char e[256];
-	struct renderer *nr = renderer_create(plat->width, plat->height, renderer_antialias(fr->r), e, sizeof(e));
+	int q = renderer_rotation(fr->r);
+	struct renderer *nr = renderer_create(q & 1 ? plat->height : plat->width, q & 1 ? plat->width : plat->height,
+					      renderer_antialias(fr->r), e, sizeof(e));
 	if (!nr) {
 		snprintf(err, errlen, "resize to %dx%d: %s", plat->width, plat->height, e);
 		return -1;
 	}
+	renderer_set_rotation(nr, q);
 	log_debug("resized %dx%d -> %dx%d", fr->w, fr->h, plat->width, plat->height);
 	renderer_destroy(fr->r);
 	fr->r = nr;

@@ -575,6 +575,11 @@ void renderer_set_rotation(struct renderer *r, int quarter)
 	r->quarter = quarter & 3;
 }
 
+int renderer_rotation(const struct renderer *r)
+{
+	return r->quarter;
+}
+
 void renderer_output_size(const struct renderer *r, int *w, int *h)
 {
 	*w = r->quarter & 1 ? r->h : r->w;

@@ -99,6 +99,7 @@ int renderer_read(struct renderer *r, struct image *img);
  * (width and height swapped for odd turns).  renderer_target stays the
  * upright picture's (overlays draw into it and turn with it). */
 void renderer_set_rotation(struct renderer *r, int quarter);
+int renderer_rotation(const struct renderer *r);
 void renderer_output_size(const struct renderer *r, int *w, int *h);
 /* Resolves the last frame and blits it to the default framebuffer (the
  * window surface), scaled to w x h (turned, with a rotation).  0 or -1. */
