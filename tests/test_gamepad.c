@@ -4,9 +4,14 @@
  * pad's state fed raw events (D-pad presses counted between takes, held
  * D-pad repeats, buttons, SYN_DROPPED), and hal_gamepad_open / poll over a
  * folder with no gamepad in it (hotplug's scan path; the real devices are
- * the VM test's: tests/vm/gpio_knobs_guest.sh). */
+ * the VM test's: tests/vm/gpio_knobs_guest.sh), and manual flights
+ * steered by a pad's inputs through the autopilot's guard: never in rock. */
 #include "hal.h"
 #include "stick.h"
+#include "params.h"
+#include "world.h"
+#include "density_ref.h"
+#include "noise.h"
 #include "tcheck.h"
 
 #include <linux/input.h>
@@ -295,6 +300,71 @@ static void test_open(void)
 	rmdir(dir);
 }
 
+/* A pad pushed around for 24 s (30 polls a second, as frames): dives
+ * (forward and the descend trigger), turns, pitches down into the ground,
+ * strafes; what controls.c does with its output (forward, right, up =
+ * climb - descend; yaw, pitch) steers the autopilot, which must keep the
+ * camera out of rock at every simulation step. */
+static void test_guard(void)
+{
+	static const char *const names[] = { "default", "alien", "caves", "canyon", "planet" };
+	static const struct {
+		int code, value;
+	} phases[][3] = {
+		{ { ABS_Y, -32768 }, { ABS_Z, 255 }, { ABS_RX, 0 } },      /* forward and down */
+		{ { ABS_Y, -32768 }, { ABS_Z, 0 }, { ABS_RX, 20000 } },    /* forward, turning right */
+		{ { ABS_Y, -32768 }, { ABS_RY, 32767 }, { ABS_RX, 0 } },   /* pitched down, forward */
+		{ { ABS_X, 32767 }, { ABS_Y, 0 }, { ABS_Z, 255 } },        /* strafing right, down */
+	};
+	struct stick_config c = { .deadzone = 0.15f, .trigger_deadzone = 0.05f, .curve = 2.0f };
+	for (size_t n = 0; n < sizeof(names) / sizeof(names[0]); n++) {
+		struct params p;
+		char err[256];
+		params_defaults(&p);
+		if (params_apply_preset(&p, names[n], err, sizeof(err)) < 0) {
+			CHECK(0, "%s", err);
+			continue;
+		}
+		p.fly_speed = 12.0f;
+		struct noise_set ns;
+		noise_set_init(&ns, p.seed);
+		struct autopilot ap;
+		if (autopilot_init(&ap, &p, NULL) < 0) {
+			CHECK(0, "%s: autopilot_init", names[n]);
+			continue;
+		}
+		struct stick_pad pad;
+		xpad(&pad, &c, NULL);
+		float least = 1e30f, path = 0.0f, prev[3];
+		memcpy(prev, ap.pos, sizeof(prev));
+		int frames = 0;
+		for (size_t ph = 0; ph < sizeof(phases) / sizeof(phases[0]); ph++) {
+			for (int k = 0; k < 3; k++)
+				stick_pad_event(&pad, 0, EV_ABS, phases[ph][k].code, phases[ph][k].value);
+			stick_pad_event(&pad, 0, EV_SYN, SYN_REPORT, 0);
+			for (int f = 0; f < 6 * 30; f++, frames++) {
+				struct stick_out o;
+				stick_pad_take(&pad, 0, &o);
+				float move[3] = { o.axis[STICK_FORWARD], o.axis[STICK_STRAFE],
+						  o.axis[STICK_CLIMB] - o.axis[STICK_DESCEND] };
+				float turn[2] = { o.axis[STICK_YAW], o.axis[STICK_PITCH] };
+				autopilot_steer(&ap, move, turn);
+				for (int s = 1; s <= 2; s++) { /* each 1/60 s step */
+					autopilot_advance(&ap, frames / 30.0 + s / 60.0);
+					least = fminf(least, -density_ref(&p, &ns, NULL, ap.pos[0], ap.pos[1], ap.pos[2]));
+					float d[3] = { ap.pos[0] - prev[0], ap.pos[1] - prev[1], ap.pos[2] - prev[2] };
+					path += sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+					memcpy(prev, ap.pos, sizeof(prev));
+				}
+			}
+		}
+		printf("guard: %-8s least air %.2f, %.0f units flown\n", names[n], (double)least, (double)path);
+		CHECK(least > 0.0f, "%s: never in rock (least air %g)", names[n], (double)least);
+		CHECK(path > 30.0f, "%s: it flew (%.1f units in 24 s)", names[n], (double)path);
+		autopilot_free(&ap);
+	}
+}
+
 int main(void)
 {
 	test_norm();
@@ -302,5 +372,6 @@ int main(void)
 	test_map();
 	test_pad();
 	test_open();
+	test_guard();
 	return tc_done("gamepad");
 }
