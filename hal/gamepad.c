@@ -77,7 +77,8 @@ static int read_state(struct hal_gamepad *g, const unsigned long *absbits)
 }
 
 /* Opens path and keeps it when it is a gamepad or joystick: 1, else 0
- * (why says what it is not; errno-style problems too). */
+ * (why says what it is not; errno-style problems too), -2 when it is no
+ * evdev node at all. */
 static int try_open(struct hal_gamepad *g, const char *path, char *why, size_t len)
 {
 	int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
@@ -98,7 +99,7 @@ static int try_open(struct hal_gamepad *g, const char *path, char *why, size_t l
 	if (ioctl(fd, EVIOCGVERSION, &version) < 0 || ioctl(fd, EVIOCGBIT(0, sizeof(types)), types) < 0) {
 		snprintf(why, len, "%s is not an evdev input device: %s", path, strerror(errno));
 		close(fd);
-		return 0;
+		return -2;
 	}
 	if (!bit(types, EV_ABS) || !bit(types, EV_KEY) || ioctl(fd, EVIOCGBIT(EV_ABS, sizeof(abs)), abs) < 0 ||
 	    ioctl(fd, EVIOCGBIT(EV_KEY, sizeof(key)), key) < 0 || !bit(abs, ABS_X) || !bit(abs, ABS_Y)) {
@@ -152,21 +153,22 @@ static int event_number(const char *name)
 	return *end || n < 0 || n > INT_MAX ? -1 : (int)n;
 }
 
-static void scan(struct hal_gamepad *g)
+/* -2 (why) when the named node is no evdev node, else 0. */
+static int scan(struct hal_gamepad *g, char *why, size_t len)
 {
-	char why[HAL_NAME_MAX + 96];
 	if (g->device[0]) {
-		if (try_open(g, g->device, why, sizeof(why)))
-			return;
+		int rc = try_open(g, g->device, why, len);
+		if (rc == 1 || rc == -2)
+			return rc == -2 ? -2 : 0;
 		if (!g->said_none) {
 			hal_logf(&g->log, HAL_INFO, "gamepad: %s; waiting for it", why);
 			g->said_none = true;
 		}
-		return;
+		return 0;
 	}
 	DIR *d = opendir(g->dir);
 	if (!d)
-		return;
+		return 0;
 	int best = -1;
 	struct dirent *e;
 	/* lowest first: a few nodes, tried in order of their numbers */
@@ -183,12 +185,13 @@ static void scan(struct hal_gamepad *g)
 		best = next;
 		char path[HAL_NAME_MAX + 32];
 		snprintf(path, sizeof(path), "%s/event%d", g->dir, next);
-		if (try_open(g, path, why, sizeof(why))) {
+		if (try_open(g, path, why, len) == 1) {
 			closedir(d);
-			return;
+			return 0;
 		}
 	}
 	closedir(d);
+	return 0;
 }
 
 static void watch(struct hal_gamepad *g)
@@ -267,7 +270,12 @@ struct hal_gamepad *hal_gamepad_open(const struct hal_gamepad_config *cfg, char 
 	if (g->ino < 0)
 		hal_logf(&g->log, HAL_WARN, "gamepad: inotify: %s; rescanning every %.1f s", strerror(errno), cfg->retry_s);
 	watch(g);
-	scan(g);
+	char why[HAL_NAME_MAX + 96];
+	if (scan(g, why, sizeof(why)) == -2) { /* a file of another kind: a configuration error */
+		snprintf(err, errlen, "gamepad_device %s", why);
+		hal_gamepad_close(g);
+		return NULL;
+	}
 	g->next_scan = hal_now_ns() + g->retry_ns;
 	if (g->fd >= 0) {
 		hal_logf(&g->log, HAL_INFO, "gamepad: %s (%s) opened", g->name, g->path);
@@ -353,7 +361,8 @@ void hal_gamepad_poll(struct hal_gamepad *g, uint64_t now_ns, struct hal_input *
 		}
 		if (g->rescan || (periodic && g->wd < 0)) {
 			g->rescan = false;
-			scan(g);
+			char why[HAL_NAME_MAX + 96];
+			scan(g, why, sizeof(why)); /* a node of another kind, named: said at the start */
 			if (g->fd >= 0) {
 				hal_logf(&g->log, HAL_INFO, "gamepad: %s (%s) opened", g->name, g->path);
 				g->said_none = false;

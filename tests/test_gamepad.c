@@ -296,6 +296,9 @@ static void test_open(void)
 	hal_gamepad_poll(g, hal_now_ns() + 1000 * MS, &in);
 	CHECK(!last[0], "not said again: %s", last);
 	hal_gamepad_close(g);
+	cfg.device = "/dev/null";
+	CHECK(!hal_gamepad_open(&cfg, err, sizeof(err)) && strstr(err, "gamepad_device /dev/null is not an evdev"),
+	      "a named node of another kind: %s", err);
 	hal_gamepad_close(NULL);
 	rmdir(dir);
 }
