@@ -1,5 +1,6 @@
-/* isoterra — the controls (see controls.h): inputs -> parameters, presets,
- * pause clock, OSD, screenshots, the knob log.  hal's configuration:
+/* isoterra — the controls (see controls.h): inputs (GPIO knobs, keys, a
+ * gamepad) -> parameters, presets, the autopilot's toggle, pause clock,
+ * OSD, screenshots, the knob log.  hal's configuration:
  * hal_config.c, v4l2_config.c. */
 #include "controls.h"
 #include "output.h"
@@ -85,6 +86,7 @@ bool knob_change(const struct knobs *k, struct params *p, int delta)
 struct controls {
 	struct hal_gpio *gpio;
 	struct hal_keys *keys;
+	struct hal_gamepad *pad;
 	struct osd *osd;
 	struct knobs knobs;
 	struct params base;    /* the start-up values (reset, preset cycling) */
@@ -97,9 +99,10 @@ struct controls {
 	uint64_t osd_until, osd_fade;
 	float fly[HAL_FLY_AXES]; /* manual camera: held input */
 	uint64_t fly_until;      /* ... until this time (ns) */
+	float stick[HAL_FLY_AXES]; /* a gamepad's sticks at the last poll (levels) */
 };
 
-/* The GPIO controls and the keys; err only for bad configuration. */
+/* The GPIO controls, the keys and the gamepad; err only for bad configuration. */
 static int open_inputs(struct controls *c, const struct params *p, char *err, size_t errlen)
 {
 	struct hal_gpio_config gc;
@@ -111,7 +114,12 @@ static int open_inputs(struct controls *c, const struct params *p, char *err, si
 	struct hal_keys_config kc;
 	hal_config_keys(p, &kc);
 	c->keys = hal_keys_open(&kc, err, errlen);
-	return !c->keys && err[0] ? -1 : 0;
+	if (!c->keys && err[0])
+		return -1;
+	struct hal_gamepad_config pc;
+	hal_config_gamepad(p, &pc);
+	c->pad = hal_gamepad_open(&pc, err, errlen);
+	return !c->pad && err[0] ? -1 : 0;
 }
 
 struct controls *controls_create(const struct params *p, char *err, size_t errlen)
@@ -134,12 +142,12 @@ struct controls *controls_create(const struct params *p, char *err, size_t errle
 			goto fail;
 		}
 	}
-	if (p->osd && (c->gpio || c->keys || p->shader_dir[0])) { /* knobs; live shader errors */
+	if (p->osd && (c->gpio || c->keys || c->pad || p->shader_dir[0])) { /* knobs; live shader errors */
 		c->osd = osd_create(err, errlen);
 		if (!c->osd)
 			goto fail;
 	}
-	if (c->gpio || c->keys)
+	if (c->gpio || c->keys || c->pad)
 		log_info("knobs: %d parameters (%s first)", c->knobs.count, c->knobs.count ? c->knobs.list[0]->name : "-");
 	return c;
 fail:
@@ -153,6 +161,7 @@ void controls_destroy(struct controls *c)
 		return;
 	hal_gpio_close(c->gpio);
 	hal_keys_close(c->keys);
+	hal_gamepad_close(c->pad);
 	osd_destroy(c->osd);
 	if (c->knob_log)
 		fclose(c->knob_log);
@@ -231,13 +240,29 @@ static void apply_preset(struct controls *c, struct params *p)
 	show(c, p, "preset", presets[c->preset].name, -1);
 }
 
+/* The keys held lately plus the gamepad's sticks, each axis within -1..1. */
 void controls_flight(struct controls *c, float move[3], float turn[2])
 {
 	bool on = c && hal_now_ns() < c->fly_until;
+	float v[HAL_FLY_AXES];
+	for (int i = 0; i < HAL_FLY_AXES; i++)
+		v[i] = c ? fmaxf(-1.0f, fminf(1.0f, (on ? c->fly[i] : 0.0f) + c->stick[i])) : 0.0f;
 	for (int i = 0; i < 3; i++)
-		move[i] = on ? c->fly[HAL_FLY_FORWARD + i] : 0.0f;
+		move[i] = v[HAL_FLY_FORWARD + i];
 	for (int i = 0; i < 2; i++)
-		turn[i] = on ? c->fly[HAL_FLY_YAW + i] : 0.0f;
+		turn[i] = v[HAL_FLY_YAW + i];
+}
+
+/* The autopilot on or off: the world's camera between auto and manual
+ * (the scene steers by the flight input while it is manual; the
+ * autopilot's guard keeps either out of rock). */
+static void toggle_autopilot(struct controls *c, struct params *p)
+{
+	p->camera = p->camera == CAMERA_MANUAL ? CAMERA_AUTO : CAMERA_MANUAL;
+	const char *cam = p->camera == CAMERA_MANUAL ? "manual" : "auto";
+	log_info("knob: camera %s (autopilot %s)", cam, p->camera == CAMERA_MANUAL ? "off" : "on");
+	knob_log(c, "camera %s", cam);
+	show(c, p, "camera", cam, -1);
 }
 
 /* Flight keys: held for 0.15 s from the last press. */
@@ -284,6 +309,8 @@ int controls_poll(struct controls *c, struct params *p)
 	memset(&in, 0, sizeof(in));
 	hal_gpio_poll(c->gpio, hal_now_ns(), &in);
 	hal_keys_poll(c->keys, &in);
+	hal_gamepad_poll(c->pad, hal_now_ns(), &in);
+	memcpy(c->stick, in.stick, sizeof(c->stick));
 	hold_flight(c, &in);
 	apply_knobs(c, p, &in);
 	for (int i = 0; i < in.actions[HAL_PRESET]; i++)
@@ -294,6 +321,8 @@ int controls_poll(struct controls *c, struct params *p)
 		knob_log(c, "%s", c->paused ? "paused" : "running");
 		show(c, p, c->paused ? "paused" : "running", "", -1);
 	}
+	if (in.actions[HAL_AUTOPILOT] % 2)
+		toggle_autopilot(c, p);
 	if (in.actions[HAL_SCREENSHOT])
 		c->shot = true;
 	return in.actions[HAL_QUIT] != 0;

@@ -1,4 +1,4 @@
-/* isoterra — the controls: hal's knobs, buttons and keys (hal/) mapped to
+/* isoterra — the controls: hal's knobs, buttons, keys and gamepad (hal/) mapped to
  * the parameters, and what they ask for besides: presets, reset, pause,
  * screenshots, the on-screen display of what changed (drawn by
  * render/osd.c) and the knob log.  hal's configuration from the
@@ -39,7 +39,7 @@ bool knob_change(const struct knobs *k, struct params *p, int delta);
 
 /* ---- the controls ------------------------------------------------------------ */
 struct controls;
-/* Opens the GPIO controls and keys the parameters configure (nothing
+/* Opens the GPIO controls, keys and gamepad the parameters configure (nothing
  * configured: a cheap object that does nothing).  Needs a current GL
  * context when the OSD is on.  NULL with err only for bad configuration
  * (exit 2). */
@@ -48,9 +48,12 @@ void controls_destroy(struct controls *c);
 /* Reads the inputs without blocking and applies them to *p.  1 when the
  * user asked to quit (key q, a quit button), else 0. */
 int controls_poll(struct controls *c, struct params *p);
-/* Manual camera: the flight keys pressed lately, as held inputs (-1..1):
- * forward, right, up; yaw right, pitch up.  A terminal repeats a held key
- * ~30 times a second, so a press holds for 0.15 s.  Zero when none. */
+/* Manual camera: the flight keys pressed lately, as held inputs, plus a
+ * gamepad's sticks (-1..1 each): forward, right, up; yaw right, pitch up.
+ * A terminal repeats a held key ~30 times a second, so a press holds for
+ * 0.15 s; the sticks are their levels at the last poll.  Zero when none.
+ * A gamepad's autopilot button (controls_poll) toggles p->camera between
+ * auto and manual. */
 void controls_flight(struct controls *c, float move[3], float turn[2]);
 /* Paused by a button or key (the frame loop's clocks stop). */
 bool controls_paused(const struct controls *c);

@@ -1,6 +1,6 @@
 /* isoterra — the hardware layer's door: GPIO knobs and buttons (libgpiod
- * 1.6 or 2.x), development keys (terminal / evdev) and, in v4l2_out.h,
- * V4L2 video output of rendered frames.
+ * 1.6 or 2.x), development keys (terminal / evdev), a gamepad (evdev) and,
+ * in v4l2_out.h, V4L2 video output of rendered frames.
  *
  * hal is a lower layer: it includes nothing of the application.  It takes
  * its configuration as the plain structs below (the application fills them
@@ -41,7 +41,9 @@ uint64_t hal_now_ns(void); /* CLOCK_MONOTONIC */
 /* ---- input events ------------------------------------------------------- */
 /* What a button, an encoder's push switch or a key asks for. */
 enum hal_action {
-	HAL_NONE, HAL_PRESET, HAL_SCREENSHOT, HAL_PAUSE, HAL_RESET, HAL_QUIT, HAL_NEXT, HAL_PREV, HAL_ACTION_COUNT
+	HAL_NONE, HAL_PRESET, HAL_SCREENSHOT, HAL_PAUSE, HAL_RESET, HAL_QUIT, HAL_NEXT, HAL_PREV,
+	HAL_AUTOPILOT, /* the camera: autopilot <-> manual flight (a gamepad's button) */
+	HAL_ACTION_COUNT
 };
 /* What turning an encoder does. */
 enum hal_turn { HAL_TURN_SELECT, HAL_TURN_CHANGE };
@@ -54,6 +56,8 @@ struct hal_input {
 	int change;                    /* detents: change its value */
 	int actions[HAL_ACTION_COUNT]; /* presses */
 	int fly[HAL_FLY_AXES];         /* key presses, signed (forward minus back, ...) */
+	float stick[HAL_FLY_AXES];     /* a gamepad's sticks and triggers now, -1..1 after the dead
+	                                  zone and the curve (levels, not counts; up = climb - descend) */
 };
 
 /* ---- GPIO: encoders and buttons (gpio.c, rotary.c) ------------------------ */
@@ -125,5 +129,37 @@ void hal_keys_feed_tty(const unsigned char *buf, size_t n, int *esc_state, struc
  * auto-repeats): the number of events, or -1 (nothing decoded) when n is not
  * a whole number of them. */
 int hal_keys_feed_evdev(const void *buf, size_t n, struct hal_input *in);
+
+/* ---- gamepad / joystick (gamepad.c over stick.c) ------------------------------ */
+/* Any evdev node with ABS_X and ABS_Y and a gamepad or joystick button
+ * (BTN_SOUTH / BTN_GAMEPAD, BTN_TRIGGER / BTN_JOYSTICK, ...), found by its
+ * capabilities, not its name, when it is plugged in (inotify on the
+ * device folder; a rescan every retry_s without it).  Left stick: forward
+ * and strafe; right stick: yaw and pitch; triggers: climb and descend;
+ * D-pad: select (left/right) and change (up/down) as the two encoders do;
+ * select resets, start toggles the autopilot (stick.h: the defaults, the
+ * map's syntax). */
+struct hal_gamepad_config {
+	bool enabled;
+	const char *device;        /* "" or NULL: any gamepad; else only this node (copied) */
+	const char *dir;           /* "" or NULL: /dev/input (tests) */
+	double retry_s;            /* without inotify: a rescan this often */
+	float deadzone, trigger_deadzone, curve;
+	double repeat_delay_ms, repeat_ms; /* a held D-pad repeats (repeat_ms 0: never) */
+	const char *map;           /* "role=input,..." over the defaults (stick.h) */
+	struct hal_log log;
+};
+
+struct hal_gamepad;
+/* NULL with err[0] == 0 when disabled; NULL with err on bad configuration
+ * (the map).  No gamepad yet is no error: one is picked up when it comes. */
+struct hal_gamepad *hal_gamepad_open(const struct hal_gamepad_config *cfg, char *err, size_t errlen);
+/* Adds the presses since the last poll to *in and the sticks' levels to
+ * in->stick (never blocks).  A device that goes away is reported once;
+ * another one (or the same back) is opened when it appears. */
+void hal_gamepad_poll(struct hal_gamepad *g, uint64_t now_ns, struct hal_input *in);
+/* The open device's node ("" when none). */
+const char *hal_gamepad_device(const struct hal_gamepad *g);
+void hal_gamepad_close(struct hal_gamepad *g);
 
 #endif

@@ -1,6 +1,6 @@
 /* isoterra — hal's configuration from the parameter table (hal_config.h):
  * the parameters' choices mapped to hal's enums, the GPIO encoders and
- * buttons, the keys, and hal's seams (its messages into the log, the V4L2
+ * buttons, the keys, the gamepad, and hal's seams (its messages into the log, the V4L2
  * conversion's program through the shader loader). */
 #include "hal_config.h"
 #include "gpu.h"
@@ -186,6 +186,20 @@ int hal_config_gpio(const struct params *p, struct hal_gpio_config *cfg, char *e
 		cfg->button[b].action = action_of[hal_choice(action, ARRAY_SIZE(action_of))];
 	}
 	return 0;
+}
+
+void hal_config_gamepad(const struct params *p, struct hal_gamepad_config *cfg)
+{
+	*cfg = (struct hal_gamepad_config){ .enabled = p->gamepad == GAMEPAD_AUTO,
+					    .device = p->gamepad_device,
+					    .retry_s = p->gpio_retry,
+					    .deadzone = p->gamepad_deadzone,
+					    .trigger_deadzone = p->gamepad_trigger_deadzone,
+					    .curve = p->gamepad_curve,
+					    .repeat_delay_ms = 400.0,
+					    .repeat_ms = p->gamepad_repeat_ms,
+					    .map = p->gamepad_map,
+					    .log = hal_config_log() };
 }
 
 void hal_config_keys(const struct params *p, struct hal_keys_config *cfg)

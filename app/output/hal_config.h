@@ -1,5 +1,5 @@
 /* isoterra — hal's configuration from the parameter table: the hal_*_config
- * structs hal/ takes (GPIO encoders and buttons, keys, V4L2 output), hal's
+ * structs hal/ takes (GPIO encoders and buttons, keys, gamepad, V4L2 output), hal's
  * messages routed to the log, and the V4L2 conversion's program built by
  * the shader loader.  hal/ knows nothing of parameters: this is where they
  * meet (hal_config.c, v4l2_config.c). */
@@ -19,6 +19,9 @@
  * missing from the table. */
 int hal_config_gpio(const struct params *p, struct hal_gpio_config *cfg, char *err, size_t errlen);
 void hal_config_keys(const struct params *p, struct hal_keys_config *cfg);
+/* The gamepad (gamepad = auto): its device, dead zones, curve, D-pad
+ * repeat and map; a rescan every gpio_retry s where inotify cannot watch. */
+void hal_config_gamepad(const struct params *p, struct hal_gamepad_config *cfg);
 /* The V4L2 output of frames of width x height. */
 void hal_config_v4l2(const struct params *p, int width, int height, struct hal_v4l2_config *cfg);
 /* hal's messages into the log, as the program's own ("isoterra: warning: ..."). */

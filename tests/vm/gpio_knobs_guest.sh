@@ -101,6 +101,9 @@ button2_line = 5
 button2_action = pause
 knob_params = ambient,sun,fov
 knob_log = $LOG
+gamepad = auto
+gamepad_repeat_ms = 0
+osd = false
 ambient = 0.28
 sun = 1.0
 fov = 40
@@ -224,6 +227,58 @@ else
 	bad "the new virtual keyboard is '$(cat $R/keys2.dev)', not $KDEV"
 fi
 exec 3>&-
+# a gamepad (uinput: sticks, triggers, a hat D-pad, buttons) plugged in
+# while the app runs: found by its capabilities (the keyboard above is
+# none), its D-pad selects and changes as the encoders do, select resets,
+# start toggles the camera; the picture follows the value
+mkfifo /run/pad.fifo || die "mkfifo"
+newpad() { # newpad FILE: a virtual gamepad fed from fd 4, its node in FILE
+	$INROOT "$PROBE" pad </run/pad.fifo >$1 2>>$R/pad.log &
+	exec 4>/run/pad.fifo
+	end=$(($(up) + 30))
+	while [ ! -s $1 ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
+	PDEV=$(cat $1)
+	[ -c "$PDEV" ] && ok "virtual gamepad $PDEV" || bad "no uinput gamepad: $(cat $R/pad.log)"
+}
+pad() { echo "$*" >&4; }
+# the newest frame written whole (the newest of all may be being written)
+lastframe() { ls $FR | sed -n 's/^f\([0-9]*\)\.png.*/\1/p' | sort -n | tail -2 | head -1; }
+# the picture (md5) of frame $1 (no OSD: osd = false)
+pic() { md5sum <"$(ls $FR/f$1.png* | head -1)" | cut -d' ' -f1; }
+newpad $R/pad.dev
+waitapp "gamepad: isoterra test pad ($PDEV) opened" && ok "gamepad plugged in: opened" ||
+	bad "gamepad not opened: $(tail -2 $R/app.log)"
+step "pad hat right" "select ambient"
+step "pad hat up" "ambient 0.31"
+nf0=$(frames) # a frame begun after this one has ambient 0.31
+step "pad press start" "camera manual" # (the volume's camera is the orbit either way)
+step "pad press start" "camera auto"
+waitframes $((nf0 + 3)) $WAIT || bad "no frames after the change"
+l=$(lastframe)
+pic1=$(pic $l)
+[ "$(pic $((l - 1)))" = "$pic1" ] && ok "ambient 0.31: the same picture in frames $((l - 1)) and $l" ||
+	bad "the picture changes by itself (frames $((l - 1)), $l)"
+step "pad press select" "ambient 0.28" # reset: the start-up value
+nf1=$(frames)
+# unplugged mid-run: reported once, the app goes on
+exec 4>&-
+waitapp "gamepad: isoterra test pad ($PDEV): .*waiting for a gamepad" && ok "unplugged gamepad reported" ||
+	bad "unplugged gamepad not reported: $(tail -2 $R/app.log)"
+nf=$(frames)
+waitframes $((nf + 2)) $WAIT && ok "frames rendered after the gamepad went away" || bad "no frames after the gamepad went away"
+waitframes $((nf1 + 2)) $WAIT
+[ "$(pic $(lastframe))" != "$pic1" ] && ok "the picture changed with the knob (ambient 0.31 -> 0.28, frame $(lastframe))" ||
+	bad "the same picture at ambient 0.31 and 0.28"
+[ "$(grep -c "waiting for a gamepad" $R/app.log)" -eq 1 ] && ok "reported once" ||
+	bad "reported $(grep -c 'waiting for a gamepad' $R/app.log) times"
+# plugged in again: picked up, works
+newpad $R/pad2.dev
+end=$(($(up) + WAIT))
+while [ "$(grep -c "gamepad: isoterra test pad .* opened" $R/app.log)" -lt 2 ] && [ "$(up)" -lt $end ]; do sleep 0.25; done
+[ "$(grep -c "gamepad: isoterra test pad .* opened" $R/app.log)" -eq 2 ] && ok "gamepad plugged in again: opened" ||
+	bad "gamepad not opened again: $(tail -2 $R/app.log)"
+step "pad hat left" "select fov"
+exec 4>&-
 # the chip comes back with a line taken (a kernel hog on line 4, the first
 # button): the app says so once, renders on and retries; once the line is
 # free again the chip is back and its knobs work
@@ -258,5 +313,27 @@ grep -q "enc2_b: knobs line 3: can be requested" $R/probe_free.txt && grep -q "$
 # ... and with the chip gone: the first blocking reason names it
 echo 0 >$D/live && rmdir $D/bank0 $D || bad "rmdir failed"
 probe 1 gone "NOT run.*enc1_a: gpiochip 'knobs' not found"
+# a flight steered by the gamepad: the world's manual camera (the
+# autopilot's guard keeps it out of rock), a tiny world of 8^3-cell blocks,
+# 3 frames; the left stick is held forward before the app starts (read as
+# the pad's state when it opens): the camera moves between frames 1 and 2
+# (with no input they are the same picture: frame time is frame / fps, the
+# world waits for its blocks; checked on the host)
+newpad $R/pad3.dev
+pad y -32768
+sleep 0.5 # the pad's state is set before the app opens it
+WF=/run/wframes
+mkdir -p $WF || die "mkdir $WF"
+t0=$(up)
+timeout 300 $INROOT "$BIN" --platform surfaceless --scene world --camera manual --size 64x48 --count 3 --block-cells 8 \
+	--block-size 16 --lod-levels 1 --view-distance 32 --lod-distance 1 --fade-time 0 --no-water --antialias off \
+	--ao-rays 0 --fly-speed 90 --gamepad auto --keyboard off --out "$WF/f%d.png" >$R/world.out 2>$R/world.log 3>&- 4>&-
+rc=$?
+exec 4>&-
+[ $rc -eq 0 ] && ok "world: 3 frames ($(($(up) - t0)) s)" || bad "world: exit $rc: $(tail -3 $R/world.log)"
+grep -q "gamepad: isoterra test pad ($PDEV) opened" $R/world.log && ok "world: the gamepad opened at the start" ||
+	bad "world: gamepad not opened: $(tail -2 $R/world.log)"
+[ -s $WF/f1.png ] && [ -s $WF/f2.png ] && ! cmp -s $WF/f1.png $WF/f2.png &&
+	ok "world: the left stick forward, the picture moves (frames 1, 2)" || bad "world: the stick did not move the picture"
 echo "guest: $fails failures"
 [ $fails -eq 0 ]

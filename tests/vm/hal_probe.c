@@ -11,6 +11,14 @@
  *       app's --keyboard evdev): prints its /dev/input/eventN, then presses
  *       and releases one key per line read from stdin (right, left, up,
  *       down, p, r, s, n, q); ends at EOF.
+ *   hal_probe pad
+ *       a virtual gamepad through /dev/uinput (two s16 sticks with a flat,
+ *       0..255 triggers, a hat D-pad, the gamepad buttons): prints its
+ *       /dev/input/eventN, then per line read from stdin: "AXIS VALUE"
+ *       (x y rx ry z rz hat0x hat0y: set and reported), "press BUTTON"
+ *       (south east north west tl tr select start mode: pressed, released)
+ *       or "hat right|left|up|down" (the D-pad pushed and let go); ends
+ *       at EOF (the device goes away).
  *   hal_probe convert IN.png OUT.raw [--v4l2-format F --v4l2-matrix M]
  *       (GL) the app's GPU conversion and PBO read-back of an image, to
  *       produce captures by hand when investigating.
@@ -290,14 +298,133 @@ static int keys(void)
 	return rc;
 }
 
+/* The event node of the uinput device just created on fd ("" none). */
+static void event_node(int fd, char *path, size_t len)
+{
+	char sys[64] = "", dir[128];
+	path[0] = 0;
+	if (ioctl(fd, UI_GET_SYSNAME(sizeof(sys)), sys) < 0)
+		return;
+	snprintf(dir, sizeof(dir), "/sys/devices/virtual/input/%s", sys);
+	DIR *d = opendir(dir);
+	for (struct dirent *e; d && (e = readdir(d)) != NULL;)
+		if (!strncmp(e->d_name, "event", 5))
+			snprintf(path, len, "/dev/input/%s", e->d_name);
+	if (d)
+		closedir(d);
+}
+
+static const struct {
+	const char *name;
+	int code, min, max, flat;
+} pad_axes[] = {
+	{ "x", ABS_X, -32768, 32767, 128 },   { "y", ABS_Y, -32768, 32767, 128 },  { "rx", ABS_RX, -32768, 32767, 128 },
+	{ "ry", ABS_RY, -32768, 32767, 128 }, { "z", ABS_Z, 0, 255, 0 },	     { "rz", ABS_RZ, 0, 255, 0 },
+	{ "hat0x", ABS_HAT0X, -1, 1, 0 },     { "hat0y", ABS_HAT0Y, -1, 1, 0 },
+};
+static const struct {
+	const char *name;
+	int code;
+} pad_buttons[] = {
+	{ "south", BTN_SOUTH }, { "east", BTN_EAST }, { "north", BTN_NORTH },   { "west", BTN_WEST },
+	{ "tl", BTN_TL },	{ "tr", BTN_TR },     { "select", BTN_SELECT }, { "start", BTN_START },
+	{ "mode", BTN_MODE },	{ "thumbl", BTN_THUMBL }, { "thumbr", BTN_THUMBR },
+};
+
+/* 0, or non-zero (a line not understood, a failed write) */
+static int pad_line(int fd, const char *line)
+{
+	char a[32], b[32];
+	int n = sscanf(line, "%31s %31s", a, b);
+	if (n != 2)
+		return -1;
+	if (!strcmp(a, "press")) {
+		for (size_t i = 0; i < sizeof(pad_buttons) / sizeof(pad_buttons[0]); i++)
+			if (!strcmp(b, pad_buttons[i].name))
+				return emit(fd, EV_KEY, pad_buttons[i].code, 1) || emit(fd, EV_SYN, SYN_REPORT, 0) ||
+				       emit(fd, EV_KEY, pad_buttons[i].code, 0) || emit(fd, EV_SYN, SYN_REPORT, 0);
+		return -1;
+	}
+	if (!strcmp(a, "hat")) {
+		int code = !strcmp(b, "left") || !strcmp(b, "right") ? ABS_HAT0X : ABS_HAT0Y;
+		int v = !strcmp(b, "right") || !strcmp(b, "down") ? 1 : -1;
+		if (strcmp(b, "left") && strcmp(b, "right") && strcmp(b, "up") && strcmp(b, "down"))
+			return -1;
+		return emit(fd, EV_ABS, code, v) || emit(fd, EV_SYN, SYN_REPORT, 0) || emit(fd, EV_ABS, code, 0) ||
+		       emit(fd, EV_SYN, SYN_REPORT, 0);
+	}
+	for (size_t i = 0; i < sizeof(pad_axes) / sizeof(pad_axes[0]); i++)
+		if (!strcmp(a, pad_axes[i].name))
+			return emit(fd, EV_ABS, pad_axes[i].code, atoi(b)) || emit(fd, EV_SYN, SYN_REPORT, 0);
+	return -1;
+}
+
+static int pad(void)
+{
+	int fd = open("/dev/uinput", O_WRONLY | O_CLOEXEC);
+	if (fd < 0) {
+		log_error("pad: /dev/uinput: %s", strerror(errno));
+		return 1;
+	}
+	struct uinput_setup us;
+	memset(&us, 0, sizeof(us));
+	us.id.bustype = BUS_VIRTUAL;
+	us.id.vendor = 0x1209; /* pid.codes' test range */
+	us.id.product = 0x0001;
+	snprintf(us.name, sizeof(us.name), "isoterra test pad");
+	int ok = ioctl(fd, UI_SET_EVBIT, EV_KEY) == 0 && ioctl(fd, UI_SET_EVBIT, EV_ABS) == 0;
+	for (size_t i = 0; i < sizeof(pad_buttons) / sizeof(pad_buttons[0]); i++)
+		ok = ok && ioctl(fd, UI_SET_KEYBIT, pad_buttons[i].code) == 0;
+	for (size_t i = 0; i < sizeof(pad_axes) / sizeof(pad_axes[0]); i++) {
+		struct uinput_abs_setup as;
+		memset(&as, 0, sizeof(as));
+		as.code = (unsigned short)pad_axes[i].code;
+		as.absinfo.minimum = pad_axes[i].min;
+		as.absinfo.maximum = pad_axes[i].max;
+		as.absinfo.flat = pad_axes[i].flat;
+		ok = ok && ioctl(fd, UI_SET_ABSBIT, pad_axes[i].code) == 0 && ioctl(fd, UI_ABS_SETUP, &as) == 0;
+	}
+	char path[300];
+	ok = ok && ioctl(fd, UI_DEV_SETUP, &us) == 0 && ioctl(fd, UI_DEV_CREATE) == 0;
+	if (!ok) {
+		log_error("pad: setting up the uinput device failed: %s", strerror(errno));
+		close(fd);
+		return 1;
+	}
+	event_node(fd, path, sizeof(path));
+	if (!path[0]) {
+		log_error("pad: no event node (is evdev loaded?)");
+		ioctl(fd, UI_DEV_DESTROY);
+		close(fd);
+		return 1;
+	}
+	printf("%s\n", path);
+	fflush(stdout);
+	char line[64];
+	int rc = 0;
+	while (fgets(line, sizeof(line), stdin)) {
+		line[strcspn(line, "\r\n")] = 0;
+		if (pad_line(fd, line) != 0) {
+			log_error("pad: '%s': %s", line, errno ? strerror(errno) : "not understood");
+			rc = 1;
+		}
+		errno = 0;
+	}
+	ioctl(fd, UI_DEV_DESTROY);
+	close(fd);
+	return rc;
+}
+
 int main(int argc, char **argv)
 {
 	if (argc == 2 && !strcmp(argv[1], "keys"))
 		return keys();
+	if (argc == 2 && !strcmp(argv[1], "pad"))
+		return pad();
 	if (argc >= 4 && !strcmp(argv[1], "convert"))
 		return convert(argc - 1, argv + 1);
 	if ((argc == 7 || argc == 9) && !strcmp(argv[1], "compare"))
 		return compare(argc - 1, argv + 1);
-	fprintf(stderr, "usage: hal_probe keys|convert|compare ... (see tests/vm/hal_probe.c)\n");
+	fprintf(stderr, "usage: hal_probe keys|pad|convert|compare ... (see tests/vm/hal_probe.c)\n");
 	return 2;
 }
