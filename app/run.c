@@ -412,8 +412,9 @@ static int run_frames(struct run *rn)
 	struct params *p = &rn->p;
 	char err[1024];
 	if (p->scene == SCENE_WORLD && p->camera == CAMERA_MANUAL)
-		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s)",
-			 p->keyboard == KEYBOARD_OFF ? "off!" : "terminal or evdev");
+		log_info("manual camera: i/k forward/back, j/l turn, u/o up/down, y/h pitch (keyboard: %s%s)",
+			 p->keyboard == KEYBOARD_OFF ? "off" : "terminal or evdev",
+			 p->gamepad == GAMEPAD_AUTO ? "; gamepad: sticks" : p->keyboard == KEYBOARD_OFF ? "!" : "");
 	struct frame_loop lp = { .p = p, .scene = rn->scene, .ctl = rn->ctl, .sinks = &rn->sinks, .r = rn->r,
 				 .shaders = rn->shaders,
 				 .w = rn->w, .h = rn->h, .live = !rn->plat->headless,

@@ -364,6 +364,23 @@ static void test_guard(void)
 		printf("guard: %-8s least air %.2f, %.0f units flown\n", names[n], (double)least, (double)path);
 		CHECK(least > 0.0f, "%s: never in rock (least air %g)", names[n], (double)least);
 		CHECK(path > 30.0f, "%s: it flew (%.1f units in 24 s)", names[n], (double)path);
+		/* start again: the autopilot flies on by itself (not the last
+		 * stick input held), still out of the rock */
+		autopilot_resume(&ap);
+		CHECK(!ap.manual, "%s: resumed: not manual", names[n]);
+		float auto_path = 0.0f, auto_least = 1e30f;
+		for (int s = 1; s <= 10 * 60; s++) {
+			autopilot_advance(&ap, frames / 30.0 + s / 60.0);
+			auto_least = fminf(auto_least, -density_ref(&p, &ns, NULL, ap.pos[0], ap.pos[1], ap.pos[2]));
+			float d[3] = { ap.pos[0] - prev[0], ap.pos[1] - prev[1], ap.pos[2] - prev[2] };
+			auto_path += sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+			memcpy(prev, ap.pos, sizeof(prev));
+		}
+		printf("resume: %-8s least air %.2f, %.0f units in 10 s\n", names[n], (double)auto_least, (double)auto_path);
+		CHECK(auto_least > 0.0f, "%s: the resumed autopilot never in rock (least air %g)", names[n],
+		      (double)auto_least);
+		CHECK(auto_path > 0.5f * p.fly_speed * 10.0f, "%s: the resumed autopilot flies (%.1f units in 10 s at %g/s)",
+		      names[n], (double)auto_path, (double)p.fly_speed);
 		autopilot_free(&ap);
 	}
 }

@@ -483,6 +483,16 @@ void autopilot_steer(struct autopilot *a, const float move_in[3], const float tu
 		a->in_turn[k] = fmaxf(-1.0f, fminf(1.0f, turn[k]));
 }
 
+void autopilot_resume(struct autopilot *a)
+{
+	a->manual = false;
+	memcpy(a->goal, a->dir, sizeof(a->goal));
+	memcpy(a->anchor, a->pos, sizeof(a->anchor));
+	a->anchor_t = a->t;
+	a->escape_until = 0;
+	a->blocked = false;
+}
+
 void autopilot_advance(struct autopilot *a, double t)
 {
 	while (a->t + STEP * 0.5 < t) {

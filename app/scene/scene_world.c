@@ -93,8 +93,10 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	double t0 = clock_ms();
 	double t = fr->clock_time;
 	p->time = ws->t0;
-	if (p->camera == CAMERA_MANUAL) /* manual: the keys steer, rock still stops */
+	if (p->camera == CAMERA_MANUAL) /* manual: the keys and the pad steer, rock still stops */
 		autopilot_steer(&ws->ap, fr->move, fr->turn);
+	else if (ws->ap.manual) /* the autopilot again (the pad's start button) */
+		autopilot_resume(&ws->ap);
 	struct camera cam;
 	if (t + 0.5 / 60.0 < ws->ap.t) { /* the realtime clock's period began again: so does the flight */
 		autopilot_free(&ws->ap);

@@ -135,6 +135,9 @@ void autopilot_advance(struct autopilot *a, double t);
 /* Manual flight from now on: holds this input (forward, right, up; yaw,
  * pitch; each -1..1) until the next call.  Still never enters rock. */
 void autopilot_steer(struct autopilot *a, const float move[3], const float turn[2]);
+/* Back to the autopilot after manual flight (the gamepad's start button):
+ * it flies on from where it is, along its heading. */
+void autopilot_resume(struct autopilot *a);
 /* Camera looking along the heading (slightly down; up is the planet's
  * radius in planet mode). */
 void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far);
