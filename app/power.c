@@ -165,18 +165,3 @@ bool power_low(const struct power *pw)
 {
 	return pw && pw->low;
 }
-
-void power_line(const struct power *pw, char *line, size_t len)
-{
-	if (!pw || !pw->bat.present) {
-		if (len)
-			line[0] = 0;
-		return;
-	}
-	char st[16];
-	snprintf(st, sizeof(st), "%s", pw->bat.status);
-	for (char *c = st; *c; c++)
-		if (*c >= 'A' && *c <= 'Z')
-			*c = (char)(*c - 'A' + 'a');
-	snprintf(line, len, "%s %d%% %s%s", pw->bat.name, pw->bat.percent, st, pw->low ? ", low power" : "");
-}

@@ -41,8 +41,5 @@ bool power_update(struct power *pw, const struct params *p, double now);
 /* What was read last (present false: none). */
 const struct battery *power_battery(const struct power *pw);
 bool power_low(const struct power *pw);
-/* "BAT0 42% discharging" ("" without a battery), " low power" appended
- * while the profile holds. */
-void power_line(const struct power *pw, char *line, size_t len);
 
 #endif

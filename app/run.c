@@ -12,7 +12,6 @@
 #include "scene.h"
 #include "output.h"
 
-#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
@@ -29,8 +28,9 @@ static double realtime_frame(const struct params *p, long long *last_tick, int *
 	long long tick = clock_realtime_tick(p->fps);
 	if (tick <= *last_tick) {
 		tick = *last_tick + 1;
-		if (clock_realtime_sleep_until(tick, p->fps) < 0)
-			log_warn("clock_nanosleep: %s", strerror(errno));
+		int rc = clock_sleep_until(CLOCK_REALTIME, (double)tick / p->fps);
+		if (rc)
+			log_warn("clock_nanosleep: %s", strerror(rc));
 	}
 	*last_tick = tick;
 	long long period = (long long)llround(p->clock_period * p->fps);
@@ -50,18 +50,6 @@ static void upright_size(const struct params *p, int w, int h, int *pw, int *ph)
 	*ph = odd ? w : h;
 }
 
-/* A renderer for an output of w x h: the upright picture's size, turned
- * onto the output (renderer_set_rotation).  NULL with err. */
-static struct renderer *renderer_for_output(const struct params *p, int w, int h, char *err, size_t errlen)
-{
-	int pw, ph;
-	upright_size(p, w, h, &pw, &ph);
-	struct renderer *r = renderer_create(pw, ph, p->antialias, err, errlen);
-	if (r)
-		renderer_set_rotation(r, (int)p->rotate);
-	return r;
-}
-
 /* The frame's part of the wall (params/wall.h) at the loop's size now. */
 static int frame_view(const struct frame_loop *lp, struct wall_view *v, char *err, size_t errlen)
 {
@@ -78,9 +66,7 @@ static int frame_view(const struct frame_loop *lp, struct wall_view *v, char *er
  * starts the schedule again from now (no burst to catch up). */
 static void pace(double cap, double *deadline)
 {
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	double now = (double)ts.tv_sec + (double)ts.tv_nsec / 1e9, period = 1.0 / cap;
+	double now = clock_ms() / 1e3, period = 1.0 / cap;
 	double next = *deadline + period;
 	if (*deadline <= 0.0 || now > next + period) { /* the first frame, or late */
 		*deadline = now;
@@ -89,13 +75,7 @@ static void pace(double cap, double *deadline)
 	*deadline = next;
 	if (now >= next)
 		return;
-	struct timespec dl = { .tv_sec = (time_t)next };
-	dl.tv_nsec = (long)((next - (double)dl.tv_sec) * 1e9);
-	if (dl.tv_nsec > 999999999L)
-		dl.tv_nsec = 999999999L;
-	int rc;
-	while ((rc = clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &dl, NULL)) == EINTR)
-		;
+	int rc = clock_sleep_until(CLOCK_MONOTONIC, next);
 	if (rc)
 		log_warn("clock_nanosleep: %s", strerror(rc));
 }
@@ -251,7 +231,7 @@ int render_to_image(const struct params *p_in, struct image *img, char *err, siz
 	struct scene *scene = scene_create(&p, err, errlen);
 	if (!scene)
 		return -1;
-	struct renderer *r = renderer_for_output(&p, w, h, err, errlen);
+	struct renderer *r = renderer_create_turned(w, h, (int)p.rotate, p.antialias, err, errlen);
 	struct sink_set sinks = { .n = 0 };
 	int rc = -1;
 	if (r && sinks_add(&sinks, sink_memory_open(img, err, errlen)) == 0) {
@@ -319,7 +299,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	if (gpu_init(&caps, p->verbose, err, errlen) < 0)
 		return 1;
 	log_debug("platform %s on %s", rn->plat->backend->name, rn->plat->device_desc);
-	rn->r = renderer_for_output(p, rn->w, rn->h, err, errlen);
+	rn->r = renderer_create_turned(rn->w, rn->h, (int)p->rotate, p->antialias, err, errlen);
 	return rn->r ? 0 : 1;
 }
 

@@ -114,29 +114,57 @@ static void fill_rate(const struct params *p_in)
 /* --scale S: the full-quality fly-throughs drawn at that render scale */
 static float full_scale = 1.0f;
 
+/* A world, its autopilot and a renderer for one flight (the fly-throughs
+ * and the wall's): 0, or -1 (said on stderr, nothing left open). */
+struct flight {
+	struct renderer *r;
+	struct edits *ed;
+	struct world *wd;
+	struct autopilot ap;
+};
+
+static int flight_open(struct flight *fl, const struct params *p, int w, int h)
+{
+	char err[512] = "out of memory";
+	fl->r = renderer_create(w, h, p->antialias, err, sizeof(err));
+	fl->ed = edits_create();
+	fl->wd = fl->r && fl->ed ? world_create(p, fl->ed, err, sizeof(err)) : NULL;
+	if (!fl->wd || autopilot_init(&fl->ap, p, fl->ed) < 0) {
+		fprintf(stderr, "bench: %s\n", err);
+		renderer_destroy(fl->r);
+		world_destroy(fl->wd);
+		edits_destroy(fl->ed);
+		return -1;
+	}
+	return 0;
+}
+
+static void flight_close(struct flight *fl)
+{
+	autopilot_free(&fl->ap);
+	world_destroy(fl->wd);
+	edits_destroy(fl->ed);
+	renderer_destroy(fl->r);
+}
+
 /* p50 of one fly-through (ms), -1 if it could not run */
 static double flythrough(const struct params *p_in, int w, int h, int frames, bool governed)
 {
 	char err[512];
 	struct params p = *p_in;
 	snprintf(p.size, sizeof(p.size), "%dx%d", w, h);
-	struct renderer *r = renderer_create(w, h, p.antialias, err, sizeof(err));
-	struct edits *ed = edits_create();
-	struct world *wd = world_create(&p, ed, err, sizeof(err));
-	struct autopilot ap;
-	if (!r || !wd || autopilot_init(&ap, &p, ed) < 0) {
-		fprintf(stderr, "bench: %s\n", err);
-		renderer_destroy(r);
-		world_destroy(wd);
-		edits_destroy(ed);
+	struct flight fl;
+	if (flight_open(&fl, &p, w, h) < 0)
 		return -1;
-	}
+	struct renderer *r = fl.r;
+	struct world *wd = fl.wd;
+	struct autopilot *ap = &fl.ap;
 	struct governor gov;
 	struct governor_quality q = governor_level(0);
 	governor_init(&gov, 1000.0 / (p.target_fps > 0 ? p.target_fps : 30.0));
 	struct params eff = p;
 	struct camera c;
-	autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
+	autopilot_camera(ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
 	if (!governed && full_scale < 1.0f && renderer_set_scale(r, full_scale, err, sizeof(err)) < 0)
 		fprintf(stderr, "bench: %s\n", err);
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
@@ -146,8 +174,8 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	for (int f = 0; f < frames; f++) {
 		double t0 = clock_ms();
 		double t = (t0 - start) / 1e3;
-		autopilot_advance(&ap, t);
-		autopilot_camera(&ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
+		autopilot_advance(ap, t);
+		autopilot_camera(ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
 		if (governed) { /* as the world scene does on a display */
 			governor_apply(&q, &p, &eff);
 			world_set_far_octaves_drop(wd, q.far_octaves_drop);
@@ -185,19 +213,16 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	printf("\n");
 	double p50 = ft[frames / 2];
 	free(ft);
-	autopilot_free(&ap);
-	world_destroy(wd);
-	edits_destroy(ed);
-	renderer_destroy(r);
+	flight_close(&fl);
 	return p50;
 }
 
 /* One offline flight (frame f at f / 30 s, blocks generated as an offline
  * run does: gen_per_frame a frame, so each run does the same work) of the
- * whole wall (tile NULL) or of one tile of it: mean frame ms (update +
- * draw, the GPU finished), its CPU ms, into *mean / *cpu; p50 returned. */
-static double wall_flight(const struct params *p_in, int tw, int th, const char *tile, int frames, double *mean,
-			  double *cpu)
+ * whole wall (tile NULL) or of one tile of it: the mean frame ms (update +
+ * draw, the GPU finished) and its CPU ms into *mean / *cpu.  0 or -1. */
+static int wall_flight(const struct params *p_in, int tw, int th, const char *tile, int frames, double *mean,
+		       double *cpu)
 {
 	char err[512];
 	struct params p = *p_in;
@@ -212,52 +237,33 @@ static double wall_flight(const struct params *p_in, int tw, int th, const char 
 		h = rows * th;
 		snprintf(p.wall, sizeof(p.wall), "1x1");
 	}
+	struct flight fl;
 	if (wall_view(&p, w, h, 1, &v, err, sizeof(err)) < 0) {
 		fprintf(stderr, "bench: %s\n", err);
 		return -1;
 	}
-	struct renderer *r = renderer_create(w, h, p.antialias, err, sizeof(err));
-	struct edits *ed = edits_create();
-	struct world *wd = world_create(&p, ed, err, sizeof(err));
-	struct autopilot ap;
-	if (!r || !wd || autopilot_init(&ap, &p, ed) < 0) {
-		fprintf(stderr, "bench: %s\n", err);
-		renderer_destroy(r);
-		world_destroy(wd);
-		edits_destroy(ed);
+	if (flight_open(&fl, &p, w, h) < 0)
 		return -1;
-	}
 	struct camera c;
 	float far = p.view_distance * 1.2f;
-	autopilot_camera(&ap, &c, p.fov, v.aspect, far);
+	autopilot_camera(&fl.ap, &c, p.fov, v.aspect, far);
 	camera_window(&c, &v);
-	world_fill(wd, &p, &c, 0.0);
-	double *ft = malloc(sizeof(double) * (size_t)frames);
+	world_fill(fl.wd, &p, &c, 0.0);
 	double sum = 0.0, cpu0 = bench_cpu_ms();
-	for (int f = 0; f < frames && ft; f++) {
+	for (int f = 0; f < frames; f++) {
 		double t0 = clock_ms(), t = f / 30.0;
-		autopilot_advance(&ap, t);
-		autopilot_camera(&ap, &c, p.fov, v.aspect, far);
+		autopilot_advance(&fl.ap, t);
+		autopilot_camera(&fl.ap, &c, p.fov, v.aspect, far);
 		camera_window(&c, &v);
-		world_update(wd, &p, &c, t, true);
-		world_draw(wd, r, &c, &p, t);
+		world_update(fl.wd, &p, &c, t, true);
+		world_draw(fl.wd, fl.r, &c, &p, t);
 		glFinish();
-		ft[f] = clock_ms() - t0;
-		sum += ft[f];
+		sum += clock_ms() - t0;
 	}
 	*cpu = (bench_cpu_ms() - cpu0) / frames;
 	*mean = sum / frames;
-	double p50 = -1;
-	if (ft) {
-		qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
-		p50 = ft[frames / 2];
-	}
-	free(ft);
-	autopilot_free(&ap);
-	world_destroy(wd);
-	edits_destroy(ed);
-	renderer_destroy(r);
-	return p50;
+	flight_close(&fl);
+	return 0;
 }
 
 /* A 2x2 wall of tw x th tiles: each tile's frame against the whole

@@ -208,6 +208,19 @@ static int load(struct image *img, const char *path, char *err, size_t errlen)
 	return rc;
 }
 
+/* img cut to its rectangle x, y, w, h (inside it).  0, or -1 out of memory. */
+static int crop(struct image *img, int x, int y, int w, int h)
+{
+	struct image c = { w, h, malloc((size_t)w * h * 4) };
+	if (!c.rgba)
+		return -1;
+	for (int r = 0; r < h; r++)
+		memcpy(c.rgba + (size_t)r * w * 4, img->rgba + ((size_t)(y + r) * img->width + x) * 4, (size_t)w * 4);
+	image_free(img);
+	*img = c;
+	return 0;
+}
+
 static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
@@ -325,18 +338,12 @@ int main(int argc, char **argv)
 			image_free(&b);
 			return 2;
 		}
-		struct image c = { b.width, b.height, malloc((size_t)b.width * b.height * 4) };
-		if (!c.rgba) {
+		if (crop(&a, at_x, at_y, b.width, b.height) < 0) {
 			fprintf(stderr, "imgcmp: out of memory\n");
 			image_free(&a);
 			image_free(&b);
 			return 2;
 		}
-		for (int y = 0; y < b.height; y++)
-			memcpy(c.rgba + (size_t)y * b.width * 4, a.rgba + ((size_t)(at_y + y) * a.width + at_x) * 4,
-			       (size_t)b.width * 4);
-		image_free(&a);
-		a = c;
 	}
 	if (rg[0] >= 0 && a.width == b.width && a.height == b.height) { /* both cut to the region */
 		if (rg[0] + rg[2] > a.width || rg[1] + rg[3] > a.height) {
@@ -346,20 +353,11 @@ int main(int argc, char **argv)
 			image_free(&b);
 			return 2;
 		}
-		struct image *im[2] = { &a, &b };
-		for (int k = 0; k < 2; k++) {
-			struct image c = { rg[2], rg[3], malloc((size_t)rg[2] * rg[3] * 4) };
-			if (!c.rgba) {
-				fprintf(stderr, "imgcmp: out of memory\n");
-				image_free(&a);
-				image_free(&b);
-				return 2;
-			}
-			for (int y = 0; y < rg[3]; y++)
-				memcpy(c.rgba + (size_t)y * rg[2] * 4,
-				       im[k]->rgba + ((size_t)(rg[1] + y) * im[k]->width + rg[0]) * 4, (size_t)rg[2] * 4);
-			image_free(im[k]);
-			*im[k] = c;
+		if (crop(&a, rg[0], rg[1], rg[2], rg[3]) < 0 || crop(&b, rg[0], rg[1], rg[2], rg[3]) < 0) {
+			fprintf(stderr, "imgcmp: out of memory\n");
+			image_free(&a);
+			image_free(&b);
+			return 2;
 		}
 	}
 	if (a.width != b.width || a.height != b.height) {

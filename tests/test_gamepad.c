@@ -308,6 +308,18 @@ static void test_open(void)
  * strafes; what controls.c does with its output (forward, right, up =
  * climb - descend; yaw, pitch) steers the autopilot, which must keep the
  * camera out of rock at every simulation step. */
+/* One 1/60 s step of the flight to time t: the least air and the path so
+ * far (prev: where it was). */
+static void guard_step(struct autopilot *ap, double t, const struct params *p, const struct noise_set *ns,
+		       float prev[3], float *least, float *path)
+{
+	autopilot_advance(ap, t);
+	*least = fminf(*least, -density_ref(p, ns, NULL, ap->pos[0], ap->pos[1], ap->pos[2]));
+	float d[3] = { ap->pos[0] - prev[0], ap->pos[1] - prev[1], ap->pos[2] - prev[2] };
+	*path += sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	memcpy(prev, ap->pos, sizeof(ap->pos));
+}
+
 static void test_guard(void)
 {
 	static const char *const names[] = { "default", "alien", "caves", "canyon", "planet" };
@@ -352,13 +364,8 @@ static void test_guard(void)
 						  o.axis[STICK_CLIMB] - o.axis[STICK_DESCEND] };
 				float turn[2] = { o.axis[STICK_YAW], o.axis[STICK_PITCH] };
 				autopilot_steer(&ap, move, turn);
-				for (int s = 1; s <= 2; s++) { /* each 1/60 s step */
-					autopilot_advance(&ap, frames / 30.0 + s / 60.0);
-					least = fminf(least, -density_ref(&p, &ns, NULL, ap.pos[0], ap.pos[1], ap.pos[2]));
-					float d[3] = { ap.pos[0] - prev[0], ap.pos[1] - prev[1], ap.pos[2] - prev[2] };
-					path += sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-					memcpy(prev, ap.pos, sizeof(prev));
-				}
+				for (int s = 1; s <= 2; s++) /* each 1/60 s step */
+					guard_step(&ap, frames / 30.0 + s / 60.0, &p, &ns, prev, &least, &path);
 			}
 		}
 		printf("guard: %-8s least air %.2f, %.0f units flown\n", names[n], (double)least, (double)path);
@@ -369,13 +376,8 @@ static void test_guard(void)
 		autopilot_resume(&ap);
 		CHECK(!ap.manual, "%s: resumed: not manual", names[n]);
 		float auto_path = 0.0f, auto_least = 1e30f;
-		for (int s = 1; s <= 10 * 60; s++) {
-			autopilot_advance(&ap, frames / 30.0 + s / 60.0);
-			auto_least = fminf(auto_least, -density_ref(&p, &ns, NULL, ap.pos[0], ap.pos[1], ap.pos[2]));
-			float d[3] = { ap.pos[0] - prev[0], ap.pos[1] - prev[1], ap.pos[2] - prev[2] };
-			auto_path += sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-			memcpy(prev, ap.pos, sizeof(prev));
-		}
+		for (int s = 1; s <= 10 * 60; s++)
+			guard_step(&ap, frames / 30.0 + s / 60.0, &p, &ns, prev, &auto_least, &auto_path);
 		printf("resume: %-8s least air %.2f, %.0f units in 10 s\n", names[n], (double)auto_least, (double)auto_path);
 		CHECK(auto_least > 0.0f, "%s: the resumed autopilot never in rock (least air %g)", names[n],
 		      (double)auto_least);

@@ -23,19 +23,19 @@ static inline long long clock_realtime_tick(double fps)
 	return (long long)(((double)ts.tv_sec + (double)ts.tv_nsec / 1e9) * fps);
 }
 
-/* Sleeps until tick `tick` of 1/fps begins on CLOCK_REALTIME (an absolute
- * deadline: a late wake-up does not add up).  0, or -1 (errno). */
-static inline int clock_realtime_sleep_until(long long tick, double fps)
+/* Sleeps until second s of clock id (an absolute deadline: a late wake-up
+ * does not add up; the frame cap on CLOCK_MONOTONIC, a wall's next tick on
+ * CLOCK_REALTIME).  0, or clock_nanosleep's error number. */
+static inline int clock_sleep_until(clockid_t id, double s)
 {
-	double s = (double)tick / fps;
 	struct timespec ts = { .tv_sec = (time_t)s };
 	ts.tv_nsec = (long)((s - (double)ts.tv_sec) * 1e9);
 	if (ts.tv_nsec >= 1000000000L)
 		ts.tv_nsec = 999999999L;
 	int rc;
-	while ((rc = clock_nanosleep(CLOCK_REALTIME, TIMER_ABSTIME, &ts, NULL)) == EINTR)
+	while ((rc = clock_nanosleep(id, TIMER_ABSTIME, &ts, NULL)) == EINTR)
 		;
-	return rc ? -1 : 0;
+	return rc;
 }
 
 #endif

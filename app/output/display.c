@@ -50,14 +50,12 @@ static int resize(struct display_sink *d, struct sink_frame *fr, char *err, size
 {
 	struct platform *plat = d->plat;
 	char e[256];
-	int q = renderer_rotation(fr->r);
-	struct renderer *nr = renderer_create(q & 1 ? plat->height : plat->width, q & 1 ? plat->width : plat->height,
-					      renderer_antialias(fr->r), e, sizeof(e));
+	struct renderer *nr = renderer_create_turned(plat->width, plat->height, renderer_rotation(fr->r),
+						     renderer_antialias(fr->r), e, sizeof(e));
 	if (!nr) {
 		snprintf(err, errlen, "resize to %dx%d: %s", plat->width, plat->height, e);
 		return -1;
 	}
-	renderer_set_rotation(nr, q);
 	log_debug("resized %dx%d -> %dx%d", fr->w, fr->h, plat->width, plat->height);
 	renderer_destroy(fr->r);
 	fr->r = nr;

@@ -575,15 +575,17 @@ void renderer_set_rotation(struct renderer *r, int quarter)
 	r->quarter = quarter & 3;
 }
 
+struct renderer *renderer_create_turned(int w, int h, int quarter, int antialias, char *err, size_t errlen)
+{
+	struct renderer *r = renderer_create(quarter & 1 ? h : w, quarter & 1 ? w : h, antialias, err, errlen);
+	if (r)
+		renderer_set_rotation(r, quarter);
+	return r;
+}
+
 int renderer_rotation(const struct renderer *r)
 {
 	return r->quarter;
-}
-
-void renderer_output_size(const struct renderer *r, int *w, int *h)
-{
-	*w = r->quarter & 1 ? r->h : r->w;
-	*h = r->quarter & 1 ? r->w : r->h;
 }
 
 int renderer_read(struct renderer *r, struct image *img)

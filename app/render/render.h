@@ -95,12 +95,15 @@ int renderer_read(struct renderer *r, struct image *img);
 
 /* A panel turned `quarter` quarter turns clockwise (--rotate): the renderer
  * draws the upright picture at its own size, and renderer_read and
- * renderer_blit_to_default give the turned frame, of renderer_output_size
- * (width and height swapped for odd turns).  renderer_target stays the
- * upright picture's (overlays draw into it and turn with it). */
+ * renderer_blit_to_default give the turned frame (width and height swapped
+ * for odd turns).  renderer_target stays the upright picture's (overlays
+ * draw into it and turn with it). */
 void renderer_set_rotation(struct renderer *r, int quarter);
 int renderer_rotation(const struct renderer *r);
-void renderer_output_size(const struct renderer *r, int *w, int *h);
+/* A renderer for an output of w x h turned `quarter` quarter turns: the
+ * upright picture's size (swapped for odd turns), the rotation set.  NULL
+ * with err. */
+struct renderer *renderer_create_turned(int w, int h, int quarter, int antialias, char *err, size_t errlen);
 /* Resolves the last frame and blits it to the default framebuffer (the
  * window surface), scaled to w x h (turned, with a rotation).  0 or -1. */
 int renderer_blit_to_default(struct renderer *r, int w, int h);

@@ -14,7 +14,7 @@
 struct upscale {
 	GLuint prog, tex, fbo; /* the low-resolution copy, sampled */
 	int w, h;              /* the texture's size (the target's) */
-	GLint l_src_px, l_tex_px, l_alpha;
+	GLint l_src_px, l_tex_px, l_alpha, l_quarter;
 };
 
 /* At the target's size w x h, drawing with fragment shader fs

@@ -21,6 +21,7 @@ int upscale_init(struct upscale *u, const char *fs, int w, int h, char *err, siz
 	u->l_src_px = glGetUniformLocation(u->prog, "u_src_px");
 	u->l_tex_px = glGetUniformLocation(u->prog, "u_tex_px");
 	u->l_alpha = glGetUniformLocation(u->prog, "u_alpha");
+	u->l_quarter = glGetUniformLocation(u->prog, "u_quarter"); /* rotate.frag's */
 	glUseProgram(u->prog);
 	glUniform1i(glGetUniformLocation(u->prog, "u_src"), TEX_FRAME);
 	glUseProgram(0);
@@ -82,7 +83,7 @@ int upscale_draw_rotated(struct upscale *u, GLuint target, int w, int h, int qua
 	glDisable(GL_DEPTH_TEST);
 	glDisable(GL_BLEND);
 	glUseProgram(u->prog);
-	glUniform1i(glGetUniformLocation(u->prog, "u_quarter"), quarter);
+	glUniform1i(u->l_quarter, quarter);
 	glActiveTexture(GL_TEXTURE0 + TEX_FRAME);
 	glBindTexture(GL_TEXTURE_2D, u->tex);
 	glDrawArrays(GL_TRIANGLES, 0, 3);
