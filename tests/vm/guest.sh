@@ -21,6 +21,13 @@ shot() {
 	while [ ! -e "$R/ack-$1" ] && [ $n -lt 600 ]; do sleep 0.1; n=$((n + 1)); done
 	[ -e "$R/ack-$1" ] || say "no screendump $1 from the host"
 }
+# stop_app SIGNAL NAME: the app ($pid) sent SIGNAL (TERM, or KILL when it
+# showed nothing), waited for; its exit status in NAME.rc
+stop_app() {
+	kill -"$1" $pid 2>/dev/null
+	wait $pid
+	echo $? >"$R/$2.rc"
+}
 # state NAME: the KMS state (debugfs) of card0
 state() { cat /sys/kernel/debug/dri/0/state >"$R/state-$1.txt" 2>&1; }
 # wait for a line matching $2 in file $1 (timeout $3 s) while pid $4 lives
@@ -54,16 +61,12 @@ if wait_line "$R/app.log" ' [2-9] presented|[0-9][0-9]+ presented' 400 $pid; the
 	exec 3<>/dev/dri/card0
 	shot app
 	state app
-	kill -TERM $pid
-	wait $pid
-	echo $? >"$R/app.rc"
+	stop_app TERM app
 	state after
 	shot after
 else
 	say "isoterra presented no frames"
-	kill -KILL $pid 2>/dev/null
-	wait $pid
-	echo "$?" >"$R/app.rc"
+	stop_app KILL app
 	exec 3<>/dev/dri/card0
 fi
 
@@ -140,14 +143,10 @@ if wait_line "$R/wall.log" ' [1-9] presented|[0-9][0-9]+ presented' 400 $pid; th
 	lwait "$R/wall.log" 2 $(($(echo "$c2" | cut -d' ' -f2) + 1)) 120
 	printf '%s\n%s\n%s\n' "$c0" "$c1" "$c2" >"$R/wall-counts.txt"
 	shot h1-wall1-back
-	kill -TERM $pid
-	wait $pid
-	echo $? >"$R/wall.rc"
+	stop_app TERM wall
 else
 	say "isoterra presented no frames (--outputs all, a wall)"
-	kill -KILL $pid 2>/dev/null
-	wait $pid
-	echo "$?" >"$R/wall.rc"
+	stop_app KILL wall
 fi
 say "two outputs, a wall's row, unplug and back: rc $(cat "$R/wall.rc") in $(awk "BEGIN { print $(up) - $t }") s"
 t=$(up)
@@ -156,14 +155,10 @@ pid=$!
 if wait_line "$R/mirror.log" ' [1-9] presented|[0-9][0-9]+ presented' 400 $pid; then
 	shot mirror0
 	shot h1-mirror1
-	kill -TERM $pid
-	wait $pid
-	echo $? >"$R/mirror.rc"
+	stop_app TERM mirror
 else
 	say "isoterra presented no frames (--outputs, a mirror)"
-	kill -KILL $pid 2>/dev/null
-	wait $pid
-	echo "$?" >"$R/mirror.rc"
+	stop_app KILL mirror
 fi
 # a connector that is not there: one line naming it
 "$BIN" --platform gbm $NOMODE --outputs Virtual-1,HDMI-A-9 --count 0 >"$R/badout.log" 2>&1
@@ -217,14 +212,10 @@ if wait_line "$R/hotplug.log" ' [2-9] presented|[0-9][0-9]+ presented' 400 $pid;
 		wait_count 2 $(($(counts | cut -d' ' -f2) + 2)) 600
 		shot resized
 	fi
-	kill -TERM $pid
-	wait $pid
-	echo $? >"$R/hotplug.rc"
+	stop_app TERM hotplug
 else
 	say "isoterra presented no frames (hotplug)"
-	kill -KILL $pid 2>/dev/null
-	wait $pid
-	echo "$?" >"$R/hotplug.rc"
+	stop_app KILL hotplug
 fi
 echo detect >"$st"
 say "hotplug and resize run rc $(cat "$R/hotplug.rc") in $(awk "BEGIN { print $(up) - $t }") s; modes now: $(cat /sys/class/drm/card0-*/modes 2>/dev/null | head -3 | tr '\n' ' ')"

@@ -235,13 +235,56 @@ static int emit(int fd, int type, int code, int value)
 	return write(fd, &ev, sizeof(ev)) == (ssize_t)sizeof(ev) ? 0 : -1;
 }
 
-static int keys(void)
+static void event_node(int fd, char *path, size_t len)
+{
+	char sys[64] = "", dir[128];
+	path[0] = 0;
+	if (ioctl(fd, UI_GET_SYSNAME(sizeof(sys)), sys) < 0)
+		return;
+	snprintf(dir, sizeof(dir), "/sys/devices/virtual/input/%s", sys);
+	DIR *d = opendir(dir);
+	for (struct dirent *e; d && (e = readdir(d)) != NULL;)
+		if (!strncmp(e->d_name, "event", 5))
+			snprintf(path, len, "/dev/input/%s", e->d_name);
+	if (d)
+		closedir(d);
+}
+
+/* /dev/uinput opened for `what` (keys, pad): the fd, or -1 (said). */
+static int uinput_open(const char *what)
 {
 	int fd = open("/dev/uinput", O_WRONLY | O_CLOEXEC);
-	if (fd < 0) {
-		log_error("keys: /dev/uinput: %s", strerror(errno));
-		return 1;
+	if (fd < 0)
+		log_error("%s: /dev/uinput: %s", what, strerror(errno));
+	return fd;
+}
+
+/* The device set up (ok: its bits were set) and created; its event node
+ * into path.  0, or -1 (said; fd closed). */
+static int uinput_start(int fd, const char *what, bool ok, const struct uinput_setup *us, char *path, size_t len)
+{
+	if (!(ok && ioctl(fd, UI_DEV_SETUP, us) == 0 && ioctl(fd, UI_DEV_CREATE) == 0)) {
+		log_error("%s: setting up the uinput device failed: %s", what, strerror(errno));
+		close(fd);
+		return -1;
 	}
+	event_node(fd, path, len);
+	if (!path[0]) {
+		log_error("%s: no event node (is evdev loaded?)", what);
+		ioctl(fd, UI_DEV_DESTROY);
+		close(fd);
+		return -1;
+	}
+	printf("%s\n", path);
+	fflush(stdout);
+	return 0;
+}
+
+static int keys(void)
+{
+	int fd = uinput_open("keys");
+	if (fd < 0)
+		return 1;
 	struct uinput_setup us;
 	memset(&us, 0, sizeof(us));
 	us.id.bustype = BUS_VIRTUAL;
@@ -249,30 +292,9 @@ static int keys(void)
 	int ok = ioctl(fd, UI_SET_EVBIT, EV_KEY) == 0;
 	for (size_t i = 0; i < sizeof(key_names) / sizeof(key_names[0]); i++)
 		ok = ok && ioctl(fd, UI_SET_KEYBIT, key_names[i].code) == 0;
-	char sys[64] = "", path[300] = "";
-	ok = ok && ioctl(fd, UI_DEV_SETUP, &us) == 0 && ioctl(fd, UI_DEV_CREATE) == 0 &&
-	     ioctl(fd, UI_GET_SYSNAME(sizeof(sys)), sys) >= 0;
-	if (!ok) {
-		log_error("keys: setting up the uinput device failed: %s", strerror(errno));
-		close(fd);
+	char path[300];
+	if (uinput_start(fd, "keys", ok, &us, path, sizeof(path)) < 0)
 		return 1;
-	}
-	char dir[128];
-	snprintf(dir, sizeof(dir), "/sys/devices/virtual/input/%s", sys);
-	DIR *d = opendir(dir);
-	for (struct dirent *e; d && (e = readdir(d)) != NULL;)
-		if (!strncmp(e->d_name, "event", 5))
-			snprintf(path, sizeof(path), "/dev/input/%s", e->d_name);
-	if (d)
-		closedir(d);
-	if (!path[0]) {
-		log_error("keys: no event node under %s (is evdev loaded?)", dir);
-		ioctl(fd, UI_DEV_DESTROY);
-		close(fd);
-		return 1;
-	}
-	printf("%s\n", path);
-	fflush(stdout);
 	char line[64];
 	int rc = 0;
 	while (fgets(line, sizeof(line), stdin)) {
@@ -299,20 +321,6 @@ static int keys(void)
 }
 
 /* The event node of the uinput device just created on fd ("" none). */
-static void event_node(int fd, char *path, size_t len)
-{
-	char sys[64] = "", dir[128];
-	path[0] = 0;
-	if (ioctl(fd, UI_GET_SYSNAME(sizeof(sys)), sys) < 0)
-		return;
-	snprintf(dir, sizeof(dir), "/sys/devices/virtual/input/%s", sys);
-	DIR *d = opendir(dir);
-	for (struct dirent *e; d && (e = readdir(d)) != NULL;)
-		if (!strncmp(e->d_name, "event", 5))
-			snprintf(path, len, "/dev/input/%s", e->d_name);
-	if (d)
-		closedir(d);
-}
 
 static const struct {
 	const char *name;
@@ -361,11 +369,9 @@ static int pad_line(int fd, const char *line)
 
 static int pad(void)
 {
-	int fd = open("/dev/uinput", O_WRONLY | O_CLOEXEC);
-	if (fd < 0) {
-		log_error("pad: /dev/uinput: %s", strerror(errno));
+	int fd = uinput_open("pad");
+	if (fd < 0)
 		return 1;
-	}
 	struct uinput_setup us;
 	memset(&us, 0, sizeof(us));
 	us.id.bustype = BUS_VIRTUAL;
@@ -385,21 +391,8 @@ static int pad(void)
 		ok = ok && ioctl(fd, UI_SET_ABSBIT, pad_axes[i].code) == 0 && ioctl(fd, UI_ABS_SETUP, &as) == 0;
 	}
 	char path[300];
-	ok = ok && ioctl(fd, UI_DEV_SETUP, &us) == 0 && ioctl(fd, UI_DEV_CREATE) == 0;
-	if (!ok) {
-		log_error("pad: setting up the uinput device failed: %s", strerror(errno));
-		close(fd);
+	if (uinput_start(fd, "pad", ok, &us, path, sizeof(path)) < 0)
 		return 1;
-	}
-	event_node(fd, path, sizeof(path));
-	if (!path[0]) {
-		log_error("pad: no event node (is evdev loaded?)");
-		ioctl(fd, UI_DEV_DESTROY);
-		close(fd);
-		return 1;
-	}
-	printf("%s\n", path);
-	fflush(stdout);
 	char line[64];
 	int rc = 0;
 	while (fgets(line, sizeof(line), stdin)) {
