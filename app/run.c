@@ -41,11 +41,12 @@ static double realtime_frame(const struct params *p, long long *last_tick, int *
 	return (double)in / p->fps;
 }
 
-/* The picture's size for an output of w x h: turned by --rotate (odd
- * quarter turns swap them). */
-static void upright_size(const struct params *p, int w, int h, int *pw, int *ph)
+/* The picture's size for an output of w x h: turned by the renderer's
+ * turn (--rotate, unless the display turns it: odd quarter turns swap
+ * them). */
+static void upright_size(const struct renderer *r, int w, int h, int *pw, int *ph)
 {
-	bool odd = p->rotate == ROTATE_90 || p->rotate == ROTATE_270;
+	bool odd = renderer_rotation(r) & 1;
 	*pw = odd ? h : w;
 	*ph = odd ? w : h;
 }
@@ -54,7 +55,7 @@ static void upright_size(const struct params *p, int w, int h, int *pw, int *ph)
 static int frame_view(const struct frame_loop *lp, struct wall_view *v, char *err, size_t errlen)
 {
 	int across = lp->across > 1 ? lp->across : 1, pw, ph;
-	upright_size(lp->p, lp->w, lp->h, &pw, &ph);
+	upright_size(lp->r, lp->w, lp->h, &pw, &ph);
 	int tw = across > 1 ? lp->tile_w : pw, th = across > 1 ? lp->tile_h : ph;
 	return wall_view(lp->p, tw, th, across, v, err, errlen);
 }
@@ -84,23 +85,24 @@ static void pace(double cap, double *deadline)
  * frame is drawn until an input changes something (a parameter, the pause
  * itself, quit), or a second went by (the window system's events and the
  * watchdog are served by the frames).  Polls the inputs every 20 ms. */
-static void paused_wait(struct frame_loop *lp, int f)
+static bool paused_wait(struct frame_loop *lp, int f)
 {
 	struct params *p = lp->p;
 	static struct params before; /* large: not on the stack */
 	before = *p;
 	for (int i = 0; i < 50; i++) {
 		if (lp->watch_signals && signals_quit())
-			return;
+			return false;
 		struct timespec d = { 0, 20 * 1000 * 1000 };
 		nanosleep(&d, NULL);
 		if (controls_poll(lp->ctl, p)) {
 			p->count = f + 1;
-			return;
+			return false;
 		}
 		if (!controls_paused(lp->ctl) || memcmp(&before, p, sizeof(before)))
-			return;
+			return false;
 	}
+	return true;
 }
 
 /* The battery in the top-right corner (osd, osd_battery): its level as the
@@ -139,8 +141,11 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 	for (int f = 0; p->count == 0 || f < p->count; f++) {
 		if (lp->watch_signals && signals_quit())
 			break;
-		if (lp->live && shown_paused && controls_paused(lp->ctl))
-			paused_wait(lp, f);
+		/* paused on a display: idle, nothing rendered, until an input
+		 * arrives; once a second the picture shown is handed to the sinks
+		 * again (the display sees signals, window events and the
+		 * watchdog's ping there) */
+		bool idle = lp->live && shown_paused && controls_paused(lp->ctl) && paused_wait(lp, f);
 		/* the frame cap in force: max_fps, lowered by the low-power profile */
 		bool low = power_update(lp->power, p, clock_ms() / 1e3);
 		double cap = p->max_fps;
@@ -170,22 +175,24 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			clock_time = ct - (double)((float)ct - pause_clock_time(&wall_clock, (float)ct, paused));
 			show_time = ct;
 		}
-		kiosk_frame_begin(lp->kiosk, p, lp->r, show_time);
 		bool last = p->count > 0 && f == p->count - 1;
-		struct wall_view view;
-		if (frame_view(lp, &view, err, errlen) < 0)
-			return -1;
-		int pw, ph; /* the upright picture (--rotate turns it onto the output) */
-		upright_size(p, lp->w, lp->h, &pw, &ph);
-		struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = pw,
-					  .h = ph, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
-					  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
-					  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
-		controls_flight(lp->ctl, sf.move, sf.turn);
-		if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
-		    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
-		    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0 || battery_osd(lp, err, errlen) < 0)
-			return -1;
+		if (!idle) {
+			kiosk_frame_begin(lp->kiosk, p, lp->r, show_time);
+			struct wall_view view;
+			if (frame_view(lp, &view, err, errlen) < 0)
+				return -1;
+			int pw, ph; /* the upright picture (--rotate turns it onto the output) */
+			upright_size(lp->r, lp->w, lp->h, &pw, &ph);
+			struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = pw,
+						  .h = ph, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
+						  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
+						  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
+			controls_flight(lp->ctl, sf.move, sf.turn);
+			if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
+			    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
+			    controls_frame(lp->ctl, lp->r, p, err, errlen) < 0 || battery_osd(lp, err, errlen) < 0)
+				return -1;
+		}
 		struct sink_frame fr = { .r = lp->r, .w = lp->w, .h = lp->h, .index = f, .number = number,
 					 .count = p->count,
 					 .last = last, .update_ms = tm.update_ms,
@@ -279,7 +286,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	const struct params *p = &rn->p;
 	struct platform_options po = { .name = p->platform, .width = rn->w, .height = rn->h, .debug = p->verbose,
 		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .drm_device = p->drm_device,
-		.mode = p->mode, .kms_legacy = p->kms_legacy, .device = p->device };
+		.mode = p->mode, .kms_legacy = p->kms_legacy, .device = p->device, .rotate = (int)p->rotate };
 	sink_display_outputs(p, &po); /* --outputs: the connectors and their layout */
 	rn->plat = platform_open(&po, err, errlen);
 	if (!rn->plat)
@@ -299,7 +306,9 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 	if (gpu_init(&caps, p->verbose, err, errlen) < 0)
 		return 1;
 	log_debug("platform %s on %s", rn->plat->backend->name, rn->plat->device_desc);
-	rn->r = renderer_create_turned(rn->w, rn->h, (int)p->rotate, p->antialias, err, errlen);
+	/* the turn the display does not do itself (gbm: the plane's rotation) */
+	int turn = rn->plat->rotated ? 0 : (int)p->rotate;
+	rn->r = renderer_create_turned(rn->w, rn->h, turn, p->antialias, err, errlen);
 	return rn->r ? 0 : 1;
 }
 

@@ -119,8 +119,8 @@ static void publish_outputs(struct gbm_state *g)
 		snprintf(po->name, sizeof(po->name), "%s", h->kms.conn_name);
 		po->x = h->kms.x;
 		po->y = h->kms.y;
-		po->w = h->kms.mode.hdisplay;
-		po->h = h->kms.mode.vdisplay;
+		po->w = g->turned & 1 ? h->kms.mode.vdisplay : h->kms.mode.hdisplay;
+		po->h = g->turned & 1 ? h->kms.mode.hdisplay : h->kms.mode.vdisplay;
 		po->on = h->connected && h->modeset_done;
 	}
 }
@@ -209,7 +209,8 @@ static int remake_surface(struct gbm_state *g)
 {
 	struct platform *p = g->p;
 	struct kms_output *k = &g->h[0].kms;
-	int w = k->mode.hdisplay, h = k->mode.vdisplay;
+	int w = g->turned & 1 ? k->mode.vdisplay : k->mode.hdisplay;
+	int h = g->turned & 1 ? k->mode.hdisplay : k->mode.vdisplay;
 	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, p->ctx)) {
 		plog_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
 		return -1;
@@ -245,7 +246,9 @@ static int follow_mode(struct gbm_state *g, struct gbm_head *h)
 {
 	if (g->atomic && kms_atomic_set_mode(&h->at, &h->kms) < 0)
 		return -1;
-	if (g->n == 1 && (h->kms.mode.hdisplay != g->p->width || h->kms.mode.vdisplay != g->p->height))
+	int w = g->turned & 1 ? h->kms.mode.vdisplay : h->kms.mode.hdisplay;
+	int ht = g->turned & 1 ? h->kms.mode.hdisplay : h->kms.mode.vdisplay;
+	if (g->n == 1 && (w != g->p->width || ht != g->p->height))
 		return remake_surface(g);
 	return 0;
 }
@@ -406,6 +409,14 @@ static void restore_crtc(struct gbm_state *g)
 	for (int i = 0; i < g->n; i++) {
 		struct gbm_head *h = &g->h[i];
 		drmModeCrtc *s = h->saved;
+		/* a turned plane keeps its turn through a legacy modeset: first
+		 * the CRTC off with the plane's rotation at 0 */
+		if (g->atomic && h->at.rotation != DRM_MODE_ROTATE_0) {
+			struct kms_atomic_head ah = { .a = &h->at, .o = &h->kms, .off = true };
+			if (kms_atomic_commit_heads(&ah, 1, 0, 0, g, -1) != 0)
+				plog_warn("gbm: turning the plane back on %s: %s", h->kms.path, strerror(errno));
+			h->at.rotation = DRM_MODE_ROTATE_0;
+		}
 		if (kms_legacy_restore(&h->kms, s) != 0)
 			plog_warn("gbm: restoring CRTC %u on %s: %s", h->kms.crtc_id, h->kms.path, strerror(errno));
 		else
@@ -454,6 +465,31 @@ static void lay_out(struct gbm_state *g, const struct platform_options *opt)
 	}
 	g->p->width = g->h[g->n - 1].kms.x + w;
 	g->p->height = h;
+	if (g->turned & 1) { /* the plane turns the upright picture onto the mode */
+		g->p->width = h;
+		g->p->height = w;
+	}
+}
+
+/* --rotate on one output: the plane's rotation property where the driver
+ * offers the turn, else the program's final pass (said once either way). */
+static void choose_turn(struct gbm_state *g, const struct platform_options *opt)
+{
+	int q = opt->rotate & 3;
+	if (!q)
+		return;
+	char why[160] = "";
+	if (g->n > 1)
+		snprintf(why, sizeof(why), "several outputs");
+	else if (!g->atomic)
+		snprintf(why, sizeof(why), "legacy modesetting");
+	else if (kms_atomic_try_rotation(&g->h[0].at, &g->h[0].kms, q, why, sizeof(why)))
+		g->turned = q;
+	g->p->rotated = g->turned;
+	if (g->turned)
+		plog_info("kms: the plane turns the picture %d degrees (its rotation property)", 90 * q);
+	else
+		plog_info("kms: --rotate %d: the program's final pass turns the picture (%s)", 90 * q, why);
 }
 
 /* The card first (a missing or wrong --drm-device is named whatever the
@@ -538,6 +574,7 @@ static int gbm_open(struct platform *p, const struct platform_options *opt, char
 		snprintf(err, errlen, "gbm_create_device(%s) failed", k0->path);
 		goto fail;
 	}
+	choose_turn(g, opt);
 	lay_out(g, opt);
 	g->surf = gbm_surface_create(g->gbm, (uint32_t)p->width, (uint32_t)p->height, GBM_FORMAT_XRGB8888,
 	                             GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);

@@ -35,6 +35,7 @@ struct gbm_state {
 	int n;                     /* outputs, h[0..n) */
 	struct gbm_head h[PLATFORM_MAX_OUTPUTS];
 	bool mirror;               /* several outputs: one picture each (else a row) */
+	int turned;                /* one output: quarter turns the plane applies (--rotate), else 0 */
 	struct gbm_device *gbm;
 	struct gbm_surface *surf;
 	struct gbm_bo *front;      /* on screen */

@@ -65,11 +65,24 @@ struct kms_atomic {
 	 * OUT_FENCE_PTR (a fence that signals when the commit is on screen)
 	 * and the plane's IN_FENCE_FD (a fence the flip waits for) */
 	uint32_t crtc_out_fence_ptr, plane_in_fence_fd;
+	/* the plane's "rotation" property (0: none), the DRM_MODE_ROTATE_*
+	 * bits it lists, and the one every frame sets (DRM_MODE_ROTATE_0
+	 * unless kms_atomic_try_rotation chose another): with 90 or 270 the
+	 * framebuffer is the mode's size turned (portrait on a landscape
+	 * mode) */
+	uint32_t plane_rotation;
+	uint64_t rotations, rotation;
 };
 /* The atomic client cap, o's CRTC's primary plane, every property id a
  * frame sets and the mode blob; the fence properties when there are.
  * false (why: logged): use legacy. */
 bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o);
+/* The plane turns the picture `quarter` quarter turns clockwise onto the
+ * output (1..3), when its rotation property lists that turn and a
+ * TEST_ONLY modeset with a framebuffer of the turned size passes (drivers
+ * list turns that need tiled buffers): then a->rotation is set and true;
+ * else false with why (the final pass turns the picture then). */
+bool kms_atomic_try_rotation(struct kms_atomic *a, const struct kms_output *o, int quarter, char *why, size_t whylen);
 /* The frame with fb on the primary plane at the mode's size; modeset: the
  * connector, the mode and the CRTC's activation too
  * (DRM_MODE_ATOMIC_ALLOW_MODESET).  flags: DRM_MODE_ATOMIC_* and

@@ -8,10 +8,12 @@
 
 #include <errno.h>
 #include <poll.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <string.h>
 #include <unistd.h>
 
+#include <drm_fourcc.h>
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
@@ -34,6 +36,22 @@ static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name, u
 	}
 	drmModeFreeObjectProperties(props);
 	return id;
+}
+
+/* The DRM_MODE_ROTATE_* and DRM_MODE_REFLECT_* bits a bitmask property
+ * lists (each enum entry's value is its bit's index). */
+static uint64_t plane_rotations(int fd, uint32_t prop)
+{
+	drmModePropertyRes *pr = drmModeGetProperty(fd, prop);
+	uint64_t bits = 0;
+	if (!pr)
+		return 0;
+	if (pr->flags & DRM_MODE_PROP_BITMASK)
+		for (int i = 0; i < pr->count_enums; i++)
+			if (pr->enums[i].value < 64)
+				bits |= 1ull << pr->enums[i].value;
+	drmModeFreeProperty(pr);
+	return bits;
 }
 
 static uint32_t find_primary_plane(const struct kms_output *o)
@@ -99,6 +117,11 @@ bool kms_atomic_init(struct kms_atomic *a, const struct kms_output *o)
 	/* explicit fencing: optional (the flips wait for their events without) */
 	a->crtc_out_fence_ptr = prop_id(o->fd, o->crtc_id, DRM_MODE_OBJECT_CRTC, "OUT_FENCE_PTR", NULL);
 	a->plane_in_fence_fd = prop_id(o->fd, a->plane_id, DRM_MODE_OBJECT_PLANE, "IN_FENCE_FD", NULL);
+	/* rotation: optional; set on every frame where it exists, so a turn
+	 * left by the display's last master does not stay */
+	a->plane_rotation = prop_id(o->fd, a->plane_id, DRM_MODE_OBJECT_PLANE, "rotation", NULL);
+	a->rotations = a->plane_rotation ? plane_rotations(o->fd, a->plane_rotation) : 0;
+	a->rotation = DRM_MODE_ROTATE_0;
 	if (drmModeCreatePropertyBlob(o->fd, &o->mode, sizeof(o->mode), &a->mode_blob) != 0) {
 		plog_debug("gbm: drmModeCreatePropertyBlob: %s; legacy", strerror(errno));
 		return false;
@@ -120,9 +143,15 @@ static bool add_head(drmModeAtomicReq *req, const struct kms_atomic_head *h, uin
 		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_active, 0) > 0;
 		ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->fb_id, 0) > 0;
 		ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_id, 0) > 0;
+		if (pp->plane_rotation)
+			ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->plane_rotation, DRM_MODE_ROTATE_0) > 0;
 		return ok;
 	}
 	uint32_t w = o->mode.hdisplay, h_ = o->mode.vdisplay;
+	/* turned by 90 or 270 degrees: the framebuffer's rectangle is the
+	 * mode's turned */
+	bool odd = pp->rotation & (DRM_MODE_ROTATE_90 | DRM_MODE_ROTATE_270);
+	uint32_t sw = odd ? h_ : w, sh = odd ? w : h_;
 	if (h->modeset) {
 		ok &= drmModeAtomicAddProperty(req, o->conn_id, pp->conn_crtc_id, o->crtc_id) > 0;
 		ok &= drmModeAtomicAddProperty(req, o->crtc_id, pp->crtc_mode_id, pp->mode_blob) > 0;
@@ -132,8 +161,10 @@ static bool add_head(drmModeAtomicReq *req, const struct kms_atomic_head *h, uin
 	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_id, o->crtc_id) > 0;
 	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_x, (uint64_t)o->x << 16) > 0;
 	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_y, (uint64_t)o->y << 16) > 0;
-	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_w, (uint64_t)w << 16) > 0;
-	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_h, (uint64_t)h_ << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_w, (uint64_t)sw << 16) > 0;
+	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->src_h, (uint64_t)sh << 16) > 0;
+	if (pp->plane_rotation)
+		ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->plane_rotation, pp->rotation) > 0;
 	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_x, 0) > 0;
 	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_y, 0) > 0;
 	ok &= drmModeAtomicAddProperty(req, pp->plane_id, pp->crtc_w, w) > 0;
@@ -196,6 +227,51 @@ int kms_atomic_commit(const struct kms_atomic *a, const struct kms_output *o, ui
 {
 	struct kms_atomic_head h = { .a = a, .o = o, .modeset = modeset, .out_fence = out_fence };
 	return kms_atomic_commit_heads(&h, 1, fb, flags, user, in_fence);
+}
+
+bool kms_atomic_try_rotation(struct kms_atomic *a, const struct kms_output *o, int quarter, char *why, size_t whylen)
+{
+	/* DRM turns counter-clockwise: a quarter turn clockwise is its 270 */
+	static const uint64_t bit[4] = { DRM_MODE_ROTATE_0, DRM_MODE_ROTATE_270, DRM_MODE_ROTATE_180, DRM_MODE_ROTATE_90 };
+	static const char *const name[4] = { "rotate-0", "rotate-270", "rotate-180", "rotate-90" };
+	quarter &= 3;
+	if (!a->plane_rotation) {
+		snprintf(why, whylen, "plane %u has no rotation property", a->plane_id);
+		return false;
+	}
+	if (!(a->rotations & bit[quarter])) {
+		snprintf(why, whylen, "plane %u's rotation property lacks %s", a->plane_id, name[quarter]);
+		return false;
+	}
+	/* a linear framebuffer of the turned size, for a TEST_ONLY modeset */
+	bool odd = quarter & 1;
+	uint32_t w = odd ? o->mode.vdisplay : o->mode.hdisplay, h = odd ? o->mode.hdisplay : o->mode.vdisplay;
+	struct drm_mode_create_dumb cd = { .width = w, .height = h, .bpp = 32 };
+	if (drmIoctl(o->fd, DRM_IOCTL_MODE_CREATE_DUMB, &cd) != 0) {
+		snprintf(why, whylen, "a %ux%u test buffer: %s", w, h, strerror(errno));
+		return false;
+	}
+	uint32_t handles[4] = { cd.handle }, pitches[4] = { cd.pitch }, offsets[4] = { 0 }, fb = 0;
+	bool ok = false;
+	if (drmModeAddFB2(o->fd, w, h, DRM_FORMAT_XRGB8888, handles, pitches, offsets, &fb, 0) != 0) {
+		snprintf(why, whylen, "a %ux%u test framebuffer: %s", w, h, strerror(errno));
+	} else {
+		uint64_t was = a->rotation;
+		a->rotation = bit[quarter];
+		struct kms_atomic_head hd = { .a = a, .o = o, .modeset = true };
+		ok = kms_atomic_commit_heads(&hd, 1, fb, DRM_MODE_ATOMIC_TEST_ONLY, NULL, -1) == 0;
+		if (!ok) {
+			snprintf(why, whylen, "plane %u refused %s for a %ux%u linear buffer (%s)", a->plane_id,
+			         name[quarter], w, h, strerror(errno));
+			a->rotation = was;
+		}
+		if (drmModeRmFB(o->fd, fb) != 0)
+			plog_debug("gbm: drmModeRmFB of the test buffer: %s", strerror(errno));
+	}
+	struct drm_mode_destroy_dumb dd = { .handle = cd.handle };
+	if (drmIoctl(o->fd, DRM_IOCTL_MODE_DESTROY_DUMB, &dd) != 0)
+		plog_debug("gbm: destroying the test buffer: %s", strerror(errno));
+	return ok;
 }
 
 int kms_fence_wait(int fd, int timeout_ms)

@@ -45,6 +45,10 @@ struct platform_options {
 	 * same picture.  Another backend refuses a non-empty list. */
 	const char *outputs;
 	bool outputs_mirror;
+	/* gbm, one output: the quarter turns clockwise (0..3, --rotate) the
+	 * picture takes onto the output; the plane turns it where the driver
+	 * offers the turn (p->rotated then says so), else the program does */
+	int rotate;
 	double outputs_gap, outputs_gap_per_w;
 	/* device: which EGL device, "N" (an index in eglQueryDevicesEXT's
 	 * order, as --list-devices shows them) or a DRM node path
@@ -100,6 +104,10 @@ struct platform {
 	 * whole surface) */
 	int n_outputs;
 	struct platform_output outputs[PLATFORM_MAX_OUTPUTS];
+	/* quarter turns clockwise the display applies itself (gbm: the
+	 * plane's rotation property, for opt->rotate): the surface is then
+	 * the upright picture (its size turned back), drawn unturned */
+	int rotated;
 	char device_desc[128];/* e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" / DRM node */
 	void *priv;           /* backend state */
 };

@@ -3,7 +3,7 @@
 # headless render of the same frame; resize (ConfigureNotify) re-renders at
 # the new size; WM_DELETE_WINDOW and SIGTERM end the app cleanly (exit 0);
 # --fullscreen fills the screen; --count N exits by itself; --rotate 90
-# turns the picture in the window; a missing X server is one clear error.
+# turns the picture in the window; paused, the app idles (CPU time); a missing X server is one clear error.
 . "$(dirname "$0")/lib.sh"
 need Xvfb xwd "${X11POKE:-x11poke}"
 scratch # $T; kills $APID and $SERVER_PID on exit
@@ -104,6 +104,62 @@ else
 fi
 stop "$APID"
 APID=
+
+# 3c. paused, the window idles: nothing is rendered until an input comes
+#     (keys from a terminal: script's pty; p pauses and resumes, q quits),
+#     once a second the picture shown is handed to the display again.  The
+#     app's CPU time (utime + stime) over 3 s paused against 3 s running,
+#     and the frames presented meanwhile.
+cputime() { awk -v hz="$(getconf CLK_TCK)" '{ printf "%.3f\n", ($14 + $15) / hz }' "/proc/$1/stat" 2>/dev/null; }
+now() { date +%s.%N; }
+mkfifo "$T/keys"
+script -qec "'$BIN' --platform x11 --size 168x126 $ARGS --count 0 --fps-report 0.2 --keyboard tty" /dev/null \
+	<"$T/keys" >"$T/app5.log" 2>&1 &
+SPID=$!
+exec 4>"$T/keys"
+PPID5=
+n=0
+while [ -z "$PPID5" ] && [ $n -lt 100 ]; do
+	PPID5=$(pgrep -n -f -- "^$BIN --platform x11 --size 168x126 ") # (not script's shell)
+	[ -n "$PPID5" ] || sleep 0.1
+	n=$((n + 1))
+done
+if [ -n "$PPID5" ] && wait_frames "$T/app5.log" 3 60 "$PPID5"; then
+	c0=$(cputime "$PPID5") s0=$(now) f0=$(presented "$T/app5.log")
+	sleep 3
+	c1=$(cputime "$PPID5") s1=$(now) f1=$(presented "$T/app5.log")
+	printf p >&4
+	if wait_for "$T/app5.log" 'knob: paused' 20 "$PPID5"; then
+		sleep 1.5 # the paused picture shown, then idle
+		c2=$(cputime "$PPID5") s2=$(now) f2=$(presented "$T/app5.log")
+		sleep 3
+		c3=$(cputime "$PPID5") s3=$(now) f3=$(presented "$T/app5.log")
+		verdict=$(awk -v c0="$c0" -v c1="$c1" -v s0="$s0" -v s1="$s1" -v c2="$c2" -v c3="$c3" -v s2="$s2" \
+			-v s3="$s3" -v f0="$f0" -v f1="$f1" -v f2="$f2" -v f3="$f3" 'BEGIN {
+			run = (c1 - c0) / (s1 - s0); idle = (c3 - c2) / (s3 - s2)
+			printf "running %.1f%% CPU, %d frames in %.1f s; paused %.1f%% CPU, %d frames in %.1f s",
+				100 * run, f1 - f0, s1 - s0, 100 * idle, f3 - f2, s3 - s2
+			exit !(run > 0.2 && idle < 0.25 * run && f3 - f2 <= 5 && f1 - f0 > f3 - f2) }')
+		[ $? -eq 0 ] && ok "paused: idles ($verdict)" ||
+			bad "paused: not idle ($verdict; want running above 20% CPU, paused under a quarter of it, at most 5 frames in 3 s)"
+		printf p >&4
+		if wait_for "$T/app5.log" 'knob: running' 20 "$PPID5" && wait_frames "$T/app5.log" $((f3 + 4)) 30 "$PPID5"; then
+			ok "resumed: frames again ($f3 -> $(presented "$T/app5.log"))"
+		else
+			bad "resumed: no frames after the second p: $(tail -3 "$T/app5.log")"
+		fi
+	else
+		bad "p on the terminal: not paused: $(tail -3 "$T/app5.log")"
+	fi
+	printf q >&4
+	wait_for "$T/app5.log" 'x11: [0-9]+ frames presented' 20 "$PPID5" && ok "q on the terminal: the app ends" ||
+		bad "q on the terminal: the app did not end: $(tail -3 "$T/app5.log")"
+else
+	bad "paused run: no frames: $(cat "$T/app5.log")"
+fi
+exec 4>&-
+[ -n "$PPID5" ] && kill "$PPID5" 2>/dev/null
+wait "$SPID" 2>/dev/null
 
 # 4. auto picks x11 when DISPLAY is set
 "$BIN" --platform auto --size 96x64 --grid 8 --count 1 --out "$T/auto.png" --verbose >"$T/auto.log" 2>&1

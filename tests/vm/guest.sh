@@ -70,6 +70,21 @@ else
 	exec 3<>/dev/dri/card0
 fi
 
+# 1b. a rotated panel (--rotate 90|180|270): each turn's scanout, then
+#     SIGTERM; the info line says who turns it (the plane's rotation
+#     property where the driver offers the turn, else the final pass)
+for q in 90 180 270; do
+	"$BIN" --platform gbm $ARGS --rotate $q --count 0 --fps-report 0.01 >"$R/rot$q.log" 2>&1 &
+	pid=$!
+	if wait_line "$R/rot$q.log" ' [2-9] presented|[0-9][0-9]+ presented' 300 $pid; then
+		shot rot$q
+		stop_app TERM rot$q
+	else
+		say "isoterra --rotate $q presented no frames"
+		stop_app KILL rot$q
+	fi
+done
+
 # 2. legacy modesetting, --count 3: exits by itself and restores; with
 #    --platform auto (no DISPLAY, no WAYLAND_DISPLAY): auto must pick gbm
 t=$(up)
