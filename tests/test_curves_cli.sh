@@ -60,6 +60,40 @@ cat >lonlat.geojson <<'J'
 J
 expect_ok $SMALL --curves lonlat.geojson
 
+# a Polygon and a Point among line strings: the lines are carved, one
+# warning each for the area and the point; a good file warns of nothing
+cat >mix.geojson <<'J'
+{ "type": "FeatureCollection", "features": [
+  { "type": "Feature", "properties": { "width": 4 },
+    "geometry": { "type": "LineString", "coordinates": [[-14, 9, 1], [0, -1, 1], [14, -9, 2]] } },
+  { "type": "Feature", "id": "way/7", "geometry": { "type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]] } },
+  { "type": "Feature", "geometry": { "type": "Point", "coordinates": [3, 3] } }
+] }
+J
+# expect_warn "regex" COUNT args...: the run succeeds, COUNT stderr lines match
+expect_warn() {
+	pat=$1
+	want=$2
+	shift 2
+	rm -f out.png
+	if ! "$BIN" "$@" >"$T/out" 2>"$T/err" || [ ! -s out.png ]; then
+		bad "isoterra $*: $(cat "$T/err")"
+		return
+	fi
+	n=$(grep -Ec "$pat" "$T/err")
+	if [ "$n" -ne "$want" ]; then
+		bad "isoterra $*: $n lines match '$pat', want $want: $(cat "$T/err")"
+		return
+	fi
+	ok
+}
+expect_warn "warning: mix.geojson: 1 feature skipped, areas are not carved .only lines are.: feature 2 .id .way/7.. Polygon .1 polygon, 1 ring." 1 \
+	$SMALL --curves mix.geojson --curves-crs local
+expect_warn "warning: mix.geojson: 1 feature skipped, not carved .only LineString and MultiLineString are.: feature 3 Point" 1 \
+	$SMALL --curves mix.geojson --curves-crs local
+expect_warn "warning" 2 $SMALL --curves mix.geojson --curves-crs local
+expect_warn "warning" 0 $SMALL --curves road.geojson --curves-crs local
+
 # ---- malformed GeoJSON ------------------------------------------------------------
 printf '{ "type": "FeatureCollection", "features": [\n  { "type": "Feature",\n' >trunc.geojson
 expect_fail "trunc.geojson:3: invalid JSON" $SMALL --curves trunc.geojson
@@ -74,7 +108,7 @@ expect_fail "twod.geojson:4: feature 2: position 1 has 4 coordinates; GeoJSON po
 cat >poly.geojson <<'J'
 { "type": "Feature", "geometry": { "type": "Polygon", "coordinates": [] } }
 J
-expect_fail "poly.geojson:1: feature 1: geometry type \"Polygon\" is not supported" $SMALL --curves poly.geojson
+expect_fail "poly.geojson:1: GeoJSON: no line strings to carve .skipped: feature 1 Polygon .malformed" $SMALL --curves poly.geojson
 cat >width.geojson <<'J'
 { "type": "Feature",
   "properties": { "width": "wide" },

@@ -71,9 +71,6 @@ void test_io(void)
 			   "position 2: y (north) is not a number");
 	expect_parse_error(false, "{\"type\":\"LineString\",\"crs\":{\"type\":\"EPSG\"},\"coordinates\":[[0,0],[1,1]]}",
 			   "\"crs\" must be");
-	expect_parse_error(false, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}},\n"
-			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[]}}]}",
-			   "t.geojson:2: feature 2: geometry type \"Polygon\"");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"width\":-3},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}}",
 			   "\"width\" = -3 must be");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"canal\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}}",
@@ -86,7 +83,14 @@ void test_io(void)
 			   "expected ',' or ']'");
 	expect_parse_error(false, "[1, 2]", "top level");
 	expect_parse_error(false, "", "t.geojson:1: invalid JSON");
-	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":null}", "(it is null)");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":null}",
+			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: feature 1 without geometry (null))");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":5}", "\"geometry\" must be a geometry object or null");
+	expect_parse_error(false, "{\"type\":\"Circle\"}", "type \"Circle\" is not GeoJSON");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"bbox\":[0,0,1],\"geometry\":{\"type\":\"LineString\","
+			   "\"coordinates\":[[0,0,0],[1,1,1]]}}", "t.geojson:1: feature 1: \"bbox\" must be [west, south, east, north]");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"bbox\":[0,5,1,2],\"coordinates\":[[0,0,0],[1,1,1]]}",
+			   "geometry: \"bbox\": its south 5 is above its north 2");
 	expect_parse_error(true, "path,x,y\na,0,0\n", "t.csv:1: the header has no 'z' column");
 	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,zz,0\n", "t.csv:3: y 'zz' is not a number");
 	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,0\n", "t.csv:3: 3 fields, the header has 4");
@@ -103,6 +107,91 @@ void test_io(void)
 	CHECK(curves_load("roads.kml", &s, err, sizeof(err)) < 0 && strstr(err, "unknown format"), "kml: %s", err);
 }
 
+/* Notes of a set that hold `want` (all notes when want is NULL). */
+static int notes_with(const struct curve_set *s, const char *want)
+{
+	int n = 0;
+	for (int i = 0; i < s->nnotes; i++)
+		n += !want || strstr(s->notes[i], want) != NULL;
+	return n;
+}
+
+/* A file is never refused for one feature: a Point, a Polygon (areas are
+ * not carved), a GeometryCollection, a null geometry are skipped, one
+ * note per reason naming them; the line strings load.  bbox members are
+ * checked, one note when the positions lie outside the top level's. */
+void test_geojson_skips(void)
+{
+	const char *mix = "{ \"type\": \"FeatureCollection\", \"features\": [\n"
+			  " { \"type\": \"Feature\", \"properties\": { \"width\": 4 }, \"geometry\": { \"type\": \"LineString\",\n"
+			  "   \"coordinates\": [[-14, 9, 1], [0, -1, 1], [14, -9, 2]] } },\n"
+			  " { \"type\": \"Feature\", \"id\": 7, \"geometry\": { \"type\": \"Polygon\", \"coordinates\":\n"
+			  "   [[[0,0],[1,0],[1,1],[0,0]], [[0.2,0.2],[0.3,0.2],[0.3,0.3],[0.2,0.2]]] } },\n"
+			  " { \"type\": \"Feature\", \"id\": \"node/5\", \"geometry\": { \"type\": \"Point\", \"coordinates\": [3, 3] } },\n"
+			  " { \"type\": \"Feature\", \"geometry\": { \"type\": \"MultiLineString\",\n"
+			  "   \"coordinates\": [[[-14, -9, 1], [14, 9, 1]], [[0, 0, 3], [5, 0, 3], [5, 5, 4]]] } }\n"
+			  "] }\n";
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_geojson(mix, strlen(mix), "mix.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0, "a Polygon and a Point among line strings: loaded (%s)", err);
+	if (rc == 0) {
+		CHECK(s.npaths == 3 && s.paths[0].npts == 3 && s.paths[1].npts == 2 && s.paths[2].npts == 3,
+		      "the 3 line strings loaded (%d paths)", s.npaths);
+		CHECK(s.nnotes == 2, "two notes (one per reason), got %d", s.nnotes);
+		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, not carved (only LineString and MultiLineString are): "
+				     "feature 3 (id \"node/5\") Point") == 1,
+		      "the Point named once: %s", s.nnotes ? s.notes[0] : "none");
+		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, areas are not carved (only lines are): feature 2 (id 7) "
+				     "Polygon (1 polygon, 2 rings)") == 1,
+		      "the Polygon named once: %s", s.nnotes > 1 ? s.notes[1] : "none");
+		curve_set_free(&s);
+	}
+	/* good input: no note */
+	const char *good = "{\"type\":\"FeatureCollection\",\"bbox\":[-1,-1,2,2],\"features\":[{\"type\":\"Feature\","
+			   "\"bbox\":[0,0,1,1],\"geometry\":{\"type\":\"LineString\",\"bbox\":[0,0,1,1],"
+			   "\"coordinates\":[[0,0,1],[1,1,1]]}}]}";
+	rc = curves_parse_geojson(good, strlen(good), "good.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 1 && s.nnotes == 0, "bbox members that hold the data: no note (%s, %d notes)", err,
+	      rc == 0 ? s.nnotes : -1);
+	if (rc == 0)
+		curve_set_free(&s);
+	/* many skipped: the first four named, the rest counted; malformed areas
+	 * are skipped too (they are not carved either way); a collection */
+	const char *many = "{\"type\":\"FeatureCollection\",\"bbox\":[0,0,0.5,0.5],\"features\":["
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,1,1]]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Point\",\"coordinates\":[0,0]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"MultiPoint\",\"coordinates\":[[0,0]]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"GeometryCollection\",\"geometries\":[]}},"
+			   "{\"type\":\"Feature\",\"geometry\":null},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Point\",\"coordinates\":[1,1]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[0,0],[1,0],[1,1],[0,1]]]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"MultiPolygon\",\"coordinates\":"
+			   "[[[[0,0],[1,0],[1,1],[0,0]]],[[[2,2],[3,2],[3,3],[2,2]]]]}}]}";
+	rc = curves_parse_geojson(many, strlen(many), "many.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 1, "one line among skipped features (%s)", err);
+	if (rc == 0) {
+		CHECK(s.nnotes == 3, "three notes (bbox, other, areas), got %d", s.nnotes);
+		CHECK(notes_with(&s, "5 features skipped, not carved (only LineString and MultiLineString are): feature 2 "
+				     "Point, feature 3 MultiPoint, feature 4 GeometryCollection, feature 5 without geometry "
+				     "(null), and 1 more") == 1,
+		      "five skipped, four named");
+		CHECK(notes_with(&s, "2 features skipped, areas are not carved (only lines are): feature 7 Polygon "
+				     "(malformed: ring 1 is not closed (its last position is not its first)), feature 8 "
+				     "MultiPolygon (2 polygons, 2 rings)") == 1,
+		      "areas: the malformed one says why");
+		CHECK(notes_with(&s, "many.geojson:1: the \"bbox\" [0, 0, 0.5, 0.5] does not hold every position: they span "
+				     "x [0, 3], y [0, 3]; the positions are used") == 1,
+		      "bbox inconsistent with the positions: one note");
+		for (int i = 0; i < s.nnotes; i++)
+			printf("  note: %s\n", s.notes[i]);
+		curve_set_free(&s);
+	}
+	/* nothing to carve: refused, naming what was skipped */
+	expect_parse_error(false, "{\"type\":\"Polygon\",\"coordinates\":[[[0,0],[1,0],[1,1],[0,0]]]}",
+			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: geometry Polygon (1 polygon, 1 ring))");
+}
+
 /* Work sized from the input and refused before it is done: a road a
  * million units wide over a 1024^2 hash (each piece in every cell), files
  * with more points than the tables hold; 200 000 paths read in linear time
@@ -117,7 +206,7 @@ void test_sizes(void)
 		pts[3 * i + 2] = 3.0f * (float)(i % 7);
 	}
 	struct curve_path wp = make_path(200, pts, 1e6f, 2, 0, 0);
-	struct curve_set ws = { &wp, 1 };
+	struct curve_set ws = { .paths = &wp, .npaths = 1 };
 	struct curve_quads q;
 	struct curve_hash h;
 	CHECK(curves_build(&ws, &q, err, sizeof(err)) == 0, "wide road: %s", err);

@@ -47,14 +47,30 @@ struct curve_path {
 	char label[192];       /* where it came from, for messages ("roads.geojson: feature 2") */
 };
 
+/* The longest note (curve_set_note) and the most a set keeps. */
+#define CURVE_NOTE_MAX 480
+#define CURVE_NOTES_MAX 16
+
 struct curve_set {
 	struct curve_path *paths;
 	int npaths;
+	/* What a reader (or curves_geo_project) noticed and did instead of
+	 * refusing the file: features skipped, lon/lat assumed, 3D taken as
+	 * 2D.  One line each, for the loader to log as warnings (edits.c);
+	 * freed with the set, not copied by curve_set_copy. */
+	char (*notes)[CURVE_NOTE_MAX];
+	int nnotes;
+	/* lon/lat-looking input without a crs member (the reader's rule):
+	 * its span in degrees (lon, lat), for curves_geo_project's warning */
+	double geo_span[2];
 };
 
 /* Defaults of the per-path parameters by kind (w, λ, inclination gain, Ω). */
 void curve_path_defaults(struct curve_path *p, int kind);
 void curve_set_free(struct curve_set *s);
+/* Appends a note (one line, printf format, cut at CURVE_NOTE_MAX; at most
+ * CURVE_NOTES_MAX kept).  0, or -1 when out of memory. */
+int curve_set_note(struct curve_set *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Deep copy; 0 or -1 (out of memory). */
 int curve_set_copy(struct curve_set *dst, const struct curve_set *src);
 /* Appends a path (deep copy of pts); 0 or -1. */

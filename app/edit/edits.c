@@ -148,6 +148,9 @@ static int load_curves_file(struct edits *ed, const struct params *p, struct cur
 	struct ground_call gc = { ed, p };
 	if (curves_follow_ground(s, p->curves_follow_step, ed->ground ? ground_at : NULL, &gc, err, errlen) < 0)
 		goto fail;
+	/* what the reader did instead of refusing the file: one warning each */
+	for (int i = 0; i < s->nnotes; i++)
+		log_warn("%s", s->notes[i]);
 	return 0;
 fail:
 	curve_set_free(s);
@@ -182,7 +185,7 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 				return -1;
 		}
 	} else if (ed->curves_from_file) {
-		struct curve_set none = { NULL, 0 };
+		struct curve_set none = { .paths = NULL, .npaths = 0 };
 		if (install_curves(ed, &none, p->curve_hash_dim, false, err, errlen) < 0)
 			return -1;
 		memset(&ed->curves_file, 0, sizeof(ed->curves_file));

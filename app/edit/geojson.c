@@ -1,8 +1,11 @@
 /* isoterra — curve input, GeoJSON: FeatureCollection / Feature /
  * LineString / MultiLineString with [x east, y north] or [x east, y north,
  * z up] positions, the per-path parameters in "properties", the "crs"
- * member noted for curves_geo_project.  Errors name file:line and the
- * feature, and the axis convention where a position is wrong. */
+ * member noted for curves_geo_project, "bbox" members checked.  Errors
+ * name file:line and the feature, and the axis convention where a
+ * position is wrong.  A feature that is no line (Point, Polygon, ...) is
+ * skipped, not refused: one note (curve_set_note) per kind of skip names
+ * the features and their types. */
 #include "curves.h"
 #include "curves_internal.h"
 #include "json.h"
@@ -13,6 +16,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Features skipped for one reason: how many, and the first few named. */
+#define SKIP_NAMED 4
+struct skips {
+	int n;
+	char named[240];
+};
+
 struct gctx {
 	const char *fname;
 	char *err;
@@ -21,7 +31,32 @@ struct gctx {
 	int crs;           /* enum curve_crs */
 	bool rel;          /* positions stored as degrees from origin */
 	double origin[2];  /* lon, lat: the positions' centroid */
+	struct skips other; /* no line: Point, MultiPoint, GeometryCollection, null, ... */
+	struct skips areas; /* Polygon, MultiPolygon */
 };
+
+static void skip_add(struct skips *k, const char *what, const char *type, const char *detail)
+{
+	if (k->n < SKIP_NAMED) {
+		size_t len = strlen(k->named);
+		snprintf(k->named + len, sizeof(k->named) - len, "%s%s %s%s", k->n ? ", " : "", what, type, detail);
+	}
+	k->n++;
+}
+
+/* "feature 3 (id \"way/12\")", "feature 3", or "geometry" for a bare one. */
+static void feature_name(char *buf, size_t len, int idx, const struct json_value *f)
+{
+	const struct json_value *id = f ? json_get(f, "id") : NULL;
+	if (idx < 0)
+		snprintf(buf, len, "geometry");
+	else if (id && id->type == JSON_STRING)
+		snprintf(buf, len, "feature %d (id \"%.40s\")", idx + 1, id->str);
+	else if (id && id->type == JSON_NUMBER)
+		snprintf(buf, len, "feature %d (id %.17g)", idx + 1, id->num);
+	else
+		snprintf(buf, len, "feature %d", idx + 1);
+}
 
 /* All positions' ranges and centroid (longitudes relative to the first). */
 struct geo_stats {
@@ -66,10 +101,11 @@ static void geo_scan(const struct json_value *v, struct geo_stats *st, int depth
 /* The auto rule (curves.h, curves_geo_project): lon/lat when the crs member
  * names WGS84, or without one when every position is within lon/lat
  * ranges and the data spans under a degree both ways. */
-static void geo_decide(struct gctx *g, const struct json_value *root)
+static void geo_decide(struct gctx *g, const struct json_value *root, struct geo_stats *stp)
 {
 	struct geo_stats st = { { 1e300, 1e300 }, { -1e300, -1e300 }, { 0.0, 0.0 }, 0.0, 0 };
 	geo_scan(root, &st, 0);
+	*stp = st;
 	bool ranges = st.n > 0 && st.lo[0] >= -180.0 && st.hi[0] <= 180.0 && st.lo[1] >= -90.0 && st.hi[1] <= 90.0;
 	g->rel = g->crs == CURVE_CRS_WGS84 ||
 		 (g->crs == CURVE_CRS_UNSAID && ranges && st.hi[0] - st.lo[0] < 1.0 && st.hi[1] - st.lo[1] < 1.0);
@@ -90,6 +126,28 @@ static int gfail(struct gctx *g, int line, const char *what, const char *fmt, ..
 	va_end(ap);
 	snprintf(g->err, g->errlen, "%s:%d: %s: %s", g->fname, line, what, msg);
 	return -1;
+}
+
+/* A "bbox" member (RFC 7946 5): 2n numbers, the n lowest then the n
+ * highest coordinates (n = 2 or 3); the lowest latitude not above the
+ * highest (the longitudes may cross the antimeridian: west > east). */
+static int geo_bbox(struct gctx *g, const struct json_value *o, const char *what)
+{
+	const struct json_value *b = json_get(o, "bbox");
+	if (!b)
+		return 0;
+	bool ok = b->type == JSON_ARRAY && (b->n == 4 || b->n == 6);
+	for (int i = 0; ok && i < b->n; i++)
+		ok = b->items[i].type == JSON_NUMBER && isfinite(b->items[i].num);
+	if (!ok)
+		return gfail(g, b->line, what, "\"bbox\" must be [west, south, east, north] or [west, south, low, east, "
+			     "north, high] (4 or 6 numbers)");
+	int n = b->n / 2;
+	for (int a = 1; a < n; a++)
+		if (b->items[a].num > b->items[n + a].num)
+			return gfail(g, b->line, what, "\"bbox\": its %s %g is above its %s %g", a == 1 ? "south" : "low",
+				     b->items[a].num, a == 1 ? "north" : "high", b->items[n + a].num);
+	return 0;
 }
 
 static int geo_props(struct gctx *g, const struct json_value *props, const char *what, struct curve_path *base)
@@ -127,7 +185,7 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 static int geo_line(struct gctx *g, const struct json_value *coords, const char *what, const struct curve_path *base,
 		    int part)
 {
-	char label[96];
+	char label[128];
 	if (part >= 0)
 		snprintf(label, sizeof(label), "%s, line string %d", what, part + 1);
 	else
@@ -196,19 +254,93 @@ static int geo_line(struct gctx *g, const struct json_value *coords, const char 
 	return 0;
 }
 
+/* Why a Polygon's rings are not a valid area (RFC 7946 3.1.6: closed
+ * rings of at least 4 positions of 2 or 3 numbers), or NULL; *nrings
+ * counted. */
+static const char *poly_check(const struct json_value *rings, int *nrings, char *why, size_t len)
+{
+	if (rings->type != JSON_ARRAY || rings->n < 1)
+		return "its coordinates are not an array of rings";
+	for (int r = 0; r < rings->n; r++, (*nrings)++) {
+		const struct json_value *ring = &rings->items[r];
+		if (ring->type != JSON_ARRAY || ring->n < 4) {
+			snprintf(why, len, "ring %d is not an array of at least 4 positions", r + 1);
+			return why;
+		}
+		for (int i = 0; i < ring->n; i++) {
+			const struct json_value *pos = &ring->items[i];
+			bool ok = pos->type == JSON_ARRAY && (pos->n == 2 || pos->n == 3);
+			for (int a = 0; ok && a < pos->n; a++)
+				ok = pos->items[a].type == JSON_NUMBER && isfinite(pos->items[a].num);
+			if (!ok) {
+				snprintf(why, len, "ring %d, position %d is not 2 or 3 numbers", r + 1, i + 1);
+				return why;
+			}
+		}
+		const struct json_value *a = &ring->items[0], *b = &ring->items[ring->n - 1];
+		bool closed = a->n == b->n;
+		for (int k = 0; closed && k < a->n; k++)
+			closed = a->items[k].num == b->items[k].num;
+		if (!closed) {
+			snprintf(why, len, "ring %d is not closed (its last position is not its first)", r + 1);
+			return why;
+		}
+	}
+	return NULL;
+}
+
+/* A Polygon or MultiPolygon: checked and counted, then skipped (areas are
+ * not carved), named in the areas note. */
+static void geo_area(struct gctx *g, const char *type, const struct json_value *coords, const char *what)
+{
+	char why[96], detail[128];
+	const char *bad = NULL;
+	int nrings = 0, npoly = 0;
+	if (!coords) {
+		bad = "it has no \"coordinates\"";
+	} else if (!strcmp(type, "Polygon")) {
+		bad = poly_check(coords, &nrings, why, sizeof(why));
+		npoly = 1;
+	} else if (coords->type != JSON_ARRAY) {
+		bad = "its coordinates are not an array of polygons";
+	} else {
+		for (int i = 0; !bad && i < coords->n; i++, npoly++)
+			bad = poly_check(&coords->items[i], &nrings, why, sizeof(why));
+	}
+	if (bad)
+		snprintf(detail, sizeof(detail), " (malformed: %s)", bad);
+	else
+		snprintf(detail, sizeof(detail), " (%d polygon%s, %d ring%s)", npoly, npoly == 1 ? "" : "s", nrings,
+			 nrings == 1 ? "" : "s");
+	skip_add(&g->areas, what, type, detail);
+}
+
 static int geo_geometry(struct gctx *g, const struct json_value *geom, const struct json_value *props, const char *what)
 {
+	if (geom && geom->type == JSON_NULL) { /* RFC 7946 3.2: an unlocated feature */
+		skip_add(&g->other, what, "without geometry", " (null)");
+		return 0;
+	}
 	if (!geom || geom->type != JSON_OBJECT)
-		return gfail(g, geom ? geom->line : 1, what, "\"geometry\" must be a LineString or MultiLineString object%s",
-			     geom && geom->type == JSON_NULL ? " (it is null)" : "");
+		return gfail(g, geom ? geom->line : 1, what, "\"geometry\" must be a geometry object or null, not %s",
+			     geom ? json_type_names[geom->type] : "missing");
 	const struct json_value *t = json_get(geom, "type");
 	if (!t || t->type != JSON_STRING)
 		return gfail(g, geom->line, what, "geometry has no \"type\"");
+	if (geo_bbox(g, geom, what) < 0)
+		return -1;
 	const struct json_value *coords = json_get(geom, "coordinates");
 	bool multi = !strcmp(t->str, "MultiLineString");
-	if (!multi && strcmp(t->str, "LineString"))
-		return gfail(g, t->line, what, "geometry type \"%s\" is not supported (LineString or MultiLineString)",
-			     t->str);
+	if (!strcmp(t->str, "Polygon") || !strcmp(t->str, "MultiPolygon")) {
+		geo_area(g, t->str, coords, what);
+		return 0;
+	}
+	if (!multi && strcmp(t->str, "LineString")) {
+		char type[48];
+		snprintf(type, sizeof(type), "%.40s", t->str);
+		skip_add(&g->other, what, type, "");
+		return 0;
+	}
 	if (!coords)
 		return gfail(g, geom->line, what, "geometry has no \"coordinates\"");
 	struct curve_path base;
@@ -227,13 +359,15 @@ static int geo_geometry(struct gctx *g, const struct json_value *geom, const str
 
 static int geo_feature(struct gctx *g, const struct json_value *f, int idx)
 {
-	char what[48];
-	snprintf(what, sizeof(what), "feature %d", idx + 1);
+	char what[80];
+	feature_name(what, sizeof(what), idx, f->type == JSON_OBJECT ? f : NULL);
 	if (f->type != JSON_OBJECT)
 		return gfail(g, f->line, what, "must be an object, not %s", json_type_names[f->type]);
 	const struct json_value *t = json_get(f, "type");
 	if (!t || t->type != JSON_STRING || strcmp(t->str, "Feature"))
 		return gfail(g, f->line, what, "\"type\" must be \"Feature\"");
+	if (geo_bbox(g, f, what) < 0)
+		return -1;
 	return geo_geometry(g, json_get(f, "geometry"), json_get(f, "properties"), what);
 }
 
@@ -312,10 +446,51 @@ static int geo_root(struct gctx *g, const struct json_value *root)
 	}
 	if (!strcmp(t->str, "Feature"))
 		return geo_feature(g, root, 0);
-	if (!strcmp(t->str, "LineString") || !strcmp(t->str, "MultiLineString"))
-		return geo_geometry(g, root, NULL, "geometry");
-	return gfail(g, t->line, "GeoJSON", "type \"%s\" is not supported (FeatureCollection, Feature, LineString, "
-		     "MultiLineString)", t->str);
+	static const char *const geometries[] = { "LineString", "MultiLineString", "Polygon", "MultiPolygon", "Point",
+						  "MultiPoint", "GeometryCollection" };
+	for (size_t i = 0; i < sizeof(geometries) / sizeof(geometries[0]); i++)
+		if (!strcmp(t->str, geometries[i]))
+			return geo_geometry(g, root, NULL, "geometry");
+	return gfail(g, t->line, "GeoJSON", "type \"%s\" is not GeoJSON (FeatureCollection, Feature, or a geometry: "
+		     "LineString, MultiLineString, ...)", t->str);
+}
+
+/* The top level's bbox against the positions (geo_decide's ranges): a
+ * note when some lie outside it (a longitude range across the
+ * antimeridian, west > east, is not compared). */
+static int bbox_note(struct gctx *g, const struct json_value *root, const struct geo_stats *st)
+{
+	const struct json_value *b = root->type == JSON_OBJECT ? json_get(root, "bbox") : NULL;
+	if (!b || st->n == 0)
+		return 0;
+	int n = b->n / 2;
+	double w = b->items[0].num, so = b->items[1].num, e = b->items[n].num, no = b->items[n + 1].num;
+	double tol = 1e-9 * fmax(1.0, fmax(fabs(st->hi[0]) + fabs(st->lo[0]), fabs(st->hi[1]) + fabs(st->lo[1])));
+	bool lon_in = w > e || (st->lo[0] >= w - tol && st->hi[0] <= e + tol);
+	if (lon_in && st->lo[1] >= so - tol && st->hi[1] <= no + tol)
+		return 0;
+	return curve_set_note(g->s, "%s:%d: the \"bbox\" [%g, %g, %g, %g] does not hold every position: they span x "
+			      "[%g, %g], y [%g, %g]; the positions are used", g->fname, b->line, w, so, e, no, st->lo[0],
+			      st->hi[0], st->lo[1], st->hi[1]);
+}
+
+/* The skipped features, one note per reason. */
+static int skip_notes(struct gctx *g)
+{
+	const struct skips *k[2] = { &g->other, &g->areas };
+	static const char *const why[2] = { "not carved (only LineString and MultiLineString are)",
+					    "areas are not carved (only lines are)" };
+	for (int i = 0; i < 2; i++) {
+		if (!k[i]->n)
+			continue;
+		char more[48] = "";
+		if (k[i]->n > SKIP_NAMED)
+			snprintf(more, sizeof(more), ", and %d more", k[i]->n - SKIP_NAMED);
+		if (curve_set_note(g->s, "%s: %d feature%s skipped, %s: %s%s", g->fname, k[i]->n, k[i]->n == 1 ? "" : "s",
+				   why[i], k[i]->named, more) < 0)
+			return -1;
+	}
+	return 0;
 }
 
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
@@ -331,15 +506,31 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 	struct json_value root;
 	if (json_parse(text, len, fname, &root, err, errlen) < 0)
 		return -1;
-	struct gctx g = { fname, err, errlen, s, CURVE_CRS_UNSAID, false, { 0.0, 0.0 } };
+	struct gctx g;
+	memset(&g, 0, sizeof(g));
+	g.fname = fname;
+	g.err = err;
+	g.errlen = errlen;
+	g.s = s;
+	struct geo_stats st;
 	int rc = geo_crs(&g, &root);
 	if (rc >= 0) {
 		g.crs = rc;
-		geo_decide(&g, &root);
-		rc = geo_root(&g, &root);
+		geo_decide(&g, &root, &st);
+		const struct json_value *t = json_get(&root, "type"); /* a Feature, a geometry: checked below */
+		rc = t && t->type == JSON_STRING && !strcmp(t->str, "FeatureCollection") ? geo_bbox(&g, &root, "GeoJSON") : 0;
 	}
-	if (rc == 0 && s->npaths == 0)
-		rc = gfail(&g, root.line, "GeoJSON", "no line strings");
+	if (rc == 0)
+		rc = geo_root(&g, &root);
+	if (rc == 0 && s->npaths == 0) {
+		char skipped[600] = "";
+		if (g.other.n || g.areas.n)
+			snprintf(skipped, sizeof(skipped), " (skipped: %s%s%s)", g.other.named, g.other.n && g.areas.n ? ", " : "",
+				 g.areas.named);
+		rc = gfail(&g, root.line, "GeoJSON", "no line strings to carve%s", skipped);
+	}
+	if (rc == 0 && (bbox_note(&g, &root, &st) < 0 || skip_notes(&g) < 0))
+		rc = gfail(&g, root.line, "GeoJSON", "out of memory");
 	json_free(&root);
 	if (rc < 0)
 		curve_set_free(s);
