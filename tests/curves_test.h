@@ -32,6 +32,7 @@ void test_io(void);
 void test_geojson_skips(void);
 void test_sizes(void);
 void test_geo(void);
+void test_gpx(void);
 void test_geo_terrain(void);
 void test_heightmap_cpu(struct edits *ed, struct params *p, const struct noise_set *ns);
 

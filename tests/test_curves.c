@@ -178,6 +178,7 @@ int main(void)
 	test_heightmap_cpu(ed, &p, &ns);
 	test_tunnel_cpu(ed);
 	test_geo();
+	test_gpx();
 	test_geo_terrain();
 
 	struct platform *plat = fixture_open();

@@ -118,6 +118,25 @@ expect_fail "width.geojson:2: feature 1: \"width\" must be a number" $SMALL --cu
 expect_fail "cannot open curves file" $SMALL --curves missing.geojson
 expect_fail "unknown format" $SMALL --curves roads.kml
 
+# ---- GPX ------------------------------------------------------------------------------
+cat >ride.gpx <<'X'
+<?xml version="1.0" encoding="UTF-8"?>
+<gpx version="1.1" creator="t" xmlns="http://www.topografix.com/GPX/1/1">
+ <trk><name>ride</name><trkseg>
+  <trkpt lat="40.41690" lon="-3.70010"><ele>4</ele></trkpt>
+  <trkpt lat="40.41700" lon="-3.70000"><ele>5</ele></trkpt>
+  <trkpt lat="40.41705" lon="-3.69985"><ele>4.5</ele></trkpt>
+ </trkseg></trk>
+</gpx>
+X
+expect_warn "warning" 0 $SMALL --curves ride.gpx
+printf '<gpx><trk><trkseg>\n<trkpt lat="1" lon="2">\n</trkseg></trk></gpx>\n' >broken.gpx
+expect_fail "^isoterra: error: broken.gpx:3: invalid XML: mismatched tag" $SMALL --curves broken.gpx
+printf '<gpx><trk><trkseg>\n<trkpt lat="1" lon="2"/>\n<trkpt lon="2.001"/>\n</trkseg></trk></gpx>\n' >nolat.gpx
+expect_fail "^isoterra: error: nolat.gpx:3: <trkpt> has no lat attribute" $SMALL --curves nolat.gpx
+printf '<gpx><rte>\n<rtept lat="1" lon="2"/>\n<rtept lat="91" lon="2"/>\n</rte></gpx>\n' >lat.gpx
+expect_fail "^isoterra: error: lat.gpx:3: <rtept> lat=.91. is not a latitude in \[-90, 90\]" $SMALL --curves lat.gpx
+
 # ---- malformed CSV ------------------------------------------------------------------
 printf 'path,x,y,z\na,0,0,0\na,1,oops,1\n' >bad.csv
 expect_fail "bad.csv:3: y 'oops' is not a number" $SMALL --curves bad.csv

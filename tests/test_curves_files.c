@@ -341,6 +341,105 @@ void test_geo(void)
 	}
 }
 
+/* GPX: a track and the same line as GeoJSON lon/lat give the same
+ * points, both at the lengths the WGS84 radii give (test_geo); routes,
+ * several segments, points without <ele> (the ground); bad files refused
+ * with file:line. */
+static void expect_gpx_error(const char *text, const char *want)
+{
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_gpx(text, strlen(text), "t.gpx", &s, err, sizeof(err));
+	CHECK(rc < 0 && s.npaths == 0 && strstr(err, want), "bad GPX: want '%s' in '%s'", want, err);
+	if (rc == 0)
+		curve_set_free(&s);
+}
+
+void test_gpx(void)
+{
+	const char *gpx = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+			  "<gpx version=\"1.1\" creator=\"t\" xmlns=\"http://www.topografix.com/GPX/1/1\"\n"
+			  "     xmlns:x=\"http://example.com/ext\">\n"
+			  " <trk><name>ridge</name><trkseg>\n"
+			  "  <trkpt lat=\"44.995\" lon=\"7.00\"><ele>650</ele><extensions><x:ele>9</x:ele></extensions></trkpt>\n"
+			  "  <trkpt lat=\"44.995\" lon=\"7.01\"><ele>660.5</ele></trkpt>\n"
+			  "  <trkpt lat=\"45.005\" lon=\"7.01\"><ele>655</ele></trkpt>\n"
+			  " </trkseg></trk>\n"
+			  "</gpx>\n";
+	const char *geo = "{\"type\":\"LineString\",\"coordinates\":[[7.00,44.995,650],[7.01,44.995,660.5],[7.01,45.005,655]]}";
+	struct curve_set a, b;
+	char err[512] = "";
+	int ra = curves_parse_gpx(gpx, strlen(gpx), "t.gpx", &a, err, sizeof(err));
+	CHECK(ra == 0, "GPX track: %s", err);
+	int rb = curves_parse_geojson(geo, strlen(geo), "t.geojson", &b, err, sizeof(err));
+	CHECK(rb == 0, "GeoJSON: %s", err);
+	if (ra == 0 && rb == 0) {
+		bool lla, llb;
+		const char *why;
+		double ca[2], cb[2];
+		CHECK(a.npaths == 1 && a.paths[0].npts == 3 && !a.paths[0].follow_ground && a.nnotes == 0,
+		      "one 3D path, no note");
+		CHECK(strstr(a.paths[0].label, "t.gpx: track 1 \"ridge\", segment 1") != NULL, "label: %s", a.paths[0].label);
+		CHECK(curves_geo_project(&a, CURVES_CRS_AUTO, 1.0f, &lla, &why, ca, err, sizeof(err)) == 0, "%s", err);
+		CHECK(curves_geo_project(&b, CURVES_CRS_AUTO, 1.0f, &llb, &why, cb, err, sizeof(err)) == 0, "%s", err);
+		CHECK(lla && llb, "both lon/lat");
+		double worst = 0.0;
+		for (int k = 0; k < 9; k++)
+			worst = fmax(worst, fabs((double)a.paths[0].pts[k] - (double)b.paths[0].pts[k]));
+		CHECK(worst < 1e-3, "GPX track == GeoJSON line string: worst difference %g m", worst);
+		const float *q = a.paths[0].pts;
+		CHECK_NEAR(q[3] - q[0], 788.468, 0.05, "GPX: 0.01 degree east at 45 N in metres");
+		CHECK_NEAR(-(q[8] - q[5]), 1111.330, 0.05, "GPX: 0.01 degree north at 45 N in metres");
+		CHECK_NEAR(q[4], 660.5, 1e-4, "GPX: <ele> is the height (not the extension's)");
+	}
+	if (ra == 0)
+		curve_set_free(&a);
+	if (rb == 0)
+		curve_set_free(&b);
+	/* a route, two segments of a track (one without <ele>: it follows the
+	 * ground), a one-point segment and a waypoint skipped with notes; GPX
+	 * 1.0 and no namespace read the same */
+	const char *more = "<gpx version=\"1.0\" xmlns=\"http://www.topografix.com/GPX/1/0\">\n"
+			   "<wpt lat=\"1\" lon=\"1\"/>\n"
+			   "<rte><rtept lat=\"10\" lon=\"20\"><ele>1</ele></rtept><rtept lat=\"10.001\" lon=\"20\"><ele>2</ele></rtept>"
+			   "<name>r</name></rte>\n"
+			   "<trk><trkseg><trkpt lat=\"10\" lon=\"20.001\"/><trkpt lat=\"10.001\" lon=\"20.001\"/></trkseg>\n"
+			   "<trkseg><trkpt lat=\"10\" lon=\"20.002\"/></trkseg></trk>\n"
+			   "</gpx>";
+	ra = curves_parse_gpx(more, strlen(more), "m.gpx", &a, err, sizeof(err));
+	CHECK(ra == 0, "GPX route and track: %s", err);
+	if (ra == 0) {
+		CHECK(a.npaths == 2 && !a.paths[0].follow_ground && a.paths[1].follow_ground, "route 3D, track 2D (%d paths)",
+		      a.npaths);
+		CHECK(a.npaths == 2 && strstr(a.paths[0].label, "route 1 \"r\"") && strstr(a.paths[1].label, "track 1, segment 1"),
+		      "labels");
+		CHECK(a.nnotes == 2 && notes_with(&a, "m.gpx: 1 track segment or route of fewer than 2 distinct points skipped, "
+						      "the first track 1, segment 2 (line 5)") == 1 &&
+			      notes_with(&a, "m.gpx: 1 waypoint (<wpt>) skipped: points are not carved") == 1,
+		      "notes: the short segment and the waypoint (%d)", a.nnotes);
+		curve_set_free(&a);
+	}
+	/* bad files: file:line and what */
+	expect_gpx_error("<gpx><trk><trkseg>\n<trkpt lat=\"1\" lon=\"2\">\n</trkseg></trk></gpx>",
+			 "t.gpx:3: invalid XML: mismatched tag");
+	expect_gpx_error("<gpx><trk><trkseg>\n<trkpt lat=\"1\" lon=\"2\"/>\n<trkpt lon=\"2\"/>\n</trkseg></trk></gpx>",
+			 "t.gpx:3: <trkpt> has no lat attribute");
+	expect_gpx_error("<gpx><rte>\n<rtept lat=\"1\"/></rte></gpx>", "t.gpx:2: <rtept> has no lon attribute");
+	expect_gpx_error("<gpx><trk><trkseg>\n\n<trkpt lat=\"95\" lon=\"2\"/>\n</trkseg></trk></gpx>",
+			 "t.gpx:3: <trkpt> lat=\"95\" is not a latitude in [-90, 90]");
+	expect_gpx_error("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"200\"/></trkseg></trk></gpx>",
+			 "t.gpx:1: <trkpt> lon=\"200\" is not a longitude in [-180, 180]");
+	expect_gpx_error("<gpx><trk><trkseg><trkpt lat=\"1x\" lon=\"2\"/></trkseg></trk></gpx>", "lat=\"1x\" is not");
+	expect_gpx_error("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"><ele>high</ele></trkpt></trkseg></trk></gpx>",
+			 "t.gpx:1: <ele>high</ele> is not a height");
+	expect_gpx_error("<gpx><trk><trkpt lat=\"1\" lon=\"2\"/></trk></gpx>", "<trkpt> must be inside a <trkseg>");
+	expect_gpx_error("<kml></kml>", "t.gpx:1: not GPX: the root element is <kml>");
+	expect_gpx_error("<?xml version=\"1.0\"?>\n<!DOCTYPE gpx [<!ENTITY a \"aaaa\">]>\n<gpx/>", "t.gpx:2: a DTD");
+	expect_gpx_error("<gpx><wpt lat=\"1\" lon=\"2\"/></gpx>",
+			 "t.gpx: no track segment or route of 2 distinct points to carve (0 tracks, 0 routes, 1 waypoint)");
+	expect_gpx_error("", "t.gpx:1: invalid XML: no element found");
+}
+
 /* A 2D GeoJSON file through the edit state and the terrain: every point on
  * the field's surface (CPU density: air just above, rock just below). */
 void test_geo_terrain(void)

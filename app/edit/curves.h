@@ -199,6 +199,14 @@ int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen)
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
 			 size_t errlen);
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
+/* GPX 1.0 / 1.1 (.gpx): every track segment (trk/trkseg/trkpt) and route
+ * (rte/rtept) a path of kind road; lat/lon WGS84 (crs CURVE_CRS_WGS84,
+ * degrees from the centroid, projected by curves_geo_project like GeoJSON
+ * lon/lat), <ele> metres as the height, or the path follows the ground
+ * when its points lack <ele>.  Errors (malformed XML, a point without lat
+ * or lon, a latitude beyond +-90, a DTD) name file:line.  0 or -1 with
+ * err. */
+int curves_parse_gpx(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
 
 /* ---- geographic input (curves_geo.c) ------------------------------------------ */
 

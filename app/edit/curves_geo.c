@@ -33,7 +33,7 @@ static bool choose_lonlat(const struct curve_set *s, int mode, const char **why)
 		return false;
 	}
 	if (p->crs == CURVE_CRS_WGS84)
-		*why = "the crs member names WGS84";
+		*why = "the file names WGS84: a crs member, or GPX";
 	else if (p->crs == CURVE_CRS_OTHER)
 		*why = "the crs member names another system";
 	else if (p->geo_rel)
