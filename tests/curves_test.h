@@ -30,6 +30,7 @@ void test_tunnel_cpu(struct edits *ed);
 /* test_curves_files.c */
 void test_io(void);
 void test_geojson_skips(void);
+void test_road_widths(void);
 void test_sizes(void);
 void test_geo(void);
 void test_gpx(void);

@@ -163,6 +163,7 @@ int main(void)
 	test_affected(ed);
 	test_io();
 	test_geojson_skips();
+	test_road_widths();
 	test_sizes();
 	int ncases = 1200;
 	float *items = malloc(sizeof(float) * 16 * (size_t)ncases);

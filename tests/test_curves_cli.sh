@@ -118,6 +118,25 @@ expect_fail "width.geojson:2: feature 1: \"width\" must be a number" $SMALL --cu
 expect_fail "cannot open curves file" $SMALL --curves missing.geojson
 expect_fail "unknown format" $SMALL --curves roads.kml
 
+# road widths: --road-width sets a road's that the file leaves open (the
+# picture changes), not one the file gives (the picture stays); a width
+# out of range is refused
+cat >open.geojson <<'J'
+{ "type": "LineString", "coordinates": [[-14, 9, 3], [0, -1, 4], [14, -9, 3]] }
+J
+sed 's/"type": "LineString"/"type": "Feature", "properties": { "width": 4 }, "geometry": { "type": "LineString"/; s/]] }/]] } }/' \
+	open.geojson >given.geojson
+for f in open given; do
+	for w in 2 30; do
+		expect_ok $SMALL --curves-crs local --curves $f.geojson --road-width $w
+		cp out.png "$f-$w.png"
+	done
+done
+if cmp -s open-2.png open-30.png; then bad "--road-width 2 and 30 drew the same road"; else ok; fi
+if cmp -s given-2.png given-30.png; then ok; else bad "--road-width changed a road whose width the file gives"; fi
+expect_fail "road_width: 0 is out of range" $SMALL --curves open.geojson --road-width 0
+expect_fail "road_falloff: -1 is out of range" $SMALL --curves open.geojson --road-falloff -1
+
 # ---- GPX ------------------------------------------------------------------------------
 cat >ride.gpx <<'X'
 <?xml version="1.0" encoding="UTF-8"?>

@@ -192,6 +192,68 @@ void test_geojson_skips(void)
 			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: geometry Polygon (1 polygon, 1 ring))");
 }
 
+/* Widths from feature properties: an explicit width beats lanes, lanes
+ * beat the OSM highway class, the class beats the road_width default;
+ * falloff likewise; other kinds keep their defaults; CSV cells are the
+ * file's own. */
+void test_road_widths(void)
+{
+	const char *geo =
+		"{\"type\":\"FeatureCollection\",\"features\":[\n"
+		"{\"type\":\"Feature\",\"properties\":{\"lanes\":4},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"lanes\":\"3\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"motorway\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"footway\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"tags\":{\"highway\":\"primary\"}},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"width\":5,\"highway\":\"motorway\",\"lanes\":6},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"lanes\":2,\"highway\":\"motorway\",\"falloff\":2},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":null,\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"kind\":\"river\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"id\":\"way/9\",\"properties\":{\"highway\":\"proposed\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}\n"
+		"]}";
+	/* road_width 10 (a lane 5), road_falloff 3 */
+	static const float want_w[10] = { 20, 15, 30, 2.5f, 20, 5, 10, 10, 10, 10 };
+	static const float want_f[10] = { 3, 3, 3, 3, 3, 3, 2, 3, 12, 3 };
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_geojson(geo, strlen(geo), "w.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 10, "widths file: %s", err);
+	if (rc == 0 && s.npaths == 10) {
+		curves_road_widths(&s, 10.0f, 3.0f);
+		int bad = 0;
+		for (int i = 0; i < 10; i++) {
+			bool ok = s.paths[i].width == want_w[i] && s.paths[i].falloff == want_f[i];
+			if (!ok)
+				printf("  feature %d: width %g falloff %g, want %g %g\n", i + 1, (double)s.paths[i].width,
+				       (double)s.paths[i].falloff, (double)want_w[i], (double)want_f[i]);
+			bad += !ok;
+		}
+		CHECK(bad == 0, "lanes, highway classes, explicit width first, road_width / road_falloff defaults: %d wrong",
+		      bad);
+		CHECK(s.nnotes == 1 && notes_with(&s, "w.geojson: 1 feature of a highway class without a known width, given "
+						      "road_width: feature 10 (id \"way/9\") \"proposed\"") == 1,
+		      "the unknown class noted once (%d notes)", s.nnotes);
+		curve_set_free(&s);
+	}
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"lanes\":\"two\"},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "feature 1: \"lanes\" must be a whole number from 1 to 16");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"lanes\":0},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"lanes\" must be a whole number");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"highway\":3},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"highway\" must be a string");
+	/* CSV: a width cell is the file's own; a road without one gets road_width */
+	const char *csv = "path,x,y,z,width\na,0,0,0,3\na,1,0,0,\nb,0,0,0,\nb,1,0,1,\n";
+	rc = curves_parse_csv(csv, strlen(csv), "w.csv", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 2, "CSV widths: %s", err);
+	if (rc == 0 && s.npaths == 2) {
+		curves_road_widths(&s, 10.0f, 3.0f);
+		CHECK(s.paths[0].width == 3.0f && s.paths[1].width == 10.0f && s.paths[1].falloff == 3.0f,
+		      "CSV: width cell 3 kept, empty -> road_width 10 (%g, %g)", (double)s.paths[0].width,
+		      (double)s.paths[1].width);
+		curve_set_free(&s);
+	}
+}
+
 /* Work sized from the input and refused before it is done: a road a
  * million units wide over a 1024^2 hash (each piece in every cell), files
  * with more points than the tables hold; 200 000 paths read in linear time

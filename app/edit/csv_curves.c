@@ -215,7 +215,7 @@ static int csv_props(struct csv *c, char **f)
 		if (c->set_prop[i] && *curve_param_slot(&c->cur, i) != (float)v)
 			return cfail(c, c->lineno, "%s of path '%s' changes along the path (%g, then %s)",
 				     curve_param_names[i], c->cur_id, (double)*curve_param_slot(&c->cur, i), f[col]);
-		*curve_param_slot(&c->cur, i) = (float)v;
+		curve_param_set(&c->cur, i, (float)v);
 		c->set_prop[i] = true;
 	}
 	int kcol = c->col[COL_KIND];

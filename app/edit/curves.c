@@ -30,6 +30,8 @@ void curve_path_defaults(struct curve_path *p, int kind)
 	p->falloff = d[kind][1];
 	p->inclination = d[kind][2];
 	p->smoothing = d[kind][3];
+	p->width_set = p->falloff_set = false; /* defaults, not the file's */
+	p->width_rel = 0.0f;
 }
 
 void curve_set_free(struct curve_set *s)

@@ -37,6 +37,9 @@ struct curve_path {
 	float smoothing;       /* Ω in [0,1]: handle length, 0 = the polyline itself */
 	int npts;
 	float *pts;            /* npts * 3: world x, y (up), z */
+	bool width_set;        /* width given by the file (a width or lanes property, */
+	bool falloff_set;      /* a highway class, a CSV cell); else curves_road_widths */
+	float width_rel;       /* lanes or highway class: width in units of road_width, 0 when none */
 	bool follow_ground;    /* 2D input: y is taken from the terrain's surface
 				* (curves_follow_ground; until then 0) */
 	int crs;               /* enum curve_crs: what its file said (GeoJSON) */
@@ -207,6 +210,12 @@ int curves_parse_csv(const char *text, size_t len, const char *fname, struct cur
  * or lon, a latitude beyond +-90, a DTD) name file:line.  0 or -1 with
  * err. */
 int curves_parse_gpx(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
+
+/* The widths a file left open (curve_params.c): a path with width_rel
+ * (lanes, an OSM highway class) gets width_rel * road_width, a road
+ * without width or width_rel road_width; a road without a falloff
+ * road_falloff.  Other kinds keep their defaults. */
+void curves_road_widths(struct curve_set *s, float road_width, float road_falloff);
 
 /* ---- geographic input (curves_geo.c) ------------------------------------------ */
 

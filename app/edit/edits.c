@@ -137,6 +137,7 @@ static int load_curves_file(struct edits *ed, const struct params *p, struct cur
 {
 	if (curves_load(p->curves, s, err, errlen) < 0)
 		return -1;
+	curves_road_widths(s, p->road_width, p->road_falloff);
 	bool lonlat;
 	const char *why;
 	double c[2];

@@ -33,6 +33,7 @@ struct gctx {
 	double origin[2];  /* lon, lat: the positions' centroid */
 	struct skips other; /* no line: Point, MultiPoint, GeometryCollection, null, ... */
 	struct skips areas; /* Polygon, MultiPolygon */
+	struct skips classes; /* unknown OSM highway classes */
 };
 
 static void skip_add(struct skips *k, const char *what, const char *type, const char *detail)
@@ -150,6 +151,49 @@ static int geo_bbox(struct gctx *g, const struct json_value *o, const char *what
 	return 0;
 }
 
+/* OSM tag `key`: a member of properties, or of its "tags" object (some
+ * exporters nest the tags). */
+static const struct json_value *osm_tag(const struct json_value *props, const char *key)
+{
+	const struct json_value *v = json_get(props, key), *tags = json_get(props, "tags");
+	return v ? v : tags && tags->type == JSON_OBJECT ? json_get(tags, key) : NULL;
+}
+
+/* A width left open by the properties: "lanes" (a number, or a string of
+ * one as OSM exports write tags) times a lane, else the OSM "highway"
+ * class's width; an unknown class is noted (the road_width default). */
+static int geo_road_class(struct gctx *g, const struct json_value *props, const char *what, struct curve_path *base)
+{
+	const struct json_value *lanes = osm_tag(props, "lanes"), *hw = osm_tag(props, "highway");
+	if (lanes) {
+		double n = lanes->type == JSON_NUMBER ? lanes->num : NAN;
+		if (lanes->type == JSON_STRING) {
+			char *end;
+			n = strtod(lanes->str, &end);
+			if (end == lanes->str || *end)
+				n = NAN;
+		}
+		if (!(n >= 1.0 && n <= CURVE_LANES_MAX && n == floor(n)))
+			return gfail(g, lanes->line, what, "\"lanes\" must be a whole number from 1 to %d", CURVE_LANES_MAX);
+		if (!base->width_set)
+			base->width_rel = 0.5f * (float)n;
+	}
+	if (hw && hw->type != JSON_STRING)
+		return gfail(g, hw->line, what, "\"highway\" must be a string (an OSM highway class), not %s",
+			     json_type_names[hw->type]);
+	if (hw && !base->width_set && base->width_rel == 0.0f) {
+		float rel = curve_highway_width(hw->str);
+		if (rel > 0.0f) {
+			base->width_rel = rel;
+		} else {
+			char cls[48];
+			snprintf(cls, sizeof(cls), "\"%.40s\"", hw->str);
+			skip_add(&g->classes, what, cls, "");
+		}
+	}
+	return 0;
+}
+
 static int geo_props(struct gctx *g, const struct json_value *props, const char *what, struct curve_path *base)
 {
 	curve_path_defaults(base, CURVE_ROAD);
@@ -174,9 +218,9 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 		const char *why = curve_param_check(curve_param_names[i], v->num);
 		if (why)
 			return gfail(g, v->line, what, "\"%s\" = %g %s", curve_param_names[i], v->num, why);
-		*curve_param_slot(base, i) = (float)v->num;
+		curve_param_set(base, i, (float)v->num);
 	}
-	return 0;
+	return geo_road_class(g, props, what, base);
 }
 
 /* GeoJSON's axes, for messages (the CSV's are x, y up, z) */
@@ -480,6 +524,14 @@ static int skip_notes(struct gctx *g)
 	const struct skips *k[2] = { &g->other, &g->areas };
 	static const char *const why[2] = { "not carved (only LineString and MultiLineString are)",
 					    "areas are not carved (only lines are)" };
+	if (g->classes.n) {
+		char more[48] = "";
+		if (g->classes.n > SKIP_NAMED)
+			snprintf(more, sizeof(more), ", and %d more", g->classes.n - SKIP_NAMED);
+		if (curve_set_note(g->s, "%s: %d feature%s of a highway class without a known width, given road_width: %s%s",
+				   g->fname, g->classes.n, g->classes.n == 1 ? "" : "s", g->classes.named, more) < 0)
+			return -1;
+	}
 	for (int i = 0; i < 2; i++) {
 		if (!k[i]->n)
 			continue;
