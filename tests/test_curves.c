@@ -180,6 +180,8 @@ int main(void)
 	test_tunnel_cpu(ed);
 	test_geo();
 	test_gpx();
+	test_flat_zero();
+	test_inside_fraction();
 	test_geo_terrain();
 
 	struct platform *plat = fixture_open();

@@ -23,7 +23,7 @@ cd "$T" || exit 1
 
 # ---- good files ---------------------------------------------------------------
 cat >road.geojson <<'J'
-{ "type": "FeatureCollection", "features": [
+{ "type": "FeatureCollection", "crs": { "type": "name", "properties": { "name": "local" } }, "features": [
   { "type": "Feature", "properties": { "kind": "road", "width": 4, "falloff": 3, "smoothing": 0.5 },
     "geometry": { "type": "LineString", "coordinates": [[-14, 9, 0], [0, -1, 1], [14, -9, 0]] } },
   { "type": "Feature", "properties": { "kind": "river", "width": 3, "falloff": 4 },
@@ -52,8 +52,8 @@ expect_fail "control map: 'bad.png' is not a PNG file" $SMALL --control-strength
 cat >flat.geojson <<'J'
 { "type": "LineString", "coordinates": [[-14, 9], [0, -1], [14, -9]] }
 J
-expect_ok $SMALL --curves flat.geojson
-expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --curves flat.geojson
+expect_ok $SMALL --curves flat.geojson --curves-crs local
+expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --curves flat.geojson --curves-crs local
 cat >lonlat.geojson <<'J'
 { "type": "Feature", "properties": { "kind": "road", "width": 4 },
   "geometry": { "type": "LineString", "coordinates": [[-3.70010, 40.41690], [-3.70000, 40.41700], [-3.69985, 40.41705]] } }
@@ -92,7 +92,47 @@ expect_warn "warning: mix.geojson: 1 feature skipped, areas are not carved .only
 expect_warn "warning: mix.geojson: 1 feature skipped, not carved .only LineString and MultiLineString are.: feature 3 Point" 1 \
 	$SMALL --curves mix.geojson --curves-crs local
 expect_warn "warning" 2 $SMALL --curves mix.geojson --curves-crs local
-expect_warn "warning" 0 $SMALL --curves road.geojson --curves-crs local
+expect_warn "warning" 0 $SMALL --curves road.geojson
+
+# ---- no silent no-ops: one warning each, naming the values; none on good input
+# lon/lat-looking positions spanning 9 degrees without a crs member: lon/lat
+# (RFC 7946), said; 1000 km lie outside the volume, said with both extents
+cat >wide.geojson <<'J'
+{ "type": "LineString", "coordinates": [[-3.0, 40.0, 600], [6.0, 40.5, 650]] }
+J
+expect_warn "warning: wide.geojson: no crs member and every position within lon/lat ranges, spanning 9 degrees of longitude and 0.5 of latitude: taken as WGS84 lon/lat" 1 \
+	$SMALL --curves wide.geojson
+expect_warn "warning: wide.geojson: over 99.9% of the curves' length lies outside the volume: the curves span x \[-3[0-9.e+]*, 3[0-9.e+]*\] z \[-[0-9.e+]*, [0-9.e+]*\], the volume x \[-48, 48\] z \[-48, 48\]" 1 \
+	$SMALL --curves wide.geojson
+expect_warn "warning" 2 $SMALL --curves wide.geojson
+expect_warn "warning" 1 $SMALL --curves wide.geojson --curves-crs lonlat
+# a 3.4 km GPX route at 1 world unit a metre: mostly outside; scaled, inside
+cat >route.gpx <<'X'
+<gpx version="1.1" xmlns="http://www.topografix.com/GPX/1/1"><rte>
+<rtept lat="40.400" lon="-3.700"><ele>4</ele></rtept><rtept lat="40.415" lon="-3.7003"><ele>5</ele></rtept>
+<rtept lat="40.430" lon="-3.700"><ele>4</ele></rtept></rte></gpx>
+X
+expect_warn "warning: route.gpx: 97\.[0-9]% of the curves' length lies outside the volume: the curves span x \[-1[0-9.]*, [0-9.]*\] z \[-166[0-9.]*, 166[0-9.]*\], the volume x \[-48, 48\] z \[-48, 48\]" 1 \
+	$SMALL --curves route.gpx
+expect_warn "warning" 1 $SMALL --curves route.gpx
+expect_warn "warning" 0 $SMALL --curves route.gpx --curves-geo-scale 0.025
+# 3D positions whose every height is 0: taken as 2D on the ground
+cat >zero.geojson <<'J'
+{ "type": "LineString", "crs": { "type": "name", "properties": { "name": "local" } },
+  "coordinates": [[-14, 9, 0], [0, -1, 0], [14, -9, 0]] }
+J
+expect_warn "warning: zero.geojson: the z .up. of all 3 3D positions is 0, which would carve at height 0: taken as 2D, the curves follow the ground" 1 \
+	$SMALL --curves zero.geojson
+expect_warn "warning" 1 $SMALL --curves zero.geojson
+# --heightmap alone implies field = heightmap (a note); with another field
+# given (an option, a preset) it is unused (a warning); with it, neither
+expect_warn "info: heightmap hm.png given without a field: field = heightmap" 1 $SMALL --heightmap hm.png
+expect_warn "warning" 0 $SMALL --heightmap hm.png
+expect_warn "warning: heightmap hm.png is not used: field = torus .only field = heightmap reads it." 1 \
+	$SMALL --heightmap hm.png --field torus
+expect_warn "warning: heightmap hm.png is not used: field = torus" 1 $SMALL --preset torus --heightmap hm.png
+expect_warn "heightmap hm.png" 0 $SMALL --heightmap hm.png --field heightmap
+expect_warn "heightmap" 0 $SMALL --field terrain
 
 # ---- malformed GeoJSON ------------------------------------------------------------
 printf '{ "type": "FeatureCollection", "features": [\n  { "type": "Feature",\n' >trunc.geojson

@@ -27,7 +27,8 @@ static void expect_parse_error(bool csv, const char *text, const char *want)
 
 void test_io(void)
 {
-	const char *geo = "{ \"type\": \"FeatureCollection\", \"features\": [\n"
+	const char *geo = "{ \"type\": \"FeatureCollection\", \"crs\": { \"type\": \"name\", \"properties\": { \"name\": \"local\" } },\n"
+			  "  \"features\": [\n"
 			  "  { \"type\": \"Feature\", \"properties\": { \"kind\": \"river\", \"width\": 12.5, \"name\": \"x\" },\n"
 			  "    \"geometry\": { \"type\": \"LineString\", \"coordinates\": [[0, 0, 1], [10, 5, 2.5e0], [20, 0, -3]] } },\n"
 			  "  { \"type\": \"Feature\", \"properties\": null,\n"
@@ -372,7 +373,27 @@ void test_geo(void)
 	const char *named = "{\"type\":\"LineString\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
 			    "\"EPSG:25830\"}},\"coordinates\":[[0.1,0.2,0],[0.3,0.4,0]]}";
 	CHECK(geo_mode(small, CURVES_CRS_AUTO, &why), "small lon/lat extent, no crs: lon/lat (%s)", why);
-	CHECK(!geo_mode(local, CURVES_CRS_AUTO, &why), "a span over a degree: world units (%s)", why);
+	CHECK(geo_mode(local, CURVES_CRS_AUTO, &why), "within lon/lat ranges over more than a degree: lon/lat (%s)", why);
+	const char *beyond = "{\"type\":\"LineString\",\"coordinates\":[[-14,-2,1],[400,9,2]]}";
+	CHECK(!geo_mode(beyond, CURVES_CRS_AUTO, &why), "beyond lon/lat ranges: world units (%s)", why);
+	/* the span over a degree is said, once, and only when the rule decided */
+	struct { const char *text; int mode; int notes; } spans[] = {
+		{ local, CURVES_CRS_AUTO, 1 }, { local, CURVES_CRS_LOCAL, 0 }, { local, CURVES_CRS_LONLAT, 0 },
+		{ small, CURVES_CRS_AUTO, 0 }, { beyond, CURVES_CRS_AUTO, 0 }, { ll, CURVES_CRS_AUTO, 0 },
+	};
+	for (size_t i = 0; i < sizeof(spans) / sizeof(spans[0]); i++) {
+		if (parse_geo(spans[i].text, &s) != 0)
+			continue;
+		bool lonlat;
+		double c[2];
+		CHECK(curves_geo_project(&s, spans[i].mode, 1.0f, &lonlat, &why, c, err, sizeof(err)) == 0, "%s", err);
+		CHECK(s.nnotes == spans[i].notes, "span note %zu: %d notes, want %d", i, s.nnotes, spans[i].notes);
+		if (spans[i].notes)
+			CHECK(notes_with(&s, "g.geojson: no crs member and every position within lon/lat ranges, spanning 18 "
+					     "degrees of longitude and 11 of latitude: taken as WGS84 lon/lat") == 1,
+			      "the span named: %s", s.nnotes ? s.notes[0] : "none");
+		curve_set_free(&s);
+	}
 	CHECK(!geo_mode(named, CURVES_CRS_AUTO, &why), "another crs named: world units (%s)", why);
 	CHECK(geo_mode(local, CURVES_CRS_LONLAT, &why), "forced lon/lat");
 	CHECK(!geo_mode(small, CURVES_CRS_LOCAL, &why), "forced local");
@@ -502,6 +523,61 @@ void test_gpx(void)
 	expect_gpx_error("", "t.gpx:1: invalid XML: no element found");
 }
 
+/* 3D input whose every height is 0 is an export's placeholder: taken as
+ * 2D (the ground), one note; a single non-zero height keeps it 3D. */
+void test_flat_zero(void)
+{
+	const char *zero = "{\"type\":\"MultiLineString\",\"coordinates\":[[[0,0,0],[1,1,0]],[[2,2,0],[3,3,0],[4,3,0]]]}";
+	const char *one = "{\"type\":\"MultiLineString\",\"coordinates\":[[[0,0,0],[1,1,0]],[[2,2,0],[3,3,0.5],[4,3,0]]]}";
+	const char *gz = "<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"><ele>0</ele></trkpt><trkpt lat=\"1.001\" lon=\"2\">"
+			 "<ele>0.0</ele></trkpt></trkseg></trk></gpx>";
+	const char *g1 = "<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"><ele>0</ele></trkpt><trkpt lat=\"1.001\" lon=\"2\">"
+			 "<ele>3</ele></trkpt></trkseg></trk></gpx>";
+	struct curve_set s;
+	char err[512] = "";
+	if (parse_geo(zero, &s) == 0) {
+		CHECK(s.npaths == 2 && s.paths[0].follow_ground && s.paths[1].follow_ground, "z = 0 everywhere: 2D");
+		CHECK(s.nnotes == 1 && notes_with(&s, "g.geojson: the z (up) of all 5 3D positions is 0, which would carve at "
+						      "height 0: taken as 2D, the curves follow the ground") == 1,
+		      "one note: %s", s.nnotes ? s.notes[0] : "none");
+		curve_set_free(&s);
+	}
+	if (parse_geo(one, &s) == 0) {
+		CHECK(!s.paths[0].follow_ground && !s.paths[1].follow_ground && s.nnotes == 0, "one height 0.5: 3D, no note");
+		curve_set_free(&s);
+	}
+	int rc = curves_parse_gpx(gz, strlen(gz), "z.gpx", &s, err, sizeof(err));
+	CHECK(rc == 0, "GPX: %s", err);
+	if (rc == 0) {
+		CHECK(s.paths[0].follow_ground && s.nnotes == 1 &&
+			      notes_with(&s, "z.gpx: the <ele> of all 2 3D positions is 0, which would carve at height 0") == 1,
+		      "GPX <ele> 0 everywhere: 2D, one note");
+		curve_set_free(&s);
+	}
+	rc = curves_parse_gpx(g1, strlen(g1), "z.gpx", &s, err, sizeof(err));
+	CHECK(rc == 0 && !s.paths[0].follow_ground && s.nnotes == 0, "GPX with a height: 3D, no note (%s)", err);
+	if (rc == 0)
+		curve_set_free(&s);
+}
+
+/* The share of the curves' length inside a box (the volume's warning):
+ * clipped exactly. */
+void test_inside_fraction(void)
+{
+	float a[6] = { -10, 0, 0, 10, 0, 0 }, b[6] = { 20, 0, 20, 40, 0, 20 };
+	struct curve_path pa = make_path(2, a, 1, 1, 0, 0), pb = make_path(2, b, 1, 1, 0, 0);
+	struct curve_path both[2] = { pa, pb };
+	struct curve_set s = { .paths = both, .npaths = 2 };
+	float box[4] = { -5, -5, 5, 5 }, e[4];
+	double f = curves_inside_fraction(&s, box, e);
+	CHECK_NEAR(f, 10.0 / 40.0, 1e-9, "10 of 40 units inside");
+	CHECK(e[0] == -10 && e[1] == 0 && e[2] == 40 && e[3] == 20, "extent x [-10, 40] z [0, 20]");
+	float diag[6] = { -10, 0, -10, 10, 0, 10 };
+	struct curve_path pd = make_path(2, diag, 1, 1, 0, 0);
+	struct curve_set d = { .paths = &pd, .npaths = 1 };
+	CHECK_NEAR(curves_inside_fraction(&d, box, e), 0.5, 1e-6, "a diagonal half inside");
+}
+
 /* A 2D GeoJSON file through the edit state and the terrain: every point on
  * the field's surface (CPU density: air just above, rock just below). */
 void test_geo_terrain(void)
@@ -518,7 +594,7 @@ void test_geo_terrain(void)
 	fclose(f);
 	struct params p;
 	params_defaults(&p);
-	set(&p, "octaves=5");
+	set(&p, "octaves=5;curves_crs=local");
 	snprintf(p.curves, sizeof(p.curves), "%s", path);
 	struct edits *ed = edits_create();
 	struct terrain *tr = terrain_create(ed);

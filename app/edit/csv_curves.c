@@ -288,6 +288,7 @@ static long count_rows(const char *text, size_t len)
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen)
 {
 	memset(s, 0, sizeof(*s));
+	snprintf(s->source, sizeof(s->source), "%s", fname);
 	long rows = count_rows(text, len);
 	if (rows - 1 > CURVE_MAX_POINTS) {
 		snprintf(err, errlen, "%s: %ld points, more than the %ld the curve tables may hold", fname, rows - 1,

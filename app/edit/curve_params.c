@@ -82,3 +82,11 @@ void curves_road_widths(struct curve_set *s, float road_width, float road_fallof
 			p->falloff = road_falloff;
 	}
 }
+
+int curves_flat_zero(struct curve_set *s, long n, const char *axis)
+{
+	for (int i = 0; i < s->npaths; i++)
+		s->paths[i].follow_ground = true;
+	return curve_set_note(s, "%s: the %s of all %ld 3D positions is 0, which would carve at height 0: taken as 2D, "
+			      "the curves follow the ground", s->source, axis, n);
+}

@@ -63,9 +63,10 @@ struct curve_set {
 	 * freed with the set, not copied by curve_set_copy. */
 	char (*notes)[CURVE_NOTE_MAX];
 	int nnotes;
-	/* lon/lat-looking input without a crs member (the reader's rule):
-	 * its span in degrees (lon, lat), for curves_geo_project's warning */
+	/* lon/lat input without a crs member (the reader's rule, geo_rel):
+	 * its span in degrees (lon, lat), for curves_geo_project's note */
 	double geo_span[2];
+	char source[96];       /* the file's name, for notes */
 };
 
 /* Defaults of the per-path parameters by kind (w, λ, inclination gain, Ω). */
@@ -232,6 +233,9 @@ void curves_road_widths(struct curve_set *s, float road_width, float road_fallof
  * chosen, *why the rule (for the log).  0, or -1 with err. */
 int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat, const char **why, double centroid[2],
 		       char *err, size_t errlen);
+/* The fraction of the curves' XZ length inside box (xmin, zmin, xmax,
+ * zmax), and their XZ extent in ext (same order); 1 for no length. */
+double curves_inside_fraction(const struct curve_set *s, const float box[4], float ext[4]);
 /* The terrain's surface height under (x, z) for 2D curves; false when
  * there is none. */
 typedef bool (*curve_ground_fn)(void *ctx, float x, float z, float *y);

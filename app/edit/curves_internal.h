@@ -23,6 +23,10 @@ void curve_param_set(struct curve_path *p, int i, float v);
 /* An OSM highway class's width in units of road_width (a lane is 1/2:
  * the default road has two), or -1 for a class not in the table. */
 float curve_highway_width(const char *cls);
+/* 3D input whose every height is 0 (n positions; axis names it): an
+ * export's placeholder, not a road at altitude 0.  Every path follows the
+ * ground instead, said in a note.  0, or -1 when out of memory. */
+int curves_flat_zero(struct curve_set *s, long n, const char *axis);
 /* Lanes of a road: 1 to CURVE_LANES_MAX. */
 #define CURVE_LANES_MAX 16
 

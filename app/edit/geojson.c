@@ -34,6 +34,7 @@ struct gctx {
 	struct skips other; /* no line: Point, MultiPoint, GeometryCollection, null, ... */
 	struct skips areas; /* Polygon, MultiPolygon */
 	struct skips classes; /* unknown OSM highway classes */
+	long n3d, n3d_nonzero; /* positions of 3D line strings, those with z != 0 */
 };
 
 static void skip_add(struct skips *k, const char *what, const char *type, const char *detail)
@@ -101,15 +102,18 @@ static void geo_scan(const struct json_value *v, struct geo_stats *st, int depth
 
 /* The auto rule (curves.h, curves_geo_project): lon/lat when the crs member
  * names WGS84, or without one when every position is within lon/lat
- * ranges and the data spans under a degree both ways. */
+ * ranges (RFC 7946: GeoJSON is WGS84); the span is kept for the note. */
 static void geo_decide(struct gctx *g, const struct json_value *root, struct geo_stats *stp)
 {
 	struct geo_stats st = { { 1e300, 1e300 }, { -1e300, -1e300 }, { 0.0, 0.0 }, 0.0, 0 };
 	geo_scan(root, &st, 0);
 	*stp = st;
 	bool ranges = st.n > 0 && st.lo[0] >= -180.0 && st.hi[0] <= 180.0 && st.lo[1] >= -90.0 && st.hi[1] <= 90.0;
-	g->rel = g->crs == CURVE_CRS_WGS84 ||
-		 (g->crs == CURVE_CRS_UNSAID && ranges && st.hi[0] - st.lo[0] < 1.0 && st.hi[1] - st.lo[1] < 1.0);
+	g->rel = g->crs == CURVE_CRS_WGS84 || (g->crs == CURVE_CRS_UNSAID && ranges);
+	if (g->crs == CURVE_CRS_UNSAID && ranges) { /* curves_geo_project notes a span over a degree */
+		g->s->geo_span[0] = st.hi[0] - st.lo[0];
+		g->s->geo_span[1] = st.hi[1] - st.lo[1];
+	}
 	if (g->rel && st.n > 0) {
 		g->origin[0] = geo_dlon(st.ref + st.sum[0] / (double)st.n, 0.0);
 		g->origin[1] = st.sum[1] / (double)st.n;
@@ -276,6 +280,10 @@ static int geo_line(struct gctx *g, const struct json_value *coords, const char 
 		if (g->rel) { /* degrees from the centroid, exact before rounding */
 			c[0] = geo_dlon(c[0], g->origin[0]);
 			c[1] -= g->origin[1];
+		}
+		if (dim == 3) {
+			g->n3d++;
+			g->n3d_nonzero += c[2] != 0.0;
 		}
 		/* GeoJSON [east, north, up] -> world (x, y up, z = -north) */
 		p.pts[3 * i + 0] = (float)c[0];
@@ -564,6 +572,7 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 	g.err = err;
 	g.errlen = errlen;
 	g.s = s;
+	snprintf(s->source, sizeof(s->source), "%s", fname);
 	struct geo_stats st;
 	int rc = geo_crs(&g, &root);
 	if (rc >= 0) {
@@ -581,7 +590,8 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 				 g.areas.named);
 		rc = gfail(&g, root.line, "GeoJSON", "no line strings to carve%s", skipped);
 	}
-	if (rc == 0 && (bbox_note(&g, &root, &st) < 0 || skip_notes(&g) < 0))
+	if (rc == 0 && (bbox_note(&g, &root, &st) < 0 || skip_notes(&g) < 0 ||
+			(g.n3d && !g.n3d_nonzero && curves_flat_zero(s, g.n3d, "z (up)") < 0)))
 		rc = gfail(&g, root.line, "GeoJSON", "out of memory");
 	json_free(&root);
 	if (rc < 0)

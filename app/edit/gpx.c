@@ -300,6 +300,8 @@ static int build_paths(struct gpx *g, struct curve_set *s)
 	double origin[2] = { g->npts ? dlon(ref + sx / (double)g->npts, 0.0) : 0.0,
 			     g->npts ? sy / (double)g->npts : 0.0 };
 	int short_segs = 0, partial_ele = 0;
+	long n_ele = 0, n_ele_nonzero = 0;
+	snprintf(s->source, sizeof(s->source), "%s", g->fname);
 	char first_short[96] = "", first_partial[96] = "";
 	for (int k = 0; k < g->nsegs; k++) {
 		const struct gpx_seg *sg = &g->segs[k];
@@ -327,6 +329,10 @@ static int build_paths(struct gpx *g, struct curve_set *s)
 			p.pts[3 * i + 2] = (float)-(q->lat - origin[1]);
 		}
 		p.follow_ground = with_ele < sg->n; /* heights from the ground unless every point has one */
+		for (int i = 0; i < sg->n && !p.follow_ground; i++) {
+			n_ele++;
+			n_ele_nonzero += g->pts[sg->first + i].ele != 0.0;
+		}
 		if (with_ele > 0 && with_ele < sg->n && partial_ele++ == 0)
 			snprintf(first_partial, sizeof(first_partial), "%.60s (line %d)", label, sg->line);
 		p.crs = CURVE_CRS_WGS84;
@@ -354,6 +360,8 @@ static int build_paths(struct gpx *g, struct curve_set *s)
 		return -1;
 	}
 	int rc = 0;
+	if (n_ele && !n_ele_nonzero)
+		rc |= curves_flat_zero(s, n_ele, "<ele>");
 	if (short_segs)
 		rc |= curve_set_note(s, "%s: %d track segment%s or route%s of fewer than 2 distinct points skipped, the first "
 				     "%s", g->fname, short_segs, short_segs == 1 ? "" : "s", short_segs == 1 ? "" : "s",
