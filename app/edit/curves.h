@@ -195,10 +195,12 @@ void curve_path_padded_box(const struct curve_path *p, float box[4]);
 /* GeoJSON (FeatureCollection / Feature / LineString / MultiLineString with
  * positions [x east, y north] (2D: the curve follows the ground) or [x east,
  * y north, z up] -> world (x, z_up, -y), in degrees until
- * curves_geo_project) or CSV (header line,
+ * curves_geo_project; other geometries skipped with a note), GPX
+ * (curves_parse_gpx) or CSV (header line,
  * columns path,x,y,z[,kind,width,falloff,inclination,smoothing], y up).
- * The format is chosen by the extension (.geojson/.json, .csv).  Errors
- * name file:line and the feature.  0 or -1 with err. */
+ * The format is chosen by the extension (.geojson/.json, .gpx, .csv).
+ * Errors name file:line and the feature.  0 or -1 with err; s->notes
+ * holds what was skipped or assumed instead of refused. */
 int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen);
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
 			 size_t errlen);
@@ -221,11 +223,11 @@ void curves_road_widths(struct curve_set *s, float road_width, float road_fallof
 /* ---- geographic input (curves_geo.c) ------------------------------------------ */
 
 /* Lon/lat or world units: mode CURVES_CRS_LONLAT / _LOCAL forces it;
- * CURVES_CRS_AUTO takes the file's "crs" member (WGS84 / CRS84 / EPSG:4326:
- * lon/lat; any other: world units) and, without one, lon/lat when every
- * position lies in [-180, 180] x [-90, 90] and the data spans less than
- * one degree both ways (world-unit curves that small would be under a
- * unit long; the reader applies this rule, geo_rel).  Lon/lat positions are projected to metres on the local
+ * CURVES_CRS_AUTO takes the file's "crs" member (WGS84 / CRS84 / EPSG:4326,
+ * or a GPX file: lon/lat; any other: world units) and, without one,
+ * lon/lat when every position lies in [-180, 180] x [-90, 90] (RFC 7946;
+ * the reader applies this rule, geo_rel; a note when the data spans over
+ * a degree, which world units could too).  Lon/lat positions are projected to metres on the local
  * tangent plane around their centroid (lon0, lat0) -- an equirectangular
  * projection with the WGS84 ellipsoid's radii of curvature there:
  * east = N cos(lat0) dlon, north = M dlat -- then scaled by `scale` world
