@@ -19,6 +19,7 @@
 
 #define NS_SEP '|'
 #define MAX_DEPTH 256
+#define MAX_SEGMENTS (1 << 20) /* paths of 2 points or more: 2^20 of them fill the tables (CURVE_MAX_POINTS) */
 
 enum gpx_el { EL_OTHER, EL_GPX, EL_TRK, EL_TRKSEG, EL_TRKPT, EL_RTE, EL_RTEPT, EL_ELE, EL_NAME, EL_WPT };
 
@@ -122,9 +123,13 @@ static const char *attr(const XML_Char **atts, const char *name)
 
 static void start_segment(struct gpx *g, bool route, int track, int part)
 {
+	if (g->nsegs >= MAX_SEGMENTS) {
+		gpx_fail(g, "more than %d track segments and routes", MAX_SEGMENTS);
+		return;
+	}
 	if (g->nsegs == g->segcap) {
 		int cap = g->segcap ? 2 * g->segcap : 16;
-		struct gpx_seg *n = cap < g->segcap ? NULL : realloc(g->segs, sizeof(*n) * (size_t)cap);
+		struct gpx_seg *n = realloc(g->segs, sizeof(*n) * (size_t)cap);
 		if (!n) {
 			gpx_fail(g, "out of memory");
 			return;
