@@ -208,7 +208,7 @@ int main(int argc, char **argv)
 	int status = 0;
 
 	{
-		struct curve_set none = { NULL, 0 };
+		struct curve_set none = { .paths = NULL, .npaths = 0 };
 		edits_set_curves(ed, &none, 16, err, sizeof(err));
 		printf("floor: the same dispatch with no curves: %.1f ms\n\n", time_bake(ed, &p, &o, 3, budget / 2));
 	}

@@ -29,8 +29,13 @@ void test_tunnel_cpu(struct edits *ed);
 
 /* test_curves_files.c */
 void test_io(void);
+void test_geojson_skips(void);
+void test_road_widths(void);
 void test_sizes(void);
 void test_geo(void);
+void test_gpx(void);
+void test_flat_zero(void);
+void test_inside_fraction(void);
 void test_geo_terrain(void);
 void test_heightmap_cpu(struct edits *ed, struct params *p, const struct noise_set *ns);
 

@@ -162,6 +162,8 @@ int main(void)
 	test_hash_vs_brute_eval(ed);
 	test_affected(ed);
 	test_io();
+	test_geojson_skips();
+	test_road_widths();
 	test_sizes();
 	int ncases = 1200;
 	float *items = malloc(sizeof(float) * 16 * (size_t)ncases);
@@ -177,6 +179,9 @@ int main(void)
 	test_heightmap_cpu(ed, &p, &ns);
 	test_tunnel_cpu(ed);
 	test_geo();
+	test_gpx();
+	test_flat_zero();
+	test_inside_fraction();
 	test_geo_terrain();
 
 	struct platform *plat = fixture_open();
@@ -186,7 +191,7 @@ int main(void)
 		float riv[4 * 3] = { -8, -6, -8, -2, -7, 0, 3, -8, 3, 8, -9, 9 };
 		struct curve_path rp = make_path(4, riv, 3, 2, 5, 0.7f);
 		rp.kind = CURVE_RIVER;
-		struct curve_set rs = { &rp, 1 };
+		struct curve_set rs = { .paths = &rp, .npaths = 1 };
 		char err[256];
 		CHECK(edits_set_curves(ed, &rs, 8, err, sizeof(err)) == 0, "river: %s", err);
 		set(&p, "heightmap_noise=0.2;octaves=3;vol_size=16;vol_y=-2;closed=false");
@@ -212,7 +217,7 @@ int main(void)
 		float road[3 * 3] = { -14, 1, 8, 0, 2, 4, 14, 2, -6 };
 		struct curve_path tp[2] = { make_path(4, tun, 5, 3, 0, 0.5f), make_path(3, road, 4, 3, 0, 0.5f) };
 		tp[0].kind = CURVE_TUNNEL;
-		struct curve_set ts = { tp, 2 };
+		struct curve_set ts = { .paths = tp, .npaths = 2 };
 		char err[256];
 		CHECK(edits_set_curves(ed, &ts, 8, err, sizeof(err)) == 0, "tunnel and road: %s", err);
 		set(&p, "octaves=4");

@@ -23,7 +23,7 @@ cd "$T" || exit 1
 
 # ---- good files ---------------------------------------------------------------
 cat >road.geojson <<'J'
-{ "type": "FeatureCollection", "features": [
+{ "type": "FeatureCollection", "crs": { "type": "name", "properties": { "name": "local" } }, "features": [
   { "type": "Feature", "properties": { "kind": "road", "width": 4, "falloff": 3, "smoothing": 0.5 },
     "geometry": { "type": "LineString", "coordinates": [[-14, 9, 0], [0, -1, 1], [14, -9, 0]] } },
   { "type": "Feature", "properties": { "kind": "river", "width": 3, "falloff": 4 },
@@ -52,13 +52,87 @@ expect_fail "control map: 'bad.png' is not a PNG file" $SMALL --control-strength
 cat >flat.geojson <<'J'
 { "type": "LineString", "coordinates": [[-14, 9], [0, -1], [14, -9]] }
 J
-expect_ok $SMALL --curves flat.geojson
-expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --curves flat.geojson
+expect_ok $SMALL --curves flat.geojson --curves-crs local
+expect_ok $SMALL --field heightmap --heightmap hm.png --heightmap-scale 6 --curves flat.geojson --curves-crs local
 cat >lonlat.geojson <<'J'
 { "type": "Feature", "properties": { "kind": "road", "width": 4 },
   "geometry": { "type": "LineString", "coordinates": [[-3.70010, 40.41690], [-3.70000, 40.41700], [-3.69985, 40.41705]] } }
 J
 expect_ok $SMALL --curves lonlat.geojson
+
+# a Polygon and a Point among line strings: the lines are carved, one
+# warning each for the area and the point; a good file warns of nothing
+cat >mix.geojson <<'J'
+{ "type": "FeatureCollection", "features": [
+  { "type": "Feature", "properties": { "width": 4 },
+    "geometry": { "type": "LineString", "coordinates": [[-14, 9, 1], [0, -1, 1], [14, -9, 2]] } },
+  { "type": "Feature", "id": "way/7", "geometry": { "type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]] } },
+  { "type": "Feature", "geometry": { "type": "Point", "coordinates": [3, 3] } }
+] }
+J
+# expect_warn "regex" COUNT args...: the run succeeds, COUNT stderr lines match
+expect_warn() {
+	pat=$1
+	want=$2
+	shift 2
+	rm -f out.png
+	if ! "$BIN" "$@" >"$T/out" 2>"$T/err" || [ ! -s out.png ]; then
+		bad "isoterra $*: $(cat "$T/err")"
+		return
+	fi
+	n=$(grep -Ec "$pat" "$T/err")
+	if [ "$n" -ne "$want" ]; then
+		bad "isoterra $*: $n lines match '$pat', want $want: $(cat "$T/err")"
+		return
+	fi
+	ok
+}
+expect_warn "warning: mix.geojson: 1 feature skipped, areas are not carved .only lines are.: feature 2 .id .way/7.. Polygon .1 polygon, 1 ring." 1 \
+	$SMALL --curves mix.geojson --curves-crs local
+expect_warn "warning: mix.geojson: 1 feature skipped, not carved .only LineString and MultiLineString are.: feature 3 Point" 1 \
+	$SMALL --curves mix.geojson --curves-crs local
+expect_warn "warning" 2 $SMALL --curves mix.geojson --curves-crs local
+expect_warn "warning" 0 $SMALL --curves road.geojson
+
+# ---- no silent no-ops: one warning each, naming the values; none on good input
+# lon/lat-looking positions spanning 9 degrees without a crs member: lon/lat
+# (RFC 7946), said; 1000 km lie outside the volume, said with both extents
+cat >wide.geojson <<'J'
+{ "type": "LineString", "coordinates": [[-3.0, 40.0, 600], [6.0, 40.5, 650]] }
+J
+expect_warn "warning: wide.geojson: no crs member and every position within lon/lat ranges, spanning 9 degrees of longitude and 0.5 of latitude: taken as WGS84 lon/lat" 1 \
+	$SMALL --curves wide.geojson
+expect_warn "warning: wide.geojson: over 99.9% of the curves' length lies outside the volume: the curves span x \[-3[0-9.e+]*, 3[0-9.e+]*\] z \[-[0-9.e+]*, [0-9.e+]*\], the volume x \[-48, 48\] z \[-48, 48\]" 1 \
+	$SMALL --curves wide.geojson
+expect_warn "warning" 2 $SMALL --curves wide.geojson
+expect_warn "warning" 1 $SMALL --curves wide.geojson --curves-crs lonlat
+# a 3.4 km GPX route at 1 world unit a metre: mostly outside; scaled, inside
+cat >route.gpx <<'X'
+<gpx version="1.1" xmlns="http://www.topografix.com/GPX/1/1"><rte>
+<rtept lat="40.400" lon="-3.700"><ele>4</ele></rtept><rtept lat="40.415" lon="-3.7003"><ele>5</ele></rtept>
+<rtept lat="40.430" lon="-3.700"><ele>4</ele></rtept></rte></gpx>
+X
+expect_warn "warning: route.gpx: 97\.[0-9]% of the curves' length lies outside the volume: the curves span x \[-1[0-9.]*, [0-9.]*\] z \[-166[0-9.]*, 166[0-9.]*\], the volume x \[-48, 48\] z \[-48, 48\]" 1 \
+	$SMALL --curves route.gpx
+expect_warn "warning" 1 $SMALL --curves route.gpx
+expect_warn "warning" 0 $SMALL --curves route.gpx --curves-geo-scale 0.025
+# 3D positions whose every height is 0: taken as 2D on the ground
+cat >zero.geojson <<'J'
+{ "type": "LineString", "crs": { "type": "name", "properties": { "name": "local" } },
+  "coordinates": [[-14, 9, 0], [0, -1, 0], [14, -9, 0]] }
+J
+expect_warn "warning: zero.geojson: the z .up. of all 3 3D positions is 0, which would carve at height 0: taken as 2D, the curves follow the ground" 1 \
+	$SMALL --curves zero.geojson
+expect_warn "warning" 1 $SMALL --curves zero.geojson
+# --heightmap alone implies field = heightmap (a note); with another field
+# given (an option, a preset) it is unused (a warning); with it, neither
+expect_warn "info: heightmap hm.png given without a field: field = heightmap" 1 $SMALL --heightmap hm.png
+expect_warn "warning" 0 $SMALL --heightmap hm.png
+expect_warn "warning: heightmap hm.png is not used: field = torus .only field = heightmap reads it." 1 \
+	$SMALL --heightmap hm.png --field torus
+expect_warn "warning: heightmap hm.png is not used: field = torus" 1 $SMALL --preset torus --heightmap hm.png
+expect_warn "heightmap hm.png" 0 $SMALL --heightmap hm.png --field heightmap
+expect_warn "heightmap" 0 $SMALL --field terrain
 
 # ---- malformed GeoJSON ------------------------------------------------------------
 printf '{ "type": "FeatureCollection", "features": [\n  { "type": "Feature",\n' >trunc.geojson
@@ -74,7 +148,7 @@ expect_fail "twod.geojson:4: feature 2: position 1 has 4 coordinates; GeoJSON po
 cat >poly.geojson <<'J'
 { "type": "Feature", "geometry": { "type": "Polygon", "coordinates": [] } }
 J
-expect_fail "poly.geojson:1: feature 1: geometry type \"Polygon\" is not supported" $SMALL --curves poly.geojson
+expect_fail "poly.geojson:1: GeoJSON: no line strings to carve .skipped: feature 1 Polygon .malformed" $SMALL --curves poly.geojson
 cat >width.geojson <<'J'
 { "type": "Feature",
   "properties": { "width": "wide" },
@@ -83,6 +157,44 @@ J
 expect_fail "width.geojson:2: feature 1: \"width\" must be a number" $SMALL --curves width.geojson
 expect_fail "cannot open curves file" $SMALL --curves missing.geojson
 expect_fail "unknown format" $SMALL --curves roads.kml
+
+# road widths: --road-width sets a road's that the file leaves open (the
+# picture changes), not one the file gives (the picture stays); a width
+# out of range is refused
+cat >open.geojson <<'J'
+{ "type": "LineString", "coordinates": [[-14, 9, 3], [0, -1, 4], [14, -9, 3]] }
+J
+sed 's/"type": "LineString"/"type": "Feature", "properties": { "width": 4 }, "geometry": { "type": "LineString"/; s/]] }/]] } }/' \
+	open.geojson >given.geojson
+for f in open given; do
+	for w in 2 30; do
+		expect_ok $SMALL --curves-crs local --curves $f.geojson --road-width $w
+		cp out.png "$f-$w.png"
+	done
+done
+if cmp -s open-2.png open-30.png; then bad "--road-width 2 and 30 drew the same road"; else ok; fi
+if cmp -s given-2.png given-30.png; then ok; else bad "--road-width changed a road whose width the file gives"; fi
+expect_fail "road_width: 0 is out of range" $SMALL --curves open.geojson --road-width 0
+expect_fail "road_falloff: -1 is out of range" $SMALL --curves open.geojson --road-falloff -1
+
+# ---- GPX ------------------------------------------------------------------------------
+cat >ride.gpx <<'X'
+<?xml version="1.0" encoding="UTF-8"?>
+<gpx version="1.1" creator="t" xmlns="http://www.topografix.com/GPX/1/1">
+ <trk><name>ride</name><trkseg>
+  <trkpt lat="40.41690" lon="-3.70010"><ele>4</ele></trkpt>
+  <trkpt lat="40.41700" lon="-3.70000"><ele>5</ele></trkpt>
+  <trkpt lat="40.41705" lon="-3.69985"><ele>4.5</ele></trkpt>
+ </trkseg></trk>
+</gpx>
+X
+expect_warn "warning" 0 $SMALL --curves ride.gpx
+printf '<gpx><trk><trkseg>\n<trkpt lat="1" lon="2">\n</trkseg></trk></gpx>\n' >broken.gpx
+expect_fail "^isoterra: error: broken.gpx:3: invalid XML: mismatched tag" $SMALL --curves broken.gpx
+printf '<gpx><trk><trkseg>\n<trkpt lat="1" lon="2"/>\n<trkpt lon="2.001"/>\n</trkseg></trk></gpx>\n' >nolat.gpx
+expect_fail "^isoterra: error: nolat.gpx:3: <trkpt> has no lat attribute" $SMALL --curves nolat.gpx
+printf '<gpx><rte>\n<rtept lat="1" lon="2"/>\n<rtept lat="91" lon="2"/>\n</rte></gpx>\n' >lat.gpx
+expect_fail "^isoterra: error: lat.gpx:3: <rtept> lat=.91. is not a latitude in \[-90, 90\]" $SMALL --curves lat.gpx
 
 # ---- malformed CSV ------------------------------------------------------------------
 printf 'path,x,y,z\na,0,0,0\na,1,oops,1\n' >bad.csv

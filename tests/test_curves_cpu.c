@@ -149,7 +149,7 @@ void test_pipeline_cpu(void)
 		CHECK(fabsf(cr) < 1e-2f, "first handle on the first segment (cross %g)", cr);
 	}
 	/* quadratics: close to their cubics, anchors shared */
-	struct curve_set s = { &p, 1 };
+	struct curve_set s = { .paths = &p, .npaths = 1 };
 	struct curve_quads q;
 	char err[256];
 	CHECK(curves_build(&s, &q, err, sizeof(err)) == 0, "curves_build: %s", err);
@@ -184,7 +184,7 @@ void test_pipeline_cpu(void)
 		}
 		/* Ω = 0.67 makes the handles those of a circular arc (4/3 tan(θ/4) R) */
 		struct curve_path cp = make_path(13, circ, 8, 8, 10.0f, 0.67f);
-		struct curve_set cs = { &cp, 1 };
+		struct curve_set cs = { .paths = &cp, .npaths = 1 };
 		struct curve_quads cq;
 		CHECK(curves_build(&cs, &cq, err, sizeof(err)) == 0, "circle: %s", err);
 		/* x = cos, z = sin: cross(C', C'') = +1/R, I = gain / R = 0.2 */
@@ -271,7 +271,7 @@ void test_pipeline_cpu(void)
 	memcpy(lcopy, line, sizeof(lcopy));
 	lp.pts = lcopy;
 	CHECK(curve_path_dedup(&lp) == 4, "repeated point dropped");
-	struct curve_set ls = { &lp, 1 };
+	struct curve_set ls = { .paths = &lp, .npaths = 1 };
 	CHECK(curves_build(&ls, &q, err, sizeof(err)) == 0, "straight: %s", err);
 	bad = 0;
 	for (int i = 0; i < q.nctrl; i++)
@@ -281,7 +281,7 @@ void test_pipeline_cpu(void)
 	/* a path that turns back on itself */
 	float back[3 * 3] = { 0, 0, 0, 10, 0, 0, 0, 0, 0.0f };
 	struct curve_path bp = make_path(3, back, 4, 4, 1.0f, 0.5f);
-	struct curve_set bs = { &bp, 1 };
+	struct curve_set bs = { .paths = &bp, .npaths = 1 };
 	CHECK(curves_build(&bs, &q, err, sizeof(err)) == 0, "U-turn: %s", err);
 	bad = 0;
 	for (int i = 0; i < q.nctrl; i++)
@@ -292,7 +292,7 @@ void test_pipeline_cpu(void)
 	/* fewer than two distinct points */
 	float one[3] = { 1, 2, 3 };
 	struct curve_path op = make_path(1, one, 4, 4, 0, 0.5f);
-	struct curve_set os = { &op, 1 };
+	struct curve_set os = { .paths = &op, .npaths = 1 };
 	CHECK(curves_build(&os, &q, err, sizeof(err)) < 0 && strstr(err, "two distinct"), "one point rejected: %s", err);
 }
 
@@ -424,7 +424,7 @@ void test_affected(struct edits *ed)
 	CHECK(box[2] < cb[0] && box[0] > ab[2], "box excludes the unchanged paths ([%g %g %g %g])", box[0], box[1], box[2],
 	      box[3]);
 	/* added / removed */
-	struct curve_set two = { s0.paths, 2 };
+	struct curve_set two = { .paths = s0.paths, .npaths = 2 };
 	CHECK(curves_affected_bounds(&two, &s0, box) && box[0] >= cb[0] - 1e-3f && box[2] <= cb[2] + 1e-3f,
 	      "added path: its box");
 	CHECK(curves_affected_bounds(&s0, &two, box) && box[0] >= cb[0] - 1e-3f, "removed path: its box");
@@ -480,7 +480,7 @@ void test_tunnel_cpu(struct edits *ed)
 	float pts[3 * 3] = { -20, h, 0, 0, h, 0.01f, 20, h, 0 };
 	struct curve_path cp = make_path(3, pts, 2 * r, lam, 0, 0.5f);
 	cp.kind = CURVE_TUNNEL;
-	struct curve_set cs = { &cp, 1 };
+	struct curve_set cs = { .paths = &cp, .npaths = 1 };
 	char err[256];
 	CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "tunnel: %s", err);
 	CHECK(edits_has_tunnels(ed), "the edit state knows it holds a tunnel");

@@ -27,7 +27,8 @@ static void expect_parse_error(bool csv, const char *text, const char *want)
 
 void test_io(void)
 {
-	const char *geo = "{ \"type\": \"FeatureCollection\", \"features\": [\n"
+	const char *geo = "{ \"type\": \"FeatureCollection\", \"crs\": { \"type\": \"name\", \"properties\": { \"name\": \"local\" } },\n"
+			  "  \"features\": [\n"
 			  "  { \"type\": \"Feature\", \"properties\": { \"kind\": \"river\", \"width\": 12.5, \"name\": \"x\" },\n"
 			  "    \"geometry\": { \"type\": \"LineString\", \"coordinates\": [[0, 0, 1], [10, 5, 2.5e0], [20, 0, -3]] } },\n"
 			  "  { \"type\": \"Feature\", \"properties\": null,\n"
@@ -71,9 +72,6 @@ void test_io(void)
 			   "position 2: y (north) is not a number");
 	expect_parse_error(false, "{\"type\":\"LineString\",\"crs\":{\"type\":\"EPSG\"},\"coordinates\":[[0,0],[1,1]]}",
 			   "\"crs\" must be");
-	expect_parse_error(false, "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}},\n"
-			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[]}}]}",
-			   "t.geojson:2: feature 2: geometry type \"Polygon\"");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"width\":-3},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}}",
 			   "\"width\" = -3 must be");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"canal\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,0],[1,1,1]]}}",
@@ -86,7 +84,14 @@ void test_io(void)
 			   "expected ',' or ']'");
 	expect_parse_error(false, "[1, 2]", "top level");
 	expect_parse_error(false, "", "t.geojson:1: invalid JSON");
-	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":null}", "(it is null)");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":null}",
+			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: feature 1 without geometry (null))");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":5}", "\"geometry\" must be a geometry object or null");
+	expect_parse_error(false, "{\"type\":\"Circle\"}", "type \"Circle\" is not GeoJSON");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"bbox\":[0,0,1],\"geometry\":{\"type\":\"LineString\","
+			   "\"coordinates\":[[0,0,0],[1,1,1]]}}", "t.geojson:1: feature 1: \"bbox\" must be [west, south, east, north]");
+	expect_parse_error(false, "{\"type\":\"LineString\",\"bbox\":[0,5,1,2],\"coordinates\":[[0,0,0],[1,1,1]]}",
+			   "geometry: \"bbox\": its south 5 is above its north 2");
 	expect_parse_error(true, "path,x,y\na,0,0\n", "t.csv:1: the header has no 'z' column");
 	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,zz,0\n", "t.csv:3: y 'zz' is not a number");
 	expect_parse_error(true, "path,x,y,z\na,0,0,0\na,1,0\n", "t.csv:3: 3 fields, the header has 4");
@@ -103,6 +108,153 @@ void test_io(void)
 	CHECK(curves_load("roads.kml", &s, err, sizeof(err)) < 0 && strstr(err, "unknown format"), "kml: %s", err);
 }
 
+/* Notes of a set that hold `want` (all notes when want is NULL). */
+static int notes_with(const struct curve_set *s, const char *want)
+{
+	int n = 0;
+	for (int i = 0; i < s->nnotes; i++)
+		n += !want || strstr(s->notes[i], want) != NULL;
+	return n;
+}
+
+/* A file is never refused for one feature: a Point, a Polygon (areas are
+ * not carved), a GeometryCollection, a null geometry are skipped, one
+ * note per reason naming them; the line strings load.  bbox members are
+ * checked, one note when the positions lie outside the top level's. */
+void test_geojson_skips(void)
+{
+	const char *mix = "{ \"type\": \"FeatureCollection\", \"features\": [\n"
+			  " { \"type\": \"Feature\", \"properties\": { \"width\": 4 }, \"geometry\": { \"type\": \"LineString\",\n"
+			  "   \"coordinates\": [[-14, 9, 1], [0, -1, 1], [14, -9, 2]] } },\n"
+			  " { \"type\": \"Feature\", \"id\": 7, \"geometry\": { \"type\": \"Polygon\", \"coordinates\":\n"
+			  "   [[[0,0],[1,0],[1,1],[0,0]], [[0.2,0.2],[0.3,0.2],[0.3,0.3],[0.2,0.2]]] } },\n"
+			  " { \"type\": \"Feature\", \"id\": \"node/5\", \"geometry\": { \"type\": \"Point\", \"coordinates\": [3, 3] } },\n"
+			  " { \"type\": \"Feature\", \"geometry\": { \"type\": \"MultiLineString\",\n"
+			  "   \"coordinates\": [[[-14, -9, 1], [14, 9, 1]], [[0, 0, 3], [5, 0, 3], [5, 5, 4]]] } }\n"
+			  "] }\n";
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_geojson(mix, strlen(mix), "mix.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0, "a Polygon and a Point among line strings: loaded (%s)", err);
+	if (rc == 0) {
+		CHECK(s.npaths == 3 && s.paths[0].npts == 3 && s.paths[1].npts == 2 && s.paths[2].npts == 3,
+		      "the 3 line strings loaded (%d paths)", s.npaths);
+		CHECK(s.nnotes == 2, "two notes (one per reason), got %d", s.nnotes);
+		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, not carved (only LineString and MultiLineString are): "
+				     "feature 3 (id \"node/5\") Point") == 1,
+		      "the Point named once: %s", s.nnotes ? s.notes[0] : "none");
+		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, areas are not carved (only lines are): feature 2 (id 7) "
+				     "Polygon (1 polygon, 2 rings)") == 1,
+		      "the Polygon named once: %s", s.nnotes > 1 ? s.notes[1] : "none");
+		curve_set_free(&s);
+	}
+	/* good input: no note */
+	const char *good = "{\"type\":\"FeatureCollection\",\"bbox\":[-1,-1,2,2],\"features\":[{\"type\":\"Feature\","
+			   "\"bbox\":[0,0,1,1],\"geometry\":{\"type\":\"LineString\",\"bbox\":[0,0,1,1],"
+			   "\"coordinates\":[[0,0,1],[1,1,1]]}}]}";
+	rc = curves_parse_geojson(good, strlen(good), "good.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 1 && s.nnotes == 0, "bbox members that hold the data: no note (%s, %d notes)", err,
+	      rc == 0 ? s.nnotes : -1);
+	if (rc == 0)
+		curve_set_free(&s);
+	/* many skipped: the first four named, the rest counted; malformed areas
+	 * are skipped too (they are not carved either way); a collection */
+	const char *many = "{\"type\":\"FeatureCollection\",\"bbox\":[0,0,0.5,0.5],\"features\":["
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,1,1]]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Point\",\"coordinates\":[0,0]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"MultiPoint\",\"coordinates\":[[0,0]]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"GeometryCollection\",\"geometries\":[]}},"
+			   "{\"type\":\"Feature\",\"geometry\":null},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Point\",\"coordinates\":[1,1]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[0,0],[1,0],[1,1],[0,1]]]}},"
+			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"MultiPolygon\",\"coordinates\":"
+			   "[[[[0,0],[1,0],[1,1],[0,0]]],[[[2,2],[3,2],[3,3],[2,2]]]]}}]}";
+	rc = curves_parse_geojson(many, strlen(many), "many.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 1, "one line among skipped features (%s)", err);
+	if (rc == 0) {
+		CHECK(s.nnotes == 3, "three notes (bbox, other, areas), got %d", s.nnotes);
+		CHECK(notes_with(&s, "5 features skipped, not carved (only LineString and MultiLineString are): feature 2 "
+				     "Point, feature 3 MultiPoint, feature 4 GeometryCollection, feature 5 without geometry "
+				     "(null), and 1 more") == 1,
+		      "five skipped, four named");
+		CHECK(notes_with(&s, "2 features skipped, areas are not carved (only lines are): feature 7 Polygon "
+				     "(malformed: ring 1 is not closed (its last position is not its first)), feature 8 "
+				     "MultiPolygon (2 polygons, 2 rings)") == 1,
+		      "areas: the malformed one says why");
+		CHECK(notes_with(&s, "many.geojson:1: the \"bbox\" [0, 0, 0.5, 0.5] does not hold every position: they span "
+				     "x [0, 3], y [0, 3]; the positions are used") == 1,
+		      "bbox inconsistent with the positions: one note");
+		for (int i = 0; i < s.nnotes; i++)
+			printf("  note: %s\n", s.notes[i]);
+		curve_set_free(&s);
+	}
+	/* nothing to carve: refused, naming what was skipped */
+	expect_parse_error(false, "{\"type\":\"Polygon\",\"coordinates\":[[[0,0],[1,0],[1,1],[0,0]]]}",
+			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: geometry Polygon (1 polygon, 1 ring))");
+}
+
+/* Widths from feature properties: an explicit width beats lanes, lanes
+ * beat the OSM highway class, the class beats the road_width default;
+ * falloff likewise; other kinds keep their defaults; CSV cells are the
+ * file's own. */
+void test_road_widths(void)
+{
+	const char *geo =
+		"{\"type\":\"FeatureCollection\",\"features\":[\n"
+		"{\"type\":\"Feature\",\"properties\":{\"lanes\":4},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"lanes\":\"3\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"motorway\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"footway\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"tags\":{\"highway\":\"primary\"}},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"width\":5,\"highway\":\"motorway\",\"lanes\":6},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"lanes\":2,\"highway\":\"motorway\",\"falloff\":2},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":null,\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"kind\":\"river\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"id\":\"way/9\",\"properties\":{\"highway\":\"proposed\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}\n"
+		"]}";
+	/* road_width 10 (a lane 5), road_falloff 3 */
+	static const float want_w[10] = { 20, 15, 30, 2.5f, 20, 5, 10, 10, 10, 10 };
+	static const float want_f[10] = { 3, 3, 3, 3, 3, 3, 2, 3, 12, 3 };
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_geojson(geo, strlen(geo), "w.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 10, "widths file: %s", err);
+	if (rc == 0 && s.npaths == 10) {
+		curves_road_widths(&s, 10.0f, 3.0f);
+		int bad = 0;
+		for (int i = 0; i < 10; i++) {
+			bool ok = s.paths[i].width == want_w[i] && s.paths[i].falloff == want_f[i];
+			if (!ok)
+				printf("  feature %d: width %g falloff %g, want %g %g\n", i + 1, (double)s.paths[i].width,
+				       (double)s.paths[i].falloff, (double)want_w[i], (double)want_f[i]);
+			bad += !ok;
+		}
+		CHECK(bad == 0, "lanes, highway classes, explicit width first, road_width / road_falloff defaults: %d wrong",
+		      bad);
+		CHECK(s.nnotes == 1 && notes_with(&s, "w.geojson: 1 feature of a highway class without a known width, given "
+						      "road_width: feature 10 (id \"way/9\") \"proposed\"") == 1,
+		      "the unknown class noted once (%d notes)", s.nnotes);
+		curve_set_free(&s);
+	}
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"lanes\":\"two\"},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "feature 1: \"lanes\" must be a whole number from 1 to 16");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"lanes\":0},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"lanes\" must be a whole number");
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"highway\":3},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"highway\" must be a string");
+	/* CSV: a width cell is the file's own; a road without one gets road_width */
+	const char *csv = "path,x,y,z,width\na,0,0,0,3\na,1,0,0,\nb,0,0,0,\nb,1,0,1,\n";
+	rc = curves_parse_csv(csv, strlen(csv), "w.csv", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 2, "CSV widths: %s", err);
+	if (rc == 0 && s.npaths == 2) {
+		curves_road_widths(&s, 10.0f, 3.0f);
+		CHECK(s.paths[0].width == 3.0f && s.paths[1].width == 10.0f && s.paths[1].falloff == 3.0f,
+		      "CSV: width cell 3 kept, empty -> road_width 10 (%g, %g)", (double)s.paths[0].width,
+		      (double)s.paths[1].width);
+		curve_set_free(&s);
+	}
+}
+
 /* Work sized from the input and refused before it is done: a road a
  * million units wide over a 1024^2 hash (each piece in every cell), files
  * with more points than the tables hold; 200 000 paths read in linear time
@@ -117,7 +269,7 @@ void test_sizes(void)
 		pts[3 * i + 2] = 3.0f * (float)(i % 7);
 	}
 	struct curve_path wp = make_path(200, pts, 1e6f, 2, 0, 0);
-	struct curve_set ws = { &wp, 1 };
+	struct curve_set ws = { .paths = &wp, .npaths = 1 };
 	struct curve_quads q;
 	struct curve_hash h;
 	CHECK(curves_build(&ws, &q, err, sizeof(err)) == 0, "wide road: %s", err);
@@ -221,7 +373,27 @@ void test_geo(void)
 	const char *named = "{\"type\":\"LineString\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
 			    "\"EPSG:25830\"}},\"coordinates\":[[0.1,0.2,0],[0.3,0.4,0]]}";
 	CHECK(geo_mode(small, CURVES_CRS_AUTO, &why), "small lon/lat extent, no crs: lon/lat (%s)", why);
-	CHECK(!geo_mode(local, CURVES_CRS_AUTO, &why), "a span over a degree: world units (%s)", why);
+	CHECK(geo_mode(local, CURVES_CRS_AUTO, &why), "within lon/lat ranges over more than a degree: lon/lat (%s)", why);
+	const char *beyond = "{\"type\":\"LineString\",\"coordinates\":[[-14,-2,1],[400,9,2]]}";
+	CHECK(!geo_mode(beyond, CURVES_CRS_AUTO, &why), "beyond lon/lat ranges: world units (%s)", why);
+	/* the span over a degree is said, once, and only when the rule decided */
+	struct { const char *text; int mode; int notes; } spans[] = {
+		{ local, CURVES_CRS_AUTO, 1 }, { local, CURVES_CRS_LOCAL, 0 }, { local, CURVES_CRS_LONLAT, 0 },
+		{ small, CURVES_CRS_AUTO, 0 }, { beyond, CURVES_CRS_AUTO, 0 }, { ll, CURVES_CRS_AUTO, 0 },
+	};
+	for (size_t i = 0; i < sizeof(spans) / sizeof(spans[0]); i++) {
+		if (parse_geo(spans[i].text, &s) != 0)
+			continue;
+		bool lonlat;
+		double c[2];
+		CHECK(curves_geo_project(&s, spans[i].mode, 1.0f, &lonlat, &why, c, err, sizeof(err)) == 0, "%s", err);
+		CHECK(s.nnotes == spans[i].notes, "span note %zu: %d notes, want %d", i, s.nnotes, spans[i].notes);
+		if (spans[i].notes)
+			CHECK(notes_with(&s, "g.geojson: no crs member and every position within lon/lat ranges, spanning 18 "
+					     "degrees of longitude and 11 of latitude: taken as WGS84 lon/lat") == 1,
+			      "the span named: %s", s.nnotes ? s.notes[0] : "none");
+		curve_set_free(&s);
+	}
 	CHECK(!geo_mode(named, CURVES_CRS_AUTO, &why), "another crs named: world units (%s)", why);
 	CHECK(geo_mode(local, CURVES_CRS_LONLAT, &why), "forced lon/lat");
 	CHECK(!geo_mode(small, CURVES_CRS_LOCAL, &why), "forced local");
@@ -252,6 +424,160 @@ void test_geo(void)
 	}
 }
 
+/* GPX: a track and the same line as GeoJSON lon/lat give the same
+ * points, both at the lengths the WGS84 radii give (test_geo); routes,
+ * several segments, points without <ele> (the ground); bad files refused
+ * with file:line. */
+static void expect_gpx_error(const char *text, const char *want)
+{
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_gpx(text, strlen(text), "t.gpx", &s, err, sizeof(err));
+	CHECK(rc < 0 && s.npaths == 0 && strstr(err, want), "bad GPX: want '%s' in '%s'", want, err);
+	if (rc == 0)
+		curve_set_free(&s);
+}
+
+void test_gpx(void)
+{
+	const char *gpx = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+			  "<gpx version=\"1.1\" creator=\"t\" xmlns=\"http://www.topografix.com/GPX/1/1\"\n"
+			  "     xmlns:x=\"http://example.com/ext\">\n"
+			  " <trk><name>ridge</name><trkseg>\n"
+			  "  <trkpt lat=\"44.995\" lon=\"7.00\"><ele>650</ele><extensions><x:ele>9</x:ele></extensions></trkpt>\n"
+			  "  <trkpt lat=\"44.995\" lon=\"7.01\"><ele>660.5</ele></trkpt>\n"
+			  "  <trkpt lat=\"45.005\" lon=\"7.01\"><ele>655</ele></trkpt>\n"
+			  " </trkseg></trk>\n"
+			  "</gpx>\n";
+	const char *geo = "{\"type\":\"LineString\",\"coordinates\":[[7.00,44.995,650],[7.01,44.995,660.5],[7.01,45.005,655]]}";
+	struct curve_set a, b;
+	char err[512] = "";
+	int ra = curves_parse_gpx(gpx, strlen(gpx), "t.gpx", &a, err, sizeof(err));
+	CHECK(ra == 0, "GPX track: %s", err);
+	int rb = curves_parse_geojson(geo, strlen(geo), "t.geojson", &b, err, sizeof(err));
+	CHECK(rb == 0, "GeoJSON: %s", err);
+	if (ra == 0 && rb == 0) {
+		bool lla, llb;
+		const char *why;
+		double ca[2], cb[2];
+		CHECK(a.npaths == 1 && a.paths[0].npts == 3 && !a.paths[0].follow_ground && a.nnotes == 0,
+		      "one 3D path, no note");
+		CHECK(strstr(a.paths[0].label, "t.gpx: track 1 \"ridge\", segment 1") != NULL, "label: %s", a.paths[0].label);
+		CHECK(curves_geo_project(&a, CURVES_CRS_AUTO, 1.0f, &lla, &why, ca, err, sizeof(err)) == 0, "%s", err);
+		CHECK(curves_geo_project(&b, CURVES_CRS_AUTO, 1.0f, &llb, &why, cb, err, sizeof(err)) == 0, "%s", err);
+		CHECK(lla && llb, "both lon/lat");
+		double worst = 0.0;
+		for (int k = 0; k < 9; k++)
+			worst = fmax(worst, fabs((double)a.paths[0].pts[k] - (double)b.paths[0].pts[k]));
+		CHECK(worst < 1e-3, "GPX track == GeoJSON line string: worst difference %g m", worst);
+		const float *q = a.paths[0].pts;
+		CHECK_NEAR(q[3] - q[0], 788.468, 0.05, "GPX: 0.01 degree east at 45 N in metres");
+		CHECK_NEAR(-(q[8] - q[5]), 1111.330, 0.05, "GPX: 0.01 degree north at 45 N in metres");
+		CHECK_NEAR(q[4], 660.5, 1e-4, "GPX: <ele> is the height (not the extension's)");
+	}
+	if (ra == 0)
+		curve_set_free(&a);
+	if (rb == 0)
+		curve_set_free(&b);
+	/* a route, two segments of a track (one without <ele>: it follows the
+	 * ground), a one-point segment and a waypoint skipped with notes; GPX
+	 * 1.0 and no namespace read the same */
+	const char *more = "<gpx version=\"1.0\" xmlns=\"http://www.topografix.com/GPX/1/0\">\n"
+			   "<wpt lat=\"1\" lon=\"1\"/>\n"
+			   "<rte><rtept lat=\"10\" lon=\"20\"><ele>1</ele></rtept><rtept lat=\"10.001\" lon=\"20\"><ele>2</ele></rtept>"
+			   "<name>r</name></rte>\n"
+			   "<trk><trkseg><trkpt lat=\"10\" lon=\"20.001\"/><trkpt lat=\"10.001\" lon=\"20.001\"/></trkseg>\n"
+			   "<trkseg><trkpt lat=\"10\" lon=\"20.002\"/></trkseg></trk>\n"
+			   "</gpx>";
+	ra = curves_parse_gpx(more, strlen(more), "m.gpx", &a, err, sizeof(err));
+	CHECK(ra == 0, "GPX route and track: %s", err);
+	if (ra == 0) {
+		CHECK(a.npaths == 2 && !a.paths[0].follow_ground && a.paths[1].follow_ground, "route 3D, track 2D (%d paths)",
+		      a.npaths);
+		CHECK(a.npaths == 2 && strstr(a.paths[0].label, "route 1 \"r\"") && strstr(a.paths[1].label, "track 1, segment 1"),
+		      "labels");
+		CHECK(a.nnotes == 2 && notes_with(&a, "m.gpx: 1 track segment or route of fewer than 2 distinct points skipped, "
+						      "the first track 1, segment 2 (line 5)") == 1 &&
+			      notes_with(&a, "m.gpx: 1 waypoint (<wpt>) skipped: points are not carved") == 1,
+		      "notes: the short segment and the waypoint (%d)", a.nnotes);
+		curve_set_free(&a);
+	}
+	/* bad files: file:line and what */
+	expect_gpx_error("<gpx><trk><trkseg>\n<trkpt lat=\"1\" lon=\"2\">\n</trkseg></trk></gpx>",
+			 "t.gpx:3: invalid XML: mismatched tag");
+	expect_gpx_error("<gpx><trk><trkseg>\n<trkpt lat=\"1\" lon=\"2\"/>\n<trkpt lon=\"2\"/>\n</trkseg></trk></gpx>",
+			 "t.gpx:3: <trkpt> has no lat attribute");
+	expect_gpx_error("<gpx><rte>\n<rtept lat=\"1\"/></rte></gpx>", "t.gpx:2: <rtept> has no lon attribute");
+	expect_gpx_error("<gpx><trk><trkseg>\n\n<trkpt lat=\"95\" lon=\"2\"/>\n</trkseg></trk></gpx>",
+			 "t.gpx:3: <trkpt> lat=\"95\" is not a latitude in [-90, 90]");
+	expect_gpx_error("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"200\"/></trkseg></trk></gpx>",
+			 "t.gpx:1: <trkpt> lon=\"200\" is not a longitude in [-180, 180]");
+	expect_gpx_error("<gpx><trk><trkseg><trkpt lat=\"1x\" lon=\"2\"/></trkseg></trk></gpx>", "lat=\"1x\" is not");
+	expect_gpx_error("<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"><ele>high</ele></trkpt></trkseg></trk></gpx>",
+			 "t.gpx:1: <ele>high</ele> is not a height");
+	expect_gpx_error("<gpx><trk><trkpt lat=\"1\" lon=\"2\"/></trk></gpx>", "<trkpt> must be inside a <trkseg>");
+	expect_gpx_error("<kml></kml>", "t.gpx:1: not GPX: the root element is <kml>");
+	expect_gpx_error("<?xml version=\"1.0\"?>\n<!DOCTYPE gpx [<!ENTITY a \"aaaa\">]>\n<gpx/>", "t.gpx:2: a DTD");
+	expect_gpx_error("<gpx><wpt lat=\"1\" lon=\"2\"/></gpx>",
+			 "t.gpx: no track segment or route of 2 distinct points to carve (0 tracks, 0 routes, 1 waypoint)");
+	expect_gpx_error("", "t.gpx:1: invalid XML: no element found");
+}
+
+/* 3D input whose every height is 0 is an export's placeholder: taken as
+ * 2D (the ground), one note; a single non-zero height keeps it 3D. */
+void test_flat_zero(void)
+{
+	const char *zero = "{\"type\":\"MultiLineString\",\"coordinates\":[[[0,0,0],[1,1,0]],[[2,2,0],[3,3,0],[4,3,0]]]}";
+	const char *one = "{\"type\":\"MultiLineString\",\"coordinates\":[[[0,0,0],[1,1,0]],[[2,2,0],[3,3,0.5],[4,3,0]]]}";
+	const char *gz = "<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"><ele>0</ele></trkpt><trkpt lat=\"1.001\" lon=\"2\">"
+			 "<ele>0.0</ele></trkpt></trkseg></trk></gpx>";
+	const char *g1 = "<gpx><trk><trkseg><trkpt lat=\"1\" lon=\"2\"><ele>0</ele></trkpt><trkpt lat=\"1.001\" lon=\"2\">"
+			 "<ele>3</ele></trkpt></trkseg></trk></gpx>";
+	struct curve_set s;
+	char err[512] = "";
+	if (parse_geo(zero, &s) == 0) {
+		CHECK(s.npaths == 2 && s.paths[0].follow_ground && s.paths[1].follow_ground, "z = 0 everywhere: 2D");
+		CHECK(s.nnotes == 1 && notes_with(&s, "g.geojson: the z (up) of all 5 3D positions is 0, which would carve at "
+						      "height 0: taken as 2D, the curves follow the ground") == 1,
+		      "one note: %s", s.nnotes ? s.notes[0] : "none");
+		curve_set_free(&s);
+	}
+	if (parse_geo(one, &s) == 0) {
+		CHECK(!s.paths[0].follow_ground && !s.paths[1].follow_ground && s.nnotes == 0, "one height 0.5: 3D, no note");
+		curve_set_free(&s);
+	}
+	int rc = curves_parse_gpx(gz, strlen(gz), "z.gpx", &s, err, sizeof(err));
+	CHECK(rc == 0, "GPX: %s", err);
+	if (rc == 0) {
+		CHECK(s.paths[0].follow_ground && s.nnotes == 1 &&
+			      notes_with(&s, "z.gpx: the <ele> of all 2 3D positions is 0, which would carve at height 0") == 1,
+		      "GPX <ele> 0 everywhere: 2D, one note");
+		curve_set_free(&s);
+	}
+	rc = curves_parse_gpx(g1, strlen(g1), "z.gpx", &s, err, sizeof(err));
+	CHECK(rc == 0 && !s.paths[0].follow_ground && s.nnotes == 0, "GPX with a height: 3D, no note (%s)", err);
+	if (rc == 0)
+		curve_set_free(&s);
+}
+
+/* The share of the curves' length inside a box (the volume's warning):
+ * clipped exactly. */
+void test_inside_fraction(void)
+{
+	float a[6] = { -10, 0, 0, 10, 0, 0 }, b[6] = { 20, 0, 20, 40, 0, 20 };
+	struct curve_path pa = make_path(2, a, 1, 1, 0, 0), pb = make_path(2, b, 1, 1, 0, 0);
+	struct curve_path both[2] = { pa, pb };
+	struct curve_set s = { .paths = both, .npaths = 2 };
+	float box[4] = { -5, -5, 5, 5 }, e[4];
+	double f = curves_inside_fraction(&s, box, e);
+	CHECK_NEAR(f, 10.0 / 40.0, 1e-9, "10 of 40 units inside");
+	CHECK(e[0] == -10 && e[1] == 0 && e[2] == 40 && e[3] == 20, "extent x [-10, 40] z [0, 20]");
+	float diag[6] = { -10, 0, -10, 10, 0, 10 };
+	struct curve_path pd = make_path(2, diag, 1, 1, 0, 0);
+	struct curve_set d = { .paths = &pd, .npaths = 1 };
+	CHECK_NEAR(curves_inside_fraction(&d, box, e), 0.5, 1e-6, "a diagonal half inside");
+}
+
 /* A 2D GeoJSON file through the edit state and the terrain: every point on
  * the field's surface (CPU density: air just above, rock just below). */
 void test_geo_terrain(void)
@@ -268,7 +594,7 @@ void test_geo_terrain(void)
 	fclose(f);
 	struct params p;
 	params_defaults(&p);
-	set(&p, "octaves=5");
+	set(&p, "octaves=5;curves_crs=local");
 	snprintf(p.curves, sizeof(p.curves), "%s", path);
 	struct edits *ed = edits_create();
 	struct terrain *tr = terrain_create(ed);

@@ -254,7 +254,7 @@ void test_road_centreline(struct edits *ed)
 	for (int v = 0; v < NP; v++) /* a gentle grade around the median */
 		pts[3 * v + 1] = sorted[NP / 2] + 0.15f * pts[3 * v];
 	struct curve_path rp = make_path(NP, pts, 4.0f, 3.0f, 0.0f, 0.5f);
-	struct curve_set rs = { &rp, 1 };
+	struct curve_set rs = { .paths = &rp, .npaths = 1 };
 	CHECK(edits_set_curves(ed, &rs, 16, err, sizeof(err)) == 0, "road: %s", err);
 	CHECK(fixture_run(pl, &p) == 0, "carved pipeline run");
 	struct mesh m;
@@ -449,7 +449,7 @@ void test_world_edits(struct edits *ed)
 	/* a road across part of the view, then moved, then removed */
 	float a[3 * 3] = { -10, 0.5f, -2, -2, 1.0f, 2, 6, 1.5f, 0 };
 	struct curve_path rp = make_path(3, a, 3.0f, 2.0f, 0.0f, 0.5f);
-	struct curve_set rs = { &rp, 1 };
+	struct curve_set rs = { .paths = &rp, .npaths = 1 };
 	float reach = 3.0f / 2 + 2.0f;
 	wb_check_edit(ed, "road added", w, &p, &c, &rs, a, 3, reach);
 	float b[3 * 3] = { -10, 0.5f, -2, -2, 3.0f, 2, 6, 1.5f, 0 }, ab[6 * 3];
@@ -457,7 +457,7 @@ void test_world_edits(struct edits *ed)
 	memcpy(ab + 9, b, sizeof(b));
 	rp.pts = b;
 	wb_check_edit(ed, "road raised", w, &p, &c, &rs, ab, 6, reach);
-	struct curve_set none = { NULL, 0 };
+	struct curve_set none = { .paths = NULL, .npaths = 0 };
 	wb_check_edit(ed, "road removed", w, &p, &c, &none, b, 3, reach);
 	world_destroy(w);
 	edits_clear(ed);

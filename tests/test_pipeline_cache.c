@@ -155,7 +155,7 @@ static void check_term(const struct term_case *t, const char *hm_file)
 		cp.npts = 4;
 		cp.pts = (float *)pts;
 		snprintf(cp.label, sizeof(cp.label), "test road");
-		struct curve_set cs = { &cp, 1 };
+		struct curve_set cs = { .paths = &cp, .npaths = 1 };
 		CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "curves: %s", err);
 	}
 	struct terrain *tr = terrain_create(ed);
@@ -255,7 +255,7 @@ void check_curves_switch(void)
 		cp.npts = 3;
 		cp.pts = (float *)pts;
 		snprintf(cp.label, sizeof(cp.label), "test river");
-		struct curve_set cs = { &cp, 1 };
+		struct curve_set cs = { .paths = &cp, .npaths = 1 };
 		CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "curves: %s", err);
 		GLuint with = density_with(pl, ed, &g, &p, "one curve", &c);
 		CHECK(c == 1 && with != none && reads(with, "u_curve_count"), "a curve: the carve compiled in (%u)", c);

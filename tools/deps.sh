@@ -12,7 +12,7 @@ SUDO=""
 $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
 	gcc libc6-dev meson ninja-build pkg-config \
-	libegl-dev libgles-dev libpng-dev \
+	libegl-dev libgles-dev libpng-dev libexpat1-dev \
 	libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev
 # a second GL driver for the GPU tests: zink (Mesa's OpenGL on Vulkan, in
 # libgl1-mesa-dri) on lavapipe, the Vulkan software rasterizer of this package

@@ -16,7 +16,7 @@ set -u
 cd "$(dirname "$0")/.."
 secs=${1:-60}
 [ $# -gt 0 ] && shift
-names=${*:-config cli geojson csv heightmap ply evdev}
+names=${*:-config cli geojson gpx csv heightmap ply evdev}
 B=${FUZZ_BUILD:-build-fuzz}
 if [ ! -d "$B" ]; then
 	CC=clang meson setup "$B" -Dfuzz=true -Dwerror=true >"$B.setup.log" 2>&1 || { cat "$B.setup.log"; exit 1; }

@@ -215,7 +215,7 @@ static int csv_props(struct csv *c, char **f)
 		if (c->set_prop[i] && *curve_param_slot(&c->cur, i) != (float)v)
 			return cfail(c, c->lineno, "%s of path '%s' changes along the path (%g, then %s)",
 				     curve_param_names[i], c->cur_id, (double)*curve_param_slot(&c->cur, i), f[col]);
-		*curve_param_slot(&c->cur, i) = (float)v;
+		curve_param_set(&c->cur, i, (float)v);
 		c->set_prop[i] = true;
 	}
 	int kcol = c->col[COL_KIND];
@@ -288,6 +288,7 @@ static long count_rows(const char *text, size_t len)
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen)
 {
 	memset(s, 0, sizeof(*s));
+	snprintf(s->source, sizeof(s->source), "%s", fname);
 	long rows = count_rows(text, len);
 	if (rows - 1 > CURVE_MAX_POINTS) {
 		snprintf(err, errlen, "%s: %ld points, more than the %ld the curve tables may hold", fname, rows - 1,

@@ -5,6 +5,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,6 +30,8 @@ void curve_path_defaults(struct curve_path *p, int kind)
 	p->falloff = d[kind][1];
 	p->inclination = d[kind][2];
 	p->smoothing = d[kind][3];
+	p->width_set = p->falloff_set = false; /* defaults, not the file's */
+	p->width_rel = 0.0f;
 }
 
 void curve_set_free(struct curve_set *s)
@@ -38,6 +41,26 @@ void curve_set_free(struct curve_set *s)
 	free(s->paths);
 	s->paths = NULL;
 	s->npaths = 0;
+	free(s->notes);
+	s->notes = NULL;
+	s->nnotes = 0;
+}
+
+int curve_set_note(struct curve_set *s, const char *fmt, ...)
+{
+	if (s->nnotes >= CURVE_NOTES_MAX)
+		return 0;
+	if (!s->notes) {
+		s->notes = malloc(sizeof(*s->notes) * CURVE_NOTES_MAX);
+		if (!s->notes)
+			return -1;
+	}
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(s->notes[s->nnotes], CURVE_NOTE_MAX, fmt, ap);
+	va_end(ap);
+	s->nnotes++;
+	return 0;
 }
 
 int curve_set_add(struct curve_set *s, const struct curve_path *p)
@@ -477,7 +500,7 @@ void curve_path_padded_box(const struct curve_path *p, float box[4])
 		box[1] = fminf(box[1], p->pts[3 * i + 2] - pad);
 		box[3] = fmaxf(box[3], p->pts[3 * i + 2] + pad);
 	}
-	struct curve_set one = { (struct curve_path *)p, 1 };
+	struct curve_set one = { .paths = (struct curve_path *)p, .npaths = 1 };
 	struct curve_quads q;
 	char err[16];
 	if (p->npts < 2 || curves_build(&one, &q, err, sizeof(err)) < 0)

@@ -37,6 +37,9 @@ struct curve_path {
 	float smoothing;       /* Ω in [0,1]: handle length, 0 = the polyline itself */
 	int npts;
 	float *pts;            /* npts * 3: world x, y (up), z */
+	bool width_set;        /* width given by the file (a width or lanes property, */
+	bool falloff_set;      /* a highway class, a CSV cell); else curves_road_widths */
+	float width_rel;       /* lanes or highway class: width in units of road_width, 0 when none */
 	bool follow_ground;    /* 2D input: y is taken from the terrain's surface
 				* (curves_follow_ground; until then 0) */
 	int crs;               /* enum curve_crs: what its file said (GeoJSON) */
@@ -47,14 +50,31 @@ struct curve_path {
 	char label[192];       /* where it came from, for messages ("roads.geojson: feature 2") */
 };
 
+/* The longest note (curve_set_note) and the most a set keeps. */
+#define CURVE_NOTE_MAX 480
+#define CURVE_NOTES_MAX 16
+
 struct curve_set {
 	struct curve_path *paths;
 	int npaths;
+	/* What a reader (or curves_geo_project) noticed and did instead of
+	 * refusing the file: features skipped, lon/lat assumed, 3D taken as
+	 * 2D.  One line each, for the loader to log as warnings (edits.c);
+	 * freed with the set, not copied by curve_set_copy. */
+	char (*notes)[CURVE_NOTE_MAX];
+	int nnotes;
+	/* lon/lat input without a crs member (the reader's rule, geo_rel):
+	 * its span in degrees (lon, lat), for curves_geo_project's note */
+	double geo_span[2];
+	char source[96];       /* the file's name, for notes */
 };
 
 /* Defaults of the per-path parameters by kind (w, λ, inclination gain, Ω). */
 void curve_path_defaults(struct curve_path *p, int kind);
 void curve_set_free(struct curve_set *s);
+/* Appends a note (one line, printf format, cut at CURVE_NOTE_MAX; at most
+ * CURVE_NOTES_MAX kept).  0, or -1 when out of memory. */
+int curve_set_note(struct curve_set *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Deep copy; 0 or -1 (out of memory). */
 int curve_set_copy(struct curve_set *dst, const struct curve_set *src);
 /* Appends a path (deep copy of pts); 0 or -1. */
@@ -175,23 +195,39 @@ void curve_path_padded_box(const struct curve_path *p, float box[4]);
 /* GeoJSON (FeatureCollection / Feature / LineString / MultiLineString with
  * positions [x east, y north] (2D: the curve follows the ground) or [x east,
  * y north, z up] -> world (x, z_up, -y), in degrees until
- * curves_geo_project) or CSV (header line,
+ * curves_geo_project; other geometries skipped with a note), GPX
+ * (curves_parse_gpx) or CSV (header line,
  * columns path,x,y,z[,kind,width,falloff,inclination,smoothing], y up).
- * The format is chosen by the extension (.geojson/.json, .csv).  Errors
- * name file:line and the feature.  0 or -1 with err. */
+ * The format is chosen by the extension (.geojson/.json, .gpx, .csv).
+ * Errors name file:line and the feature.  0 or -1 with err; s->notes
+ * holds what was skipped or assumed instead of refused. */
 int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen);
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
 			 size_t errlen);
 int curves_parse_csv(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
+/* GPX 1.0 / 1.1 (.gpx): every track segment (trk/trkseg/trkpt) and route
+ * (rte/rtept) a path of kind road; lat/lon WGS84 (crs CURVE_CRS_WGS84,
+ * degrees from the centroid, projected by curves_geo_project like GeoJSON
+ * lon/lat), <ele> metres as the height, or the path follows the ground
+ * when its points lack <ele>.  Errors (malformed XML, a point without lat
+ * or lon, a latitude beyond +-90, a DTD) name file:line.  0 or -1 with
+ * err. */
+int curves_parse_gpx(const char *text, size_t len, const char *fname, struct curve_set *s, char *err, size_t errlen);
+
+/* The widths a file left open (curve_params.c): a path with width_rel
+ * (lanes, an OSM highway class) gets width_rel * road_width, a road
+ * without width or width_rel road_width; a road without a falloff
+ * road_falloff.  Other kinds keep their defaults. */
+void curves_road_widths(struct curve_set *s, float road_width, float road_falloff);
 
 /* ---- geographic input (curves_geo.c) ------------------------------------------ */
 
 /* Lon/lat or world units: mode CURVES_CRS_LONLAT / _LOCAL forces it;
- * CURVES_CRS_AUTO takes the file's "crs" member (WGS84 / CRS84 / EPSG:4326:
- * lon/lat; any other: world units) and, without one, lon/lat when every
- * position lies in [-180, 180] x [-90, 90] and the data spans less than
- * one degree both ways (world-unit curves that small would be under a
- * unit long; the reader applies this rule, geo_rel).  Lon/lat positions are projected to metres on the local
+ * CURVES_CRS_AUTO takes the file's "crs" member (WGS84 / CRS84 / EPSG:4326,
+ * or a GPX file: lon/lat; any other: world units) and, without one,
+ * lon/lat when every position lies in [-180, 180] x [-90, 90] (RFC 7946;
+ * the reader applies this rule, geo_rel; a note when the data spans over
+ * a degree, which world units could too).  Lon/lat positions are projected to metres on the local
  * tangent plane around their centroid (lon0, lat0) -- an equirectangular
  * projection with the WGS84 ellipsoid's radii of curvature there:
  * east = N cos(lat0) dlon, north = M dlat -- then scaled by `scale` world
@@ -199,6 +235,9 @@ int curves_parse_csv(const char *text, size_t len, const char *fname, struct cur
  * chosen, *why the rule (for the log).  0, or -1 with err. */
 int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat, const char **why, double centroid[2],
 		       char *err, size_t errlen);
+/* The fraction of the curves' XZ length inside box (xmin, zmin, xmax,
+ * zmax), and their XZ extent in ext (same order); 1 for no length. */
+double curves_inside_fraction(const struct curve_set *s, const float box[4], float ext[4]);
 /* The terrain's surface height under (x, z) for 2D curves; false when
  * there is none. */
 typedef bool (*curve_ground_fn)(void *ctx, float x, float z, float *y);

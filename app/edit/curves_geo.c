@@ -33,11 +33,11 @@ static bool choose_lonlat(const struct curve_set *s, int mode, const char **why)
 		return false;
 	}
 	if (p->crs == CURVE_CRS_WGS84)
-		*why = "the crs member names WGS84";
+		*why = "the file names WGS84: a crs member, or GPX";
 	else if (p->crs == CURVE_CRS_OTHER)
 		*why = "the crs member names another system";
 	else if (p->geo_rel)
-		*why = "every position within lon/lat ranges, spanning under a degree";
+		*why = "no crs member, every position within lon/lat ranges: RFC 7946's WGS84";
 	else
 		*why = "the values are not lon/lat of a small area";
 	return p->geo_rel;
@@ -89,6 +89,17 @@ int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat,
 	if (s->npaths == 0)
 		return 0;
 	*lonlat = choose_lonlat(s, mode, why);
+	/* lon/lat by the auto rule alone over more than a degree: world units
+	 * that small would be taken the same way, so it is said */
+	if (*lonlat && mode == CURVES_CRS_AUTO && s->paths[0].crs == CURVE_CRS_UNSAID &&
+	    (s->geo_span[0] > 1.0 || s->geo_span[1] > 1.0) &&
+	    curve_set_note(s, "%s: no crs member and every position within lon/lat ranges, spanning %.4g degrees of "
+			   "longitude and %.4g of latitude: taken as WGS84 lon/lat (CRS84, RFC 7946); world units need "
+			   "curves_crs = local or a crs member naming their system", s->source, s->geo_span[0],
+			   s->geo_span[1]) < 0) {
+		snprintf(err, errlen, "%s: out of memory", s->source);
+		return -1;
+	}
 	if (!*lonlat) {
 		for (int i = 0; i < s->npaths; i++) { /* world units: absolute again */
 			struct curve_path *p = &s->paths[i];
@@ -117,7 +128,10 @@ int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat,
 	return 0;
 }
 
-/* Path p with points inserted so no XZ segment is longer than step. */
+#define FOLLOW_MAX_POINTS 1000000
+
+/* Path p with points inserted so no XZ segment is longer than step: 0, -1
+ * when out of memory, -2 beyond FOLLOW_MAX_POINTS. */
 static int densify(struct curve_path *p, float step)
 {
 	int n = 1;
@@ -125,8 +139,8 @@ static int densify(struct curve_path *p, float step)
 		float dx = p->pts[3 * k] - p->pts[3 * k - 3], dz = p->pts[3 * k + 2] - p->pts[3 * k - 1];
 		float len = sqrtf(dx * dx + dz * dz);
 		n += len > step ? (int)ceilf(len / step) : 1;
-		if (n > 1000000)
-			return -1;
+		if (n > FOLLOW_MAX_POINTS)
+			return -2;
 	}
 	float *out = malloc(sizeof(float) * 3 * (size_t)n);
 	if (!out)
@@ -164,7 +178,14 @@ int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground
 				 "follow here; give [x east, y north, z up]", p->label);
 			return -1;
 		}
-		if (densify(p, step) < 0) {
+		int rc = densify(p, step);
+		if (rc == -2) {
+			snprintf(err, errlen, "%s: more than %d points at most curves_follow_step = %g apart to follow the "
+				 "ground: is it in the units meant (curves_crs, curves_geo_scale)?", p->label,
+				 FOLLOW_MAX_POINTS, (double)step);
+			return -1;
+		}
+		if (rc < 0) {
 			snprintf(err, errlen, "%s: out of memory following the ground", p->label);
 			return -1;
 		}
@@ -178,4 +199,45 @@ int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground
 		}
 	}
 	return 0;
+}
+
+/* Length of segment a-b (XZ) inside the box, by clipping its parameter
+ * range against the four sides (Liang-Barsky). */
+static double clipped_length(const float *a, const float *b, const float box[4])
+{
+	double t0 = 0.0, t1 = 1.0, d[2] = { b[0] - a[0], b[2] - a[2] }, o[2] = { a[0], a[2] };
+	for (int k = 0; k < 2; k++) {
+		double lo = box[k], hi = box[k + 2];
+		if (d[k] == 0.0) {
+			if (o[k] < lo || o[k] > hi)
+				return 0.0;
+			continue;
+		}
+		double ta = (lo - o[k]) / d[k], tb = (hi - o[k]) / d[k];
+		t0 = fmax(t0, fmin(ta, tb));
+		t1 = fmin(t1, fmax(ta, tb));
+	}
+	return t1 > t0 ? (t1 - t0) * hypot(d[0], d[1]) : 0.0;
+}
+
+double curves_inside_fraction(const struct curve_set *s, const float box[4], float ext[4])
+{
+	double len = 0.0, in = 0.0;
+	ext[0] = ext[1] = INFINITY;
+	ext[2] = ext[3] = -INFINITY;
+	for (int i = 0; i < s->npaths; i++) {
+		const struct curve_path *p = &s->paths[i];
+		for (int k = 0; k < p->npts; k++) {
+			const float *q = p->pts + 3 * k;
+			ext[0] = fminf(ext[0], q[0]);
+			ext[1] = fminf(ext[1], q[2]);
+			ext[2] = fmaxf(ext[2], q[0]);
+			ext[3] = fmaxf(ext[3], q[2]);
+			if (k > 0) {
+				len += hypot(q[0] - q[-3], q[2] - q[-1]);
+				in += clipped_length(q - 3, q, box);
+			}
+		}
+	}
+	return len > 0.0 ? in / len : 1.0;
 }

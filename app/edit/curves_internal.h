@@ -1,4 +1,4 @@
-/* isoterra — what the curve file readers (geojson.c, csv_curves.c) share:
+/* isoterra — what the curve file readers (geojson.c, gpx.c, csv_curves.c) share:
  * kinds and per-path parameters by name, with the same range checks in
  * both formats.  Defined in curve_params.c; not part of the curves API. */
 #ifndef ISOTERRA_CURVES_INTERNAL_H
@@ -17,5 +17,17 @@ int curve_kind_parse(const char *s);
 const char *curve_param_check(const char *name, double v);
 /* The field of p that parameter i (curve_param_names order) sets. */
 float *curve_param_slot(struct curve_path *p, int i);
+/* Sets parameter i of p to v, noting a width or falloff as the file's own
+ * (width_set, falloff_set: curves_road_widths leaves them). */
+void curve_param_set(struct curve_path *p, int i, float v);
+/* An OSM highway class's width in units of road_width (a lane is 1/2:
+ * the default road has two), or -1 for a class not in the table. */
+float curve_highway_width(const char *cls);
+/* 3D input whose every height is 0 (n positions; axis names it): an
+ * export's placeholder, not a road at altitude 0.  Every path follows the
+ * ground instead, said in a note.  0, or -1 when out of memory. */
+int curves_flat_zero(struct curve_set *s, long n, const char *axis);
+/* Lanes of a road: 1 to CURVE_LANES_MAX. */
+#define CURVE_LANES_MAX 16
 
 #endif

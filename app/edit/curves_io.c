@@ -1,5 +1,5 @@
 /* isoterra — curve input: the file, its format chosen by the extension
- * (GeoJSON: geojson.c, CSV: csv_curves.c). */
+ * (GeoJSON: geojson.c, GPX: gpx.c, CSV: csv_curves.c). */
 #include "curves.h"
 #include "curves_internal.h"
 
@@ -61,8 +61,9 @@ int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen)
 	const char *dot = strrchr(path, '.');
 	bool csv = dot && !strcasecmp(dot, ".csv");
 	bool geo = dot && (!strcasecmp(dot, ".geojson") || !strcasecmp(dot, ".json"));
-	if (!csv && !geo) {
-		snprintf(err, errlen, "curves file '%s': unknown format (use .geojson, .json or .csv)", path);
+	bool gpx = dot && !strcasecmp(dot, ".gpx");
+	if (!csv && !geo && !gpx) {
+		snprintf(err, errlen, "curves file '%s': unknown format (use .geojson, .json, .gpx or .csv)", path);
 		return -1;
 	}
 	size_t len;
@@ -70,7 +71,8 @@ int curves_load(const char *path, struct curve_set *s, char *err, size_t errlen)
 	if (!text)
 		return -1;
 	int rc = csv ? curves_parse_csv(text, len, path, s, err, errlen)
-		     : curves_parse_geojson(text, len, path, s, err, errlen);
+		 : gpx ? curves_parse_gpx(text, len, path, s, err, errlen)
+		       : curves_parse_geojson(text, len, path, s, err, errlen);
 	free(text);
 	return rc;
 }

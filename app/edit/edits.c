@@ -131,12 +131,37 @@ static bool ground_at(void *ctx, float x, float z, float *y)
 	return c->ed->ground(c->ed->ground_ctx, c->p, c->ed, x, z, y);
 }
 
+/* The volume scene carves only inside its box: curves mostly outside it
+ * would leave the picture as it is without them.  A warning with both
+ * extents (the streaming world goes wherever they are). */
+static void outside_volume(const struct params *p, const struct curve_set *s)
+{
+	if (p->scene != SCENE_VOLUME || s->npaths == 0)
+		return;
+	float h = 0.5f * p->vol_size, box[4] = { p->vol_x - h, p->vol_z - h, p->vol_x + h, p->vol_z + h }, e[4];
+	double in = curves_inside_fraction(s, box, e);
+	if (in >= 0.5)
+		return;
+	char share[32];
+	if (in == 0.0)
+		snprintf(share, sizeof(share), "all");
+	else if (in < 0.001)
+		snprintf(share, sizeof(share), "over 99.9%%");
+	else
+		snprintf(share, sizeof(share), "%.1f%%", 100.0 * (1.0 - in));
+	log_warn("%s: %s of the curves' length lies outside the volume: the curves span x [%g, %g] z [%g, %g], the "
+		 "volume x [%g, %g] z [%g, %g] (world units); scale them (curves_geo_scale) or move or widen the volume "
+		 "(vol_x, vol_z, vol_size)", p->curves, share, (double)e[0], (double)e[2], (double)e[1], (double)e[3],
+		 (double)box[0], (double)box[2], (double)box[1], (double)box[3]);
+}
+
 /* The file's curves in world units: lon/lat projected, 2D curves on the
  * ground (curves_geo.c). */
 static int load_curves_file(struct edits *ed, const struct params *p, struct curve_set *s, char *err, size_t errlen)
 {
 	if (curves_load(p->curves, s, err, errlen) < 0)
 		return -1;
+	curves_road_widths(s, p->road_width, p->road_falloff);
 	bool lonlat;
 	const char *why;
 	double c[2];
@@ -145,6 +170,11 @@ static int load_curves_file(struct edits *ed, const struct params *p, struct cur
 	if (lonlat)
 		log_info("%s: WGS84 lon/lat (%s), projected to the tangent plane at lon %.6f lat %.6f, %g world units "
 			 "per metre", p->curves, why, c[0], c[1], (double)p->curves_geo_scale);
+	/* what the readers and the projection did instead of refusing the
+	 * file: one warning each */
+	for (int i = 0; i < s->nnotes; i++)
+		log_warn("%s", s->notes[i]);
+	outside_volume(p, s);
 	struct ground_call gc = { ed, p };
 	if (curves_follow_ground(s, p->curves_follow_step, ed->ground ? ground_at : NULL, &gc, err, errlen) < 0)
 		goto fail;
@@ -182,7 +212,7 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 				return -1;
 		}
 	} else if (ed->curves_from_file) {
-		struct curve_set none = { NULL, 0 };
+		struct curve_set none = { .paths = NULL, .npaths = 0 };
 		if (install_curves(ed, &none, p->curve_hash_dim, false, err, errlen) < 0)
 			return -1;
 		memset(&ed->curves_file, 0, sizeof(ed->curves_file));

@@ -1,8 +1,11 @@
 /* isoterra — curve input, GeoJSON: FeatureCollection / Feature /
  * LineString / MultiLineString with [x east, y north] or [x east, y north,
  * z up] positions, the per-path parameters in "properties", the "crs"
- * member noted for curves_geo_project.  Errors name file:line and the
- * feature, and the axis convention where a position is wrong. */
+ * member noted for curves_geo_project, "bbox" members checked.  Errors
+ * name file:line and the feature, and the axis convention where a
+ * position is wrong.  A feature that is no line (Point, Polygon, ...) is
+ * skipped, not refused: one note (curve_set_note) per kind of skip names
+ * the features and their types. */
 #include "curves.h"
 #include "curves_internal.h"
 #include "json.h"
@@ -13,6 +16,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Features skipped for one reason: how many, and the first few named. */
+#define SKIP_NAMED 4
+struct skips {
+	int n;
+	char named[240];
+};
+
 struct gctx {
 	const char *fname;
 	char *err;
@@ -21,7 +31,34 @@ struct gctx {
 	int crs;           /* enum curve_crs */
 	bool rel;          /* positions stored as degrees from origin */
 	double origin[2];  /* lon, lat: the positions' centroid */
+	struct skips other; /* no line: Point, MultiPoint, GeometryCollection, null, ... */
+	struct skips areas; /* Polygon, MultiPolygon */
+	struct skips classes; /* unknown OSM highway classes */
+	long n3d, n3d_nonzero; /* positions of 3D line strings, those with z != 0 */
 };
+
+static void skip_add(struct skips *k, const char *what, const char *type, const char *detail)
+{
+	if (k->n < SKIP_NAMED) {
+		size_t len = strlen(k->named);
+		snprintf(k->named + len, sizeof(k->named) - len, "%s%s %s%s", k->n ? ", " : "", what, type, detail);
+	}
+	k->n++;
+}
+
+/* "feature 3 (id \"way/12\")", "feature 3", or "geometry" for a bare one. */
+static void feature_name(char *buf, size_t len, int idx, const struct json_value *f)
+{
+	const struct json_value *id = f ? json_get(f, "id") : NULL;
+	if (idx < 0)
+		snprintf(buf, len, "geometry");
+	else if (id && id->type == JSON_STRING)
+		snprintf(buf, len, "feature %d (id \"%.40s\")", idx + 1, id->str);
+	else if (id && id->type == JSON_NUMBER)
+		snprintf(buf, len, "feature %d (id %.17g)", idx + 1, id->num);
+	else
+		snprintf(buf, len, "feature %d", idx + 1);
+}
 
 /* All positions' ranges and centroid (longitudes relative to the first). */
 struct geo_stats {
@@ -65,14 +102,18 @@ static void geo_scan(const struct json_value *v, struct geo_stats *st, int depth
 
 /* The auto rule (curves.h, curves_geo_project): lon/lat when the crs member
  * names WGS84, or without one when every position is within lon/lat
- * ranges and the data spans under a degree both ways. */
-static void geo_decide(struct gctx *g, const struct json_value *root)
+ * ranges (RFC 7946: GeoJSON is WGS84); the span is kept for the note. */
+static void geo_decide(struct gctx *g, const struct json_value *root, struct geo_stats *stp)
 {
 	struct geo_stats st = { { 1e300, 1e300 }, { -1e300, -1e300 }, { 0.0, 0.0 }, 0.0, 0 };
 	geo_scan(root, &st, 0);
+	*stp = st;
 	bool ranges = st.n > 0 && st.lo[0] >= -180.0 && st.hi[0] <= 180.0 && st.lo[1] >= -90.0 && st.hi[1] <= 90.0;
-	g->rel = g->crs == CURVE_CRS_WGS84 ||
-		 (g->crs == CURVE_CRS_UNSAID && ranges && st.hi[0] - st.lo[0] < 1.0 && st.hi[1] - st.lo[1] < 1.0);
+	g->rel = g->crs == CURVE_CRS_WGS84 || (g->crs == CURVE_CRS_UNSAID && ranges);
+	if (g->crs == CURVE_CRS_UNSAID && ranges) { /* curves_geo_project notes a span over a degree */
+		g->s->geo_span[0] = st.hi[0] - st.lo[0];
+		g->s->geo_span[1] = st.hi[1] - st.lo[1];
+	}
 	if (g->rel && st.n > 0) {
 		g->origin[0] = geo_dlon(st.ref + st.sum[0] / (double)st.n, 0.0);
 		g->origin[1] = st.sum[1] / (double)st.n;
@@ -90,6 +131,71 @@ static int gfail(struct gctx *g, int line, const char *what, const char *fmt, ..
 	va_end(ap);
 	snprintf(g->err, g->errlen, "%s:%d: %s: %s", g->fname, line, what, msg);
 	return -1;
+}
+
+/* A "bbox" member (RFC 7946 5): 2n numbers, the n lowest then the n
+ * highest coordinates (n = 2 or 3); the lowest latitude not above the
+ * highest (the longitudes may cross the antimeridian: west > east). */
+static int geo_bbox(struct gctx *g, const struct json_value *o, const char *what)
+{
+	const struct json_value *b = json_get(o, "bbox");
+	if (!b)
+		return 0;
+	bool ok = b->type == JSON_ARRAY && (b->n == 4 || b->n == 6);
+	for (int i = 0; ok && i < b->n; i++)
+		ok = b->items[i].type == JSON_NUMBER && isfinite(b->items[i].num);
+	if (!ok)
+		return gfail(g, b->line, what, "\"bbox\" must be [west, south, east, north] or [west, south, low, east, "
+			     "north, high] (4 or 6 numbers)");
+	int n = b->n / 2;
+	for (int a = 1; a < n; a++)
+		if (b->items[a].num > b->items[n + a].num)
+			return gfail(g, b->line, what, "\"bbox\": its %s %g is above its %s %g", a == 1 ? "south" : "low",
+				     b->items[a].num, a == 1 ? "north" : "high", b->items[n + a].num);
+	return 0;
+}
+
+/* OSM tag `key`: a member of properties, or of its "tags" object (some
+ * exporters nest the tags). */
+static const struct json_value *osm_tag(const struct json_value *props, const char *key)
+{
+	const struct json_value *v = json_get(props, key), *tags = json_get(props, "tags");
+	return v ? v : tags && tags->type == JSON_OBJECT ? json_get(tags, key) : NULL;
+}
+
+/* A width left open by the properties: "lanes" (a number, or a string of
+ * one as OSM exports write tags) times a lane, else the OSM "highway"
+ * class's width; an unknown class is noted (the road_width default). */
+static int geo_road_class(struct gctx *g, const struct json_value *props, const char *what, struct curve_path *base)
+{
+	const struct json_value *lanes = osm_tag(props, "lanes"), *hw = osm_tag(props, "highway");
+	if (lanes) {
+		double n = lanes->type == JSON_NUMBER ? lanes->num : NAN;
+		if (lanes->type == JSON_STRING) {
+			char *end;
+			n = strtod(lanes->str, &end);
+			if (end == lanes->str || *end)
+				n = NAN;
+		}
+		if (!(n >= 1.0 && n <= CURVE_LANES_MAX && n == floor(n)))
+			return gfail(g, lanes->line, what, "\"lanes\" must be a whole number from 1 to %d", CURVE_LANES_MAX);
+		if (!base->width_set)
+			base->width_rel = 0.5f * (float)n;
+	}
+	if (hw && hw->type != JSON_STRING)
+		return gfail(g, hw->line, what, "\"highway\" must be a string (an OSM highway class), not %s",
+			     json_type_names[hw->type]);
+	if (hw && !base->width_set && base->width_rel == 0.0f) {
+		float rel = curve_highway_width(hw->str);
+		if (rel > 0.0f) {
+			base->width_rel = rel;
+		} else {
+			char cls[48];
+			snprintf(cls, sizeof(cls), "\"%.40s\"", hw->str);
+			skip_add(&g->classes, what, cls, "");
+		}
+	}
+	return 0;
 }
 
 static int geo_props(struct gctx *g, const struct json_value *props, const char *what, struct curve_path *base)
@@ -116,9 +222,9 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 		const char *why = curve_param_check(curve_param_names[i], v->num);
 		if (why)
 			return gfail(g, v->line, what, "\"%s\" = %g %s", curve_param_names[i], v->num, why);
-		*curve_param_slot(base, i) = (float)v->num;
+		curve_param_set(base, i, (float)v->num);
 	}
-	return 0;
+	return geo_road_class(g, props, what, base);
 }
 
 /* GeoJSON's axes, for messages (the CSV's are x, y up, z) */
@@ -127,7 +233,7 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 static int geo_line(struct gctx *g, const struct json_value *coords, const char *what, const struct curve_path *base,
 		    int part)
 {
-	char label[96];
+	char label[128];
 	if (part >= 0)
 		snprintf(label, sizeof(label), "%s, line string %d", what, part + 1);
 	else
@@ -175,6 +281,10 @@ static int geo_line(struct gctx *g, const struct json_value *coords, const char 
 			c[0] = geo_dlon(c[0], g->origin[0]);
 			c[1] -= g->origin[1];
 		}
+		if (dim == 3) {
+			g->n3d++;
+			g->n3d_nonzero += c[2] != 0.0;
+		}
 		/* GeoJSON [east, north, up] -> world (x, y up, z = -north) */
 		p.pts[3 * i + 0] = (float)c[0];
 		p.pts[3 * i + 1] = (float)c[2];
@@ -196,19 +306,93 @@ static int geo_line(struct gctx *g, const struct json_value *coords, const char 
 	return 0;
 }
 
+/* Why a Polygon's rings are not a valid area (RFC 7946 3.1.6: closed
+ * rings of at least 4 positions of 2 or 3 numbers), or NULL; *nrings
+ * counted. */
+static const char *poly_check(const struct json_value *rings, int *nrings, char *why, size_t len)
+{
+	if (rings->type != JSON_ARRAY || rings->n < 1)
+		return "its coordinates are not an array of rings";
+	for (int r = 0; r < rings->n; r++, (*nrings)++) {
+		const struct json_value *ring = &rings->items[r];
+		if (ring->type != JSON_ARRAY || ring->n < 4) {
+			snprintf(why, len, "ring %d is not an array of at least 4 positions", r + 1);
+			return why;
+		}
+		for (int i = 0; i < ring->n; i++) {
+			const struct json_value *pos = &ring->items[i];
+			bool ok = pos->type == JSON_ARRAY && (pos->n == 2 || pos->n == 3);
+			for (int a = 0; ok && a < pos->n; a++)
+				ok = pos->items[a].type == JSON_NUMBER && isfinite(pos->items[a].num);
+			if (!ok) {
+				snprintf(why, len, "ring %d, position %d is not 2 or 3 numbers", r + 1, i + 1);
+				return why;
+			}
+		}
+		const struct json_value *a = &ring->items[0], *b = &ring->items[ring->n - 1];
+		bool closed = a->n == b->n;
+		for (int k = 0; closed && k < a->n; k++)
+			closed = a->items[k].num == b->items[k].num;
+		if (!closed) {
+			snprintf(why, len, "ring %d is not closed (its last position is not its first)", r + 1);
+			return why;
+		}
+	}
+	return NULL;
+}
+
+/* A Polygon or MultiPolygon: checked and counted, then skipped (areas are
+ * not carved), named in the areas note. */
+static void geo_area(struct gctx *g, const char *type, const struct json_value *coords, const char *what)
+{
+	char why[96], detail[128];
+	const char *bad = NULL;
+	int nrings = 0, npoly = 0;
+	if (!coords) {
+		bad = "it has no \"coordinates\"";
+	} else if (!strcmp(type, "Polygon")) {
+		bad = poly_check(coords, &nrings, why, sizeof(why));
+		npoly = 1;
+	} else if (coords->type != JSON_ARRAY) {
+		bad = "its coordinates are not an array of polygons";
+	} else {
+		for (int i = 0; !bad && i < coords->n; i++, npoly++)
+			bad = poly_check(&coords->items[i], &nrings, why, sizeof(why));
+	}
+	if (bad)
+		snprintf(detail, sizeof(detail), " (malformed: %s)", bad);
+	else
+		snprintf(detail, sizeof(detail), " (%d polygon%s, %d ring%s)", npoly, npoly == 1 ? "" : "s", nrings,
+			 nrings == 1 ? "" : "s");
+	skip_add(&g->areas, what, type, detail);
+}
+
 static int geo_geometry(struct gctx *g, const struct json_value *geom, const struct json_value *props, const char *what)
 {
+	if (geom && geom->type == JSON_NULL) { /* RFC 7946 3.2: an unlocated feature */
+		skip_add(&g->other, what, "without geometry", " (null)");
+		return 0;
+	}
 	if (!geom || geom->type != JSON_OBJECT)
-		return gfail(g, geom ? geom->line : 1, what, "\"geometry\" must be a LineString or MultiLineString object%s",
-			     geom && geom->type == JSON_NULL ? " (it is null)" : "");
+		return gfail(g, geom ? geom->line : 1, what, "\"geometry\" must be a geometry object or null, not %s",
+			     geom ? json_type_names[geom->type] : "missing");
 	const struct json_value *t = json_get(geom, "type");
 	if (!t || t->type != JSON_STRING)
 		return gfail(g, geom->line, what, "geometry has no \"type\"");
+	if (geo_bbox(g, geom, what) < 0)
+		return -1;
 	const struct json_value *coords = json_get(geom, "coordinates");
 	bool multi = !strcmp(t->str, "MultiLineString");
-	if (!multi && strcmp(t->str, "LineString"))
-		return gfail(g, t->line, what, "geometry type \"%s\" is not supported (LineString or MultiLineString)",
-			     t->str);
+	if (!strcmp(t->str, "Polygon") || !strcmp(t->str, "MultiPolygon")) {
+		geo_area(g, t->str, coords, what);
+		return 0;
+	}
+	if (!multi && strcmp(t->str, "LineString")) {
+		char type[48];
+		snprintf(type, sizeof(type), "%.40s", t->str);
+		skip_add(&g->other, what, type, "");
+		return 0;
+	}
 	if (!coords)
 		return gfail(g, geom->line, what, "geometry has no \"coordinates\"");
 	struct curve_path base;
@@ -227,13 +411,15 @@ static int geo_geometry(struct gctx *g, const struct json_value *geom, const str
 
 static int geo_feature(struct gctx *g, const struct json_value *f, int idx)
 {
-	char what[48];
-	snprintf(what, sizeof(what), "feature %d", idx + 1);
+	char what[80];
+	feature_name(what, sizeof(what), idx, f->type == JSON_OBJECT ? f : NULL);
 	if (f->type != JSON_OBJECT)
 		return gfail(g, f->line, what, "must be an object, not %s", json_type_names[f->type]);
 	const struct json_value *t = json_get(f, "type");
 	if (!t || t->type != JSON_STRING || strcmp(t->str, "Feature"))
 		return gfail(g, f->line, what, "\"type\" must be \"Feature\"");
+	if (geo_bbox(g, f, what) < 0)
+		return -1;
 	return geo_geometry(g, json_get(f, "geometry"), json_get(f, "properties"), what);
 }
 
@@ -312,10 +498,59 @@ static int geo_root(struct gctx *g, const struct json_value *root)
 	}
 	if (!strcmp(t->str, "Feature"))
 		return geo_feature(g, root, 0);
-	if (!strcmp(t->str, "LineString") || !strcmp(t->str, "MultiLineString"))
-		return geo_geometry(g, root, NULL, "geometry");
-	return gfail(g, t->line, "GeoJSON", "type \"%s\" is not supported (FeatureCollection, Feature, LineString, "
-		     "MultiLineString)", t->str);
+	static const char *const geometries[] = { "LineString", "MultiLineString", "Polygon", "MultiPolygon", "Point",
+						  "MultiPoint", "GeometryCollection" };
+	for (size_t i = 0; i < sizeof(geometries) / sizeof(geometries[0]); i++)
+		if (!strcmp(t->str, geometries[i]))
+			return geo_geometry(g, root, NULL, "geometry");
+	return gfail(g, t->line, "GeoJSON", "type \"%s\" is not GeoJSON (FeatureCollection, Feature, or a geometry: "
+		     "LineString, MultiLineString, ...)", t->str);
+}
+
+/* The top level's bbox against the positions (geo_decide's ranges): a
+ * note when some lie outside it (a longitude range across the
+ * antimeridian, west > east, is not compared). */
+static int bbox_note(struct gctx *g, const struct json_value *root, const struct geo_stats *st)
+{
+	const struct json_value *b = root->type == JSON_OBJECT ? json_get(root, "bbox") : NULL;
+	if (!b || st->n == 0)
+		return 0;
+	int n = b->n / 2;
+	double w = b->items[0].num, so = b->items[1].num, e = b->items[n].num, no = b->items[n + 1].num;
+	double tol = 1e-9 * fmax(1.0, fmax(fabs(st->hi[0]) + fabs(st->lo[0]), fabs(st->hi[1]) + fabs(st->lo[1])));
+	bool lon_in = w > e || (st->lo[0] >= w - tol && st->hi[0] <= e + tol);
+	if (lon_in && st->lo[1] >= so - tol && st->hi[1] <= no + tol)
+		return 0;
+	return curve_set_note(g->s, "%s:%d: the \"bbox\" [%g, %g, %g, %g] does not hold every position: they span x "
+			      "[%g, %g], y [%g, %g]; the positions are used", g->fname, b->line, w, so, e, no, st->lo[0],
+			      st->hi[0], st->lo[1], st->hi[1]);
+}
+
+/* The skipped features, one note per reason. */
+static int skip_notes(struct gctx *g)
+{
+	const struct skips *k[2] = { &g->other, &g->areas };
+	static const char *const why[2] = { "not carved (only LineString and MultiLineString are)",
+					    "areas are not carved (only lines are)" };
+	if (g->classes.n) {
+		char more[48] = "";
+		if (g->classes.n > SKIP_NAMED)
+			snprintf(more, sizeof(more), ", and %d more", g->classes.n - SKIP_NAMED);
+		if (curve_set_note(g->s, "%s: %d feature%s of a highway class without a known width, given road_width: %s%s",
+				   g->fname, g->classes.n, g->classes.n == 1 ? "" : "s", g->classes.named, more) < 0)
+			return -1;
+	}
+	for (int i = 0; i < 2; i++) {
+		if (!k[i]->n)
+			continue;
+		char more[48] = "";
+		if (k[i]->n > SKIP_NAMED)
+			snprintf(more, sizeof(more), ", and %d more", k[i]->n - SKIP_NAMED);
+		if (curve_set_note(g->s, "%s: %d feature%s skipped, %s: %s%s", g->fname, k[i]->n, k[i]->n == 1 ? "" : "s",
+				   why[i], k[i]->named, more) < 0)
+			return -1;
+	}
+	return 0;
 }
 
 int curves_parse_geojson(const char *text, size_t len, const char *fname, struct curve_set *s, char *err,
@@ -331,15 +566,33 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 	struct json_value root;
 	if (json_parse(text, len, fname, &root, err, errlen) < 0)
 		return -1;
-	struct gctx g = { fname, err, errlen, s, CURVE_CRS_UNSAID, false, { 0.0, 0.0 } };
+	struct gctx g;
+	memset(&g, 0, sizeof(g));
+	g.fname = fname;
+	g.err = err;
+	g.errlen = errlen;
+	g.s = s;
+	snprintf(s->source, sizeof(s->source), "%s", fname);
+	struct geo_stats st;
 	int rc = geo_crs(&g, &root);
 	if (rc >= 0) {
 		g.crs = rc;
-		geo_decide(&g, &root);
-		rc = geo_root(&g, &root);
+		geo_decide(&g, &root, &st);
+		const struct json_value *t = json_get(&root, "type"); /* a Feature, a geometry: checked below */
+		rc = t && t->type == JSON_STRING && !strcmp(t->str, "FeatureCollection") ? geo_bbox(&g, &root, "GeoJSON") : 0;
 	}
-	if (rc == 0 && s->npaths == 0)
-		rc = gfail(&g, root.line, "GeoJSON", "no line strings");
+	if (rc == 0)
+		rc = geo_root(&g, &root);
+	if (rc == 0 && s->npaths == 0) {
+		char skipped[600] = "";
+		if (g.other.n || g.areas.n)
+			snprintf(skipped, sizeof(skipped), " (skipped: %s%s%s)", g.other.named, g.other.n && g.areas.n ? ", " : "",
+				 g.areas.named);
+		rc = gfail(&g, root.line, "GeoJSON", "no line strings to carve%s", skipped);
+	}
+	if (rc == 0 && (bbox_note(&g, &root, &st) < 0 || skip_notes(&g) < 0 ||
+			(g.n3d && !g.n3d_nonzero && curves_flat_zero(s, g.n3d, "z (up)") < 0)))
+		rc = gfail(&g, root.line, "GeoJSON", "out of memory");
 	json_free(&root);
 	if (rc < 0)
 		curve_set_free(s);

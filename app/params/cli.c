@@ -333,6 +333,28 @@ static int validate(const struct params *p, char *err, size_t errlen)
 	return 0;
 }
 
+/* A heightmap is read only by field=heightmap: given without a field
+ * (p->field still -1: no preset, config or option set one), it implies
+ * that field, said in a note; given with another field, it would be
+ * silently unused: a warning. */
+static void heightmap_field(struct params *p, int field_default)
+{
+	bool given = p->field >= 0;
+	if (!given)
+		p->field = field_default;
+	if (!p->heightmap[0] || p->field == FIELD_HEIGHTMAP)
+		return;
+	const struct param_info *fi = params_find("field");
+	char name[32];
+	params_enum_name(fi, p->field, name, sizeof(name));
+	if (!given) {
+		p->field = FIELD_HEIGHTMAP;
+		log_info("heightmap %s given without a field: field = heightmap", p->heightmap);
+	} else {
+		log_warn("heightmap %s is not used: field = %s (only field = heightmap reads it)", p->heightmap, name);
+	}
+}
+
 static void list_presets(void)
 {
 	printf("presets (--preset NAME, applied before --config and other options):\n");
@@ -401,7 +423,11 @@ enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, si
 			break;
 		}
 	}
-	/* Pass 2: presets, 3: config files, 4: everything else in order. */
+	/* Pass 2: presets, 3: config files, 4: everything else in order.  The
+	 * field starts unset (-1) so that heightmap_field sees whether any of
+	 * them gave one. */
+	int field_default = p->field;
+	p->field = -1;
 	for (int pass = 2; pass <= 4; pass++) {
 		for (int i = 1; i < argc;) {
 			if (next_opt(argc, argv, &i, &o, err, errlen) < 0)
@@ -431,5 +457,6 @@ enum cli_result cli_parse(int argc, char **argv, struct params *p, char *err, si
 			}
 		}
 	}
+	heightmap_field(p, field_default);
 	return validate(p, err, errlen) < 0 ? CLI_ERROR : CLI_RUN;
 }
