@@ -1,7 +1,8 @@
 #!/bin/sh
 # isoterra — the program end to end: the default run writes a PNG, the mesh
 # export writes a PLY, and bad input (CLI values, config, a broken shader)
-# gives a non-zero exit and one clear message.
+# gives a non-zero exit and one clear message; a world flight in empty sky
+# is said once.
 BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
 SRC=${ISOTERRA_SRC:-$(dirname "$0")/..}
 T=$(mktemp -d)
@@ -98,6 +99,23 @@ if "$BIN" $WX --out world.png --export-mesh world.ply >world.txt 2>&1 && [ -s wo
 	"$CHECK_WORLD" world.ply $WX >check.txt 2>&1 && ok || bad "world export: $(cat check.txt)"
 else
 	bad "--scene world --export-mesh: $(cat world.txt)"
+fi
+
+# a flight that sees no terrain for 3 s is said once (the camera, the fly
+# height); a flight over the ground says nothing of the kind
+FX="--scene world --size 64x48 --count 45 --fps 10 --seed 7"
+# shellcheck disable=SC2086 # $FX: the options, one word each
+if "$BIN" $FX --fly-height 200 --out sky.png >sky.txt 2>&1; then
+	n=$(grep -c "warning: world: no terrain in view for 3.0 s (the camera at .*fly_height 200" sky.txt)
+	[ "$n" = 1 ] && ok || bad "--fly-height 200: want one 'no terrain in view' warning, got $n: $(cat sky.txt)"
+else
+	bad "--fly-height 200 run failed: $(cat sky.txt)"
+fi
+# shellcheck disable=SC2086
+if "$BIN" $FX --out ground.png >ground.txt 2>&1; then
+	grep -q "no terrain in view" ground.txt && bad "a flight over the ground warns: $(cat ground.txt)" || ok
+else
+	bad "default flight failed: $(cat ground.txt)"
 fi
 
 echo "cli: $pass passed, $fail failed"

@@ -23,7 +23,12 @@ struct world_scene {
 	struct governor gov;
 	struct governor_quality q; /* what it holds for the next frame */
 	double last_work_ms;
+	double empty_since;        /* scene time since when no terrain is drawn (< 0: some is) */
+	bool empty_said;
 };
+
+/* A flight that sees no terrain for this long is said once. */
+#define EMPTY_VIEW_S 3.0
 
 /* The frame rate the governor holds: target_fps; else the frame cap's (a
  * power target: quality stepped down to keep the frame within the cap's
@@ -83,6 +88,28 @@ static void world_status(struct scene *s, char *line, size_t len)
 		 q.far_octaves_drop, q.view_distance);
 }
 
+/* A flight that sees no terrain for seconds (in empty sky above the
+ * field, or under it): said once, with where the camera is and what to
+ * change, instead of frames of sky without a word. */
+static void empty_view(struct world_scene *ws, const struct params *p, const struct camera *cam, double t)
+{
+	struct world_stats st;
+	world_get_stats(ws->w, &st);
+	if (st.drawn_tris > 0) {
+		ws->empty_since = -1.0;
+		return;
+	}
+	if (ws->empty_since < 0.0)
+		ws->empty_since = t;
+	if (ws->empty_said || t - ws->empty_since < EMPTY_VIEW_S)
+		return;
+	ws->empty_said = true;
+	log_warn("world: no terrain in view for %.1f s (the camera at %.1f, %.1f, %.1f, fly_height %g, camera %s): the "
+		 "flight sees only sky; a lower --fly-height or another --seed or field brings the ground into view",
+		 t - ws->empty_since, cam->eye[0], cam->eye[1], cam->eye[2], p->fly_height,
+		 p->camera == CAMERA_MANUAL ? "manual" : "autopilot");
+}
+
 static int world_frame(struct scene *s, struct params *p, const struct scene_frame *fr, char *err, size_t errlen)
 {
 	struct world_scene *ws = (struct world_scene *)s;
@@ -125,6 +152,7 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	}
 	if (world_draw(ws->w, fr->r, &cam, &eff, t) < 0)
 		return -1;
+	empty_view(ws, p, &cam, t);
 	if (fr->timing) {
 		glFinish();
 		fr->timing->draw_ms = clock_ms() - td;
@@ -204,6 +232,7 @@ struct scene *scene_world_create(const struct params *p, char *err, size_t errle
 		return NULL;
 	}
 	ws->base.ops = &world_ops;
+	ws->empty_since = -1.0;
 	ws->t0 = p->time;
 	ws->far = p->view_distance * 1.2f;
 	ws->ed = edits_create();
