@@ -4,7 +4,10 @@
  *     HistoPyramid extraction, with ambient occlusion on and, as the
  *     baseline of the ratio, off (the chapter's GeForce 8800: 260 blocks/s);
  *  2. fly-through frame times (p50 / p99, ms) of the autopilot at 640x480
- *     and 1280x720 with live streaming under the per-frame budget;
+ *     and 1280x720 with live streaming under the per-frame budget; after
+ *     the first second, the worst frame against the p99 (the hitches: how
+ *     many frames exceed 3 x p99) and what the worst one did besides
+ *     drawing: programs made, the block arena grown, blocks generated;
  *  3. peak resident memory;
  *  4. the world's own rate: a fresh world filling the autopilot's first
  *     view, blocks settled per second (generated, or proven empty by the
@@ -147,6 +150,62 @@ static void flight_close(struct flight *fl)
 	renderer_destroy(fl->r);
 }
 
+/* What one frame of a fly-through did besides drawing (for the worst
+ * frame's cause). */
+struct frame_note {
+	double ms, t;           /* its time, and when it began (s from the start) */
+	uint64_t generated;     /* blocks generated in it */
+	uint64_t grown;         /* block arena growths in it */
+	unsigned programs;      /* programs made in it (compiled or loaded from the cache) */
+};
+
+static unsigned programs_made(void)
+{
+	struct gpu_program_cache_stats cs = gpu_program_cache_stats();
+	return cs.hits + cs.misses;
+}
+
+/* The hitches after the first second: the worst frame against the p99 of
+ * those frames, how many exceed 3 x p99, and the worst one's cause. */
+static void hitches(const struct frame_note *fn, int frames)
+{
+	int n = 0, worst = -1;
+	double *ms = malloc(sizeof(double) * (size_t)frames);
+	if (!ms)
+		return;
+	for (int f = 0; f < frames; f++)
+		if (fn[f].t >= 1.0) {
+			ms[n++] = fn[f].ms;
+			if (worst < 0 || fn[f].ms > fn[worst].ms)
+				worst = f;
+		}
+	if (n < 20 || worst < 0) {
+		free(ms);
+		return;
+	}
+	qsort(ms, (size_t)n, sizeof(double), bench_cmp_double);
+	double p99 = ms[n * 99 / 100];
+	int over = 0;
+	for (int i = 0; i < n; i++)
+		over += ms[i] > 3.0 * p99;
+	free(ms);
+	const struct frame_note *w = &fn[worst];
+	char cause[160];
+	if (w->programs)
+		snprintf(cause, sizeof(cause), "%u program%s made (a compile or a cache load)", w->programs,
+			 w->programs == 1 ? "" : "s");
+	else if (w->grown)
+		snprintf(cause, sizeof(cause), "the block arena grown");
+	else if (w->generated)
+		snprintf(cause, sizeof(cause), "block generation (%llu block%s)", (unsigned long long)w->generated,
+			 w->generated == 1 ? "" : "s");
+	else
+		snprintf(cause, sizeof(cause), "drawing (no block generated, no program made, no growth)");
+	printf("    after the first second: max %.1f ms = %.2f x p99 (%.1f ms), %d of %d frames over 3 x p99; the "
+	       "worst, frame %d at %.1f s: %s\n",
+	       w->ms, w->ms / p99, p99, over, n, worst, w->t, cause);
+}
+
 /* p50 of one fly-through (ms), -1 if it could not run */
 static double flythrough(const struct params *p_in, int w, int h, int frames, bool governed)
 {
@@ -169,8 +228,18 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 		fprintf(stderr, "bench: %s\n", err);
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
 	double *ft = malloc(sizeof(double) * (size_t)frames);
+	struct frame_note *fn = malloc(sizeof(*fn) * (size_t)frames);
+	if (!ft || !fn) {
+		free(ft);
+		free(fn);
+		flight_close(&fl);
+		return -1;
+	}
 	bool trace = getenv("BENCH_TRACE") != NULL; /* per-frame lines on stderr */
 	double start = clock_ms(), cpu0 = bench_cpu_ms();
+	struct world_stats before;
+	world_get_stats(wd, &before);
+	unsigned progs_before = programs_made();
 	for (int f = 0; f < frames; f++) {
 		double t0 = clock_ms();
 		double t = (t0 - start) / 1e3;
@@ -190,6 +259,13 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 		world_draw(wd, r, &c, &eff, t);
 		glFinish();
 		ft[f] = clock_ms() - t0;
+		struct world_stats now;
+		world_get_stats(wd, &now);
+		unsigned progs = programs_made();
+		fn[f] = (struct frame_note){ .ms = ft[f], .t = t, .generated = now.generated - before.generated,
+					     .grown = now.arena_grown - before.arena_grown, .programs = progs - progs_before };
+		before = now;
+		progs_before = progs;
 		if (governed)
 			q = governor_update(&gov, ft[f], clock_ms() / 1e3);
 		if (trace) { /* per-frame trace: time, blocks drawn, generated so far */
@@ -211,8 +287,10 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 		printf("  (held: render scale %.2f, view x%.2f on average; level %d at the end)", governor_mean_scale(&gov),
 		       governor_mean_view(&gov), q.level);
 	printf("\n");
+	hitches(fn, frames);
 	double p50 = ft[frames / 2];
 	free(ft);
+	free(fn);
 	flight_close(&fl);
 	return p50;
 }
