@@ -5,6 +5,7 @@
 #include "params.h"
 #include "render.h"
 #include "y4m.h"
+#include "y4m_thread.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -24,6 +25,7 @@ struct file_sink {
 	enum cli_out_kind kind;
 	char name[PARAM_STR_MAX]; /* --out: a name, a pattern, or - */
 	struct y4m y;
+	struct y4m_thread *wt;    /* Y4M: converts and writes beside the next frame */
 	bool y4m_open, progress;
 	struct staged *st;        /* PNG: the last frame; sequence: every frame */
 	int nst, cap;
@@ -91,11 +93,9 @@ static int write_frame(struct file_sink *fs, struct renderer *r, int f, char *er
 	}
 	int rc;
 	if (fs->kind == CLI_OUT_Y4M) {
-		rc = y4m_write(&fs->y, &img);
-		if (rc < 0)
-			snprintf(err, errlen, "writing frame %d to %s%s%s failed: %s", f, strcmp(fs->name, "-") ? "'" : "",
-				 strcmp(fs->name, "-") ? fs->name : "stdout", strcmp(fs->name, "-") ? "'" : "",
-				 strerror(errno));
+		/* the pixels go to the writer thread; an earlier frame's failure
+		 * comes back here (or at the finish) */
+		rc = y4m_thread_put(fs->wt, &img, f, fs->name, err, errlen);
 	} else {
 		rc = stage_png(fs, &img, f, err, errlen);
 		if (rc == 0 && fs->kind == CLI_OUT_PNG)
@@ -126,6 +126,8 @@ static int file_finish(struct sink *s, const struct sink_end *end, char *err, si
 	(void)end;
 	if (!fs->y4m_open)
 		return 0;
+	if (y4m_thread_drain(fs->wt, fs->name, err, errlen) < 0)
+		return -1;
 	return y4m_finish(&fs->y, fs->name, err, errlen);
 }
 
@@ -143,6 +145,7 @@ static int file_commit(struct sink *s, char *err, size_t errlen)
 static void file_destroy(struct sink *s)
 {
 	struct file_sink *fs = (struct file_sink *)s;
+	y4m_thread_stop(fs->wt); /* (the frame in flight written first) */
 	if (fs->y4m_open)
 		y4m_free(&fs->y);
 	unstage_all(fs);
@@ -175,6 +178,11 @@ struct sink *sink_file_open(const struct params *p, int w, int h, char *err, siz
 			return NULL;
 		}
 		fs->y4m_open = true;
+		if (!(fs->wt = y4m_thread_start(&fs->y, err, errlen))) {
+			y4m_free(&fs->y);
+			free(fs);
+			return NULL;
+		}
 	}
 	return &fs->base;
 }
