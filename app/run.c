@@ -10,6 +10,7 @@
 #include "platform.h"
 #include "render.h"
 #include "scene.h"
+#include "edit.h"
 #include "output.h"
 
 #include <limits.h>
@@ -235,6 +236,8 @@ int render_to_image(const struct params *p_in, struct image *img, char *err, siz
 		snprintf(err, errlen, "render_to_image: count must be at least 1");
 		return -1;
 	}
+	if (heightmap_fit_file(&p, err, errlen) < 0)
+		return -1;
 	struct scene *scene = scene_create(&p, err, errlen);
 	if (!scene)
 		return -1;
@@ -347,6 +350,8 @@ static int open_run(struct run *rn, bool signals_ok, char *err, size_t errlen)
 	rn->kiosk = kiosk_create(&rn->p, rn->argc, rn->argv, err, errlen);
 	if (!rn->kiosk)
 		return 2;
+	if (heightmap_fit_file(&rn->p, err, errlen) < 0) /* a georeferenced map: the volume on it */
+		return 1;
 	rn->scene = scene_create(&rn->p, err, errlen);
 	return rn->scene ? 0 : 1;
 }

@@ -222,19 +222,42 @@ void curves_road_widths(struct curve_set *s, float road_width, float road_fallof
 
 /* ---- geographic input (curves_geo.c) ------------------------------------------ */
 
+/* curves_crs: how a file's coordinates are read. */
+enum curves_crs_mode { CURVES_CRS_AUTO, CURVES_CRS_LONLAT, CURVES_CRS_LOCAL, CURVES_CRS_NAMED };
+/* The parameter's text (auto, lonlat, local, EPSG:CODE) as a mode.  0, or
+ * -1 with err. */
+int curves_crs_parse(const char *text, int *mode, char *err, size_t errlen);
+/* Transforms n (x east, y north) pairs of the CRS crs to WGS84 lon/lat in
+ * place; name gets the CRS's name.  0, or -1 with err. */
+typedef int (*curves_to_lonlat_fn)(const char *crs, double *xy, size_t n, char *name, size_t namelen, char *err,
+				   size_t errlen);
+/* Positions in the projected CRS crs (x east, y north: world x and -z,
+ * relative degrees when the reader took them for lon/lat) made WGS84
+ * lon/lat (geo_rel degrees from the first position), for
+ * curves_geo_project with CURVES_CRS_LONLAT; the transform is to_lonlat's
+ * (the GDAL module's: the core does not link GDAL).  0, or -1 with err. */
+int curves_from_crs(struct curve_set *s, const char *crs, curves_to_lonlat_fn to_lonlat, char *name, size_t namelen,
+		    char *err, size_t errlen);
+/* The frame lon/lat goes into: a georeferenced heightmap's. */
+struct curves_geo_frame {
+	double lon0, lat0; /* the origin (the map's centre) */
+	float yscale;      /* world units per metre of height (its
+			      vertical_exaggeration included) */
+};
 /* Lon/lat or world units: mode CURVES_CRS_LONLAT / _LOCAL forces it;
  * CURVES_CRS_AUTO takes the file's "crs" member (WGS84 / CRS84 / EPSG:4326,
  * or a GPX file: lon/lat; any other: world units) and, without one,
  * lon/lat when every position lies in [-180, 180] x [-90, 90] (RFC 7946;
  * the reader applies this rule, geo_rel; a note when the data spans over
- * a degree, which world units could too).  Lon/lat positions are projected to metres on the local
- * tangent plane around their centroid (lon0, lat0) -- an equirectangular
- * projection with the WGS84 ellipsoid's radii of curvature there:
- * east = N cos(lat0) dlon, north = M dlat -- then scaled by `scale` world
- * units per metre (the up coordinate too).  *lonlat tells which was
- * chosen, *why the rule (for the log).  0, or -1 with err. */
-int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat, const char **why, double centroid[2],
-		       char *err, size_t errlen);
+ * a degree, which world units could too).  Lon/lat positions are put in
+ * the local east-north-up frame of WGS84 (geo_enu.h) at frame's origin,
+ * or without a frame at their centroid: east and north of the ellipsoid's
+ * point, in metres, then scaled by `scale` world units per metre (the up
+ * coordinate by frame->yscale, else by scale too).  *lonlat tells which
+ * was chosen, *why the rule (for the log), origin the frame's origin.
+ * 0, or -1 with err. */
+int curves_geo_project(struct curve_set *s, int mode, float scale, const struct curves_geo_frame *frame, bool *lonlat,
+		       const char **why, double origin[2], char *err, size_t errlen);
 /* The fraction of the curves' XZ length inside box (xmin, zmin, xmax,
  * zmax), and their XZ extent in ext (same order); 1 for no length. */
 double curves_inside_fraction(const struct curve_set *s, const float box[4], float ext[4]);

@@ -1,7 +1,9 @@
-/* isoterra — geographic curve input: WGS84 lon/lat detected and projected
- * to local metres around the data's centroid, and 2D curves put on the
- * terrain's surface.  See curves.h and docs/CURVES.md. */
+/* isoterra — geographic curve input: WGS84 lon/lat detected (or made from
+ * an EPSG-coded CRS) and put in the local east-north-up frame of a
+ * georeferenced heightmap or of the data's centroid, and 2D curves put on
+ * the terrain's surface.  See curves.h and docs/CURVES.md. */
 #include "curves.h"
+#include "geo_enu.h"
 #include "params.h"
 
 #include <math.h>
@@ -9,10 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* WGS84 ellipsoid */
-#define WGS84_A 6378137.0
-#define WGS84_F (1.0 / 298.257223563)
-#define DEG (3.14159265358979323846 / 180.0)
+#include <strings.h>
 
 /* Longitude difference folded into [-180, 180) (data across the antimeridian). */
 static double dlon(double lon, double lon0)
@@ -21,9 +20,72 @@ static double dlon(double lon, double lon0)
 	return (d < 0.0 ? d + 360.0 : d) - 180.0;
 }
 
+int curves_crs_parse(const char *text, int *mode, char *err, size_t errlen)
+{
+	static const char *const names[] = { "auto", "lonlat", "local" };
+	for (int i = 0; i < 3; i++)
+		if (!strcmp(text, names[i])) {
+			*mode = i;
+			return 0;
+		}
+	char *end = NULL;
+	long code = !strncasecmp(text, "EPSG:", 5) ? strtol(text + 5, &end, 10) : 0;
+	if (code > 0 && code < 1000000 && end && !*end) {
+		*mode = CURVES_CRS_NAMED;
+		return 0;
+	}
+	snprintf(err, errlen, "curves_crs '%s': auto, lonlat, local or EPSG:CODE (e.g. EPSG:32633)", text);
+	return -1;
+}
+
+int curves_from_crs(struct curve_set *s, const char *crs, curves_to_lonlat_fn to_lonlat, char *name, size_t namelen,
+		    char *err, size_t errlen)
+{
+	size_t n = 0;
+	for (int i = 0; i < s->npaths; i++)
+		n += (size_t)s->paths[i].npts;
+	double *xy = malloc(sizeof(double) * 2 * (n ? n : 1));
+	if (!xy) {
+		snprintf(err, errlen, "%s: out of memory", s->source);
+		return -1;
+	}
+	size_t m = 0;
+	for (int i = 0; i < s->npaths; i++) {
+		const struct curve_path *p = &s->paths[i];
+		for (int k = 0; k < p->npts; k++, m++) {
+			const float *q = p->pts + 3 * k;
+			xy[2 * m] = p->geo_rel ? p->geo_origin[0] + q[0] : q[0];
+			xy[2 * m + 1] = p->geo_rel ? p->geo_origin[1] - q[2] : -q[2];
+		}
+	}
+	char e[512];
+	if (to_lonlat(crs, xy, n, name, namelen, e, sizeof(e)) < 0) {
+		snprintf(err, errlen, "%s: %s", s->source, e);
+		free(xy);
+		return -1;
+	}
+	m = 0;
+	for (int i = 0; i < s->npaths; i++) {
+		struct curve_path *p = &s->paths[i];
+		p->geo_rel = true;
+		p->geo_origin[0] = xy[0];
+		p->geo_origin[1] = xy[1];
+		for (int k = 0; k < p->npts; k++, m++) {
+			p->pts[3 * k] = (float)dlon(xy[2 * m], xy[0]);
+			p->pts[3 * k + 2] = (float)(xy[1] - xy[2 * m + 1]);
+		}
+	}
+	free(xy);
+	return 0;
+}
+
 static bool choose_lonlat(const struct curve_set *s, int mode, const char **why)
 {
 	const struct curve_path *p = &s->paths[0]; /* one file: the same for every path */
+	if (mode == CURVES_CRS_NAMED) {
+		*why = "curves_crs names a projected CRS";
+		return true;
+	}
 	if (mode == CURVES_CRS_LONLAT) {
 		*why = "curves_crs=lonlat";
 		return true;
@@ -80,10 +142,10 @@ static int to_relative(struct curve_set *s, double origin[2], char *err, size_t 
 	return 0;
 }
 
-int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat, const char **why, double centroid[2],
-		       char *err, size_t errlen)
+int curves_geo_project(struct curve_set *s, int mode, float scale, const struct curves_geo_frame *frame, bool *lonlat,
+		       const char **why, double origin[2], char *err, size_t errlen)
 {
-	centroid[0] = centroid[1] = 0.0;
+	origin[0] = origin[1] = 0.0;
 	*lonlat = false;
 	*why = "no curves";
 	if (s->npaths == 0)
@@ -111,17 +173,22 @@ int curves_geo_project(struct curve_set *s, int mode, float scale, bool *lonlat,
 		}
 		return 0;
 	}
-	if (to_relative(s, centroid, err, errlen) < 0)
+	double data[2];
+	if (to_relative(s, data, err, errlen) < 0)
 		return -1;
-	double e2 = WGS84_F * (2.0 - WGS84_F), sp = sin(centroid[1] * DEG), w = sqrt(1.0 - e2 * sp * sp);
-	double N = WGS84_A / w, M = WGS84_A * (1.0 - e2) / (w * w * w);
-	double kx = N * cos(centroid[1] * DEG) * DEG, kz = M * DEG;
+	struct geo_enu f;
+	origin[0] = frame ? frame->lon0 : data[0];
+	origin[1] = frame ? frame->lat0 : data[1];
+	geo_enu_init(&f, origin[0], origin[1]);
+	float ys = frame ? frame->yscale : scale;
 	for (int i = 0; i < s->npaths; i++) {
 		for (int k = 0; k < s->paths[i].npts; k++) {
 			float *q = s->paths[i].pts + 3 * k;
-			q[0] = (float)(kx * q[0] * scale);
-			q[1] = (float)(q[1] * scale);
-			q[2] = (float)(kz * q[2] * scale); /* -north = -(kz * dlat), dlat = -z */
+			double e, n;
+			geo_enu_forward(&f, data[0] + q[0], data[1] - q[2], &e, &n);
+			q[0] = (float)(e * scale);
+			q[1] = q[1] * ys;
+			q[2] = (float)(-n * scale); /* world z = -north */
 		}
 		s->paths[i].geo_rel = false;
 	}

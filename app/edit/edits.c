@@ -3,6 +3,7 @@
  * the API, and the record of the region that changed. */
 #include "edits.h"
 #include "core.h"
+#include "geo_module.h"
 
 #include <float.h>
 #include <stdio.h>
@@ -165,11 +166,23 @@ static int load_curves_file(struct edits *ed, const struct params *p, struct cur
 	bool lonlat;
 	const char *why;
 	double c[2];
-	if (curves_geo_project(s, p->curves_crs, p->curves_geo_scale, &lonlat, &why, c, err, errlen) < 0)
+	int mode;
+	char crs[128] = "";
+	if (curves_crs_parse(p->curves_crs, &mode, err, errlen) < 0 ||
+	    (mode == CURVES_CRS_NAMED && curves_from_crs(s, p->curves_crs, geo_crs_to_lonlat, crs, sizeof(crs), err,
+							 errlen) < 0))
+		goto fail;
+	/* one frame for all data: a georeferenced heightmap's */
+	const struct heightmap_geo *g = &ed->hm.geo;
+	struct curves_geo_frame fr = { g->lon0, g->lat0, p->curves_geo_scale * p->vertical_exaggeration };
+	bool on_map = g->on && p->field == FIELD_HEIGHTMAP;
+	if (curves_geo_project(s, mode, p->curves_geo_scale, on_map ? &fr : NULL, &lonlat, &why, c, err, errlen) < 0)
 		goto fail;
 	if (lonlat)
-		log_info("%s: WGS84 lon/lat (%s), projected to the tangent plane at lon %.6f lat %.6f, %g world units "
-			 "per metre", p->curves, why, c[0], c[1], (double)p->curves_geo_scale);
+		log_info("%s: %s%s%s (%s), put on the east-north-up plane of %s at lon %.6f lat %.6f, %g world units per "
+			 "metre", p->curves, crs[0] ? crs : "WGS84 lon/lat", crs[0] ? " " : "",
+			 crs[0] ? p->curves_crs : "", why, on_map ? "the heightmap's centre" : "the curves' centroid",
+			 c[0], c[1], (double)p->curves_geo_scale);
 	/* what the readers and the projection did instead of refusing the
 	 * file: one warning each */
 	for (int i = 0; i < s->nnotes; i++)
@@ -195,13 +208,15 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 				curve_set_free(&s);
 			return -1;
 		}
-		if (!same_key(&k, &ed->curves_file) || !ed->curves_from_file) {
+		/* a new heightmap: a new frame for lon/lat, new ground for 2D */
+		if (!same_key(&k, &ed->curves_file) || !ed->curves_from_file || ed->curves_hm_gen != ed->hm_gen) {
 			struct curve_set s;
 			if (load_curves_file(ed, p, &s, err, errlen) < 0)
 				return -1;
 			if (install_curves(ed, &s, p->curve_hash_dim, true, err, errlen) < 0)
 				return -1;
 			ed->curves_file = k;
+			ed->curves_hm_gen = ed->hm_gen;
 		} else if (p->curve_hash_dim != ed->hash_dim) {
 			struct curve_set s;
 			if (curve_set_copy(&s, &ed->curves) < 0) {
@@ -235,6 +250,9 @@ static int load_heightmap(struct edits *ed, const struct params *p, char *err, s
 			struct heightmap hm;
 			if (heightmap_load(p->heightmap, &hm, err, errlen) < 0)
 				return -1;
+			char line[1024];
+			heightmap_describe(&hm, p->heightmap, line, sizeof(line));
+			log_info("%s", line);
 			heightmap_free(&ed->hm);
 			ed->hm = hm;
 			ed->hm_gen++;

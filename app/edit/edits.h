@@ -22,15 +22,46 @@
 
 /* ---- heightmap (heightmap.c) ---------------------------------------------- */
 
+/* A georeferenced heightmap's place on the earth: its samples lie on the
+ * local east-north-up grid of WGS84 at (lon0, lat0) (app/edit/geo_enu.h),
+ * sample (i, j) at east (i - (w-1)/2) cell, north ((h-1)/2 - j) cell
+ * metres, sample v at elevation zmin + v (zmax - zmin) / 65535 metres. */
+struct heightmap_geo {
+	bool on;
+	double cell, lon0, lat0;
+	double lonlat[4];   /* the raster's box: west, south, east, north */
+	double zmin, zmax;  /* metres */
+	int src_w, src_h;   /* the raster's own size and spacing (metres) */
+	double src_res[2];
+	int epsg;           /* 0: none known */
+	bool projected;
+	char crs[96], unit[32];
+};
+
 struct heightmap {
 	int w, h;
 	float *v; /* w*h samples 0..65535 as floats, x fastest, row z = 0 first */
+	struct heightmap_geo geo; /* GeoTIFF with a geotransform and a CRS */
 };
 /* 16-bit (or 8-bit, scaled) grayscale PNG, or GeoTIFF (.tif/.tiff) through
  * GDAL when built with it (band 1, valid range mapped onto 0..65535,
- * no-data at the minimum; refused with a message otherwise).  0 or -1
- * with err. */
+ * no-data at the minimum; georeferenced: resampled onto the ENU grid,
+ * hm->geo; a raster of colours refused; refused with a message without
+ * GDAL).  0 or -1 with err. */
 int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen);
+/* The map's one-line description for the log: size, CRS, extent in metres
+ * and lon/lat, elevation range (georeferenced maps). */
+void heightmap_describe(const struct heightmap *hm, const char *path, char *line, size_t len);
+/* A georeferenced map's placement in world units (app/edit/map_fit.c):
+ * heightmap_scale / _base / _height from its cell and elevations, world =
+ * metres x curves_geo_scale, heights x vertical_exaggeration too; with
+ * p->fit the volume (vol_*), the camera's distance and the water (sea
+ * level when the map spans it, else none) too, each only where p holds
+ * the parameter's default.  Nothing for other maps. */
+void heightmap_fit(const struct heightmap *hm, struct params *p);
+/* heightmap_fit for the heightmap p names (field=heightmap): the map read
+ * once here for its georeference.  0, or -1 with err (the loader's). */
+int heightmap_fit_file(struct params *p, char *err, size_t errlen);
 void heightmap_free(struct heightmap *hm);
 /* A grayscale PNG (8 or 16 bits) as samples 0..65535, 2x2 to
  * HEIGHTMAP_MAX_SIDE on a side (refused from the header, before decoding);
@@ -68,6 +99,7 @@ struct edits {
 	 * the last edits_take_changes(), the GL side (NULL until first bound) */
 	struct edits_file curves_file, hm_file, control_file;
 	int hash_dim;
+	unsigned curves_hm_gen; /* the heightmap the file's curves were put on */
 	bool changed;
 	float changed_box[4];
 	struct edits_gl *gl;

@@ -1,4 +1,5 @@
-/* isoterra — heightmap files: 16-bit grayscale PNG in and out. */
+/* isoterra — heightmap files: 16-bit grayscale PNG in and out, GeoTIFF
+ * in through the GDAL module (geo_module.h). */
 #include "edits.h"
 #include "core.h"
 
@@ -13,58 +14,34 @@
 
 #define HEIGHTMAP_MAX_SIDE 16384
 
-#ifdef ISOTERRA_HAVE_GDAL
-#include "geotiff.h"
-#include <dlfcn.h>
+#include "geo_module.h"
 
-/* The GeoTIFF module: from $ISOTERRA_MODULE_DIR (the build tree's tests),
- * the program's own folder (an uninstalled build), then the installed
- * ISOTERRA_MODULE_DIR.  Loaded once, kept for the process. */
-static geotiff_load_fn geotiff_module(char *err, size_t errlen)
+/* The module's map as the heightmap: samples taken over, georeference
+ * copied. */
+static void from_module(struct geotiff_map *m, struct heightmap *hm)
 {
-	static geotiff_load_fn fn;
-	if (fn)
-		return fn;
-	char dirs[3][PATH_MAX];
-	int nd = 0;
-	const char *env = getenv("ISOTERRA_MODULE_DIR");
-	if (env && env[0])
-		snprintf(dirs[nd++], PATH_MAX, "%s", env);
-	ssize_t n = readlink("/proc/self/exe", dirs[nd], PATH_MAX - 1);
-	if (n > 0) {
-		dirs[nd][n] = 0;
-		char *slash = strrchr(dirs[nd], '/');
-		if (slash) {
-			*slash = 0;
-			nd++;
-		}
-	}
-	snprintf(dirs[nd++], PATH_MAX, "%s", ISOTERRA_MODULE_DIR);
-	char tried[3 * PATH_MAX + 64] = "", why[PATH_MAX + 256] = "";
-	for (int i = 0; i < nd; i++) {
-		char path[PATH_MAX + 32];
-		int k = snprintf(path, sizeof(path), "%s/%s", dirs[i], GEOTIFF_MODULE);
-		if (k < 0 || (size_t)k >= sizeof(path))
-			continue;
-		void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-		if (h && (fn = (geotiff_load_fn)(uintptr_t)dlsym(h, GEOTIFF_SYMBOL)))
-			return fn;
-		if (h) {
-			k = snprintf(why, sizeof(why), "%s has no %s (another version's module)", path, GEOTIFF_SYMBOL);
-			dlclose(h);
-		} else if (access(path, F_OK) == 0) {
-			k = snprintf(why, sizeof(why), "%s", dlerror());
-		}
-		size_t u = strlen(tried);
-		k = snprintf(tried + u, sizeof(tried) - u, "%s%s", u ? ", " : "", dirs[i]);
-		if (k < 0 || (size_t)k >= sizeof(tried) - u)
-			break;
-	}
-	snprintf(err, errlen, "GeoTIFF heightmaps need the module %s (GDAL), not loaded from %s%s%s", GEOTIFF_MODULE,
-		 tried, why[0] ? ": " : "", why);
-	return NULL;
+	hm->v = m->v;
+	hm->w = m->w;
+	hm->h = m->h;
+	m->v = NULL;
+	struct heightmap_geo *g = &hm->geo;
+	g->on = m->georef;
+	if (!g->on)
+		return;
+	g->cell = m->cell;
+	g->lon0 = m->lon0;
+	g->lat0 = m->lat0;
+	memcpy(g->lonlat, m->lonlat, sizeof(g->lonlat));
+	g->zmin = m->zmin;
+	g->zmax = m->zmax;
+	g->src_w = m->src_w;
+	g->src_h = m->src_h;
+	memcpy(g->src_res, m->src_res, sizeof(g->src_res));
+	g->epsg = m->epsg;
+	g->projected = m->projected;
+	snprintf(g->crs, sizeof(g->crs), "%s", m->crs);
+	snprintf(g->unit, sizeof(g->unit), "%s", m->unit);
 }
-#endif
 
 int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen)
 {
@@ -77,12 +54,16 @@ int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t err
 			return -1;
 		}
 		char e[PATH_MAX * 4];
-		geotiff_load_fn load = geotiff_module(e, sizeof(e));
+		geotiff_load_fn load = geo_module_load(e, sizeof(e));
 		if (!load) {
-			snprintf(err, errlen, "heightmap '%s': %s", path, e);
+			snprintf(err, errlen, "heightmap '%s': GeoTIFF heightmaps %s", path, e);
 			return -1;
 		}
-		return load(path, HEIGHTMAP_MAX_SIDE, &hm->v, &hm->w, &hm->h, err, errlen);
+		struct geotiff_map m;
+		if (load(path, HEIGHTMAP_MAX_SIDE, &m, err, errlen) < 0)
+			return -1;
+		from_module(&m, hm);
+		return 0;
 #else
 		snprintf(err, errlen, "heightmap '%s': GeoTIFF needs GDAL, which this build does not use; convert it to a "
 			 "16-bit grayscale PNG (gdal_translate -ot UInt16 -of PNG)", path);
@@ -141,3 +122,22 @@ void heightmap_free(struct heightmap *hm)
 	memset(hm, 0, sizeof(*hm));
 }
 
+
+void heightmap_describe(const struct heightmap *hm, const char *path, char *line, size_t len)
+{
+	const struct heightmap_geo *g = &hm->geo;
+	if (!g->on) {
+		snprintf(line, len, "%s: %dx%d samples, no georeference (heightmap_scale world units apart)", path, hm->w,
+			 hm->h);
+		return;
+	}
+	char code[24] = "";
+	if (g->epsg)
+		snprintf(code, sizeof(code), ", EPSG:%d", g->epsg);
+	snprintf(line, len, "%s: %dx%d samples (%s%s, %s; %.4g x %.4g m a sample), as %dx%d on the east-north grid at "
+		 "lon %.6f lat %.6f, %.4g m apart: %.6g x %.6g m, lon [%.6f, %.6f] lat [%.6f, %.6f]; elevation %.6g .. "
+		 "%.6g m%s%s%s", path, g->src_w, g->src_h, g->crs, code, g->projected ? "projected" : "geographic",
+		 g->src_res[0], g->src_res[1], hm->w, hm->h, g->lon0, g->lat0, g->cell, g->cell * (hm->w - 1),
+		 g->cell * (hm->h - 1), g->lonlat[0], g->lonlat[2], g->lonlat[1], g->lonlat[3], g->zmin, g->zmax,
+		 g->unit[0] ? " (band unit " : "", g->unit, g->unit[0] ? ")" : "");
+}

@@ -535,12 +535,14 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	if (r->prepass && depth_pass(r, d, parts, c) < 0)
 		return -1;
 	draw_mesh(r, d, parts, true);
-	/* water inside the volume only, below its top */
+	/* water inside the volume only, below its top: on the procedural
+	 * terrain and on heightmaps (a georeferenced one's sea level, set by
+	 * heightmap_fit) */
 	struct grid g;
 	grid_from_params(&g, p);
 	float rect[4] = { g.origin[0], g.origin[2], g.origin[0] + g.cell * (float)g.nx, g.origin[2] + g.cell * (float)g.nz };
-	if (p->field == FIELD_TERRAIN &&
-	    (p->shape == SHAPE_PLANET ||
+	if ((p->field == FIELD_TERRAIN || p->field == FIELD_HEIGHTMAP) &&
+	    ((p->field == FIELD_TERRAIN && p->shape == SHAPE_PLANET) ||
 	     (p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)))
 		renderer_water(r, c, p, rect);
 	return renderer_end(r);
