@@ -214,6 +214,8 @@ static int cmp_want(const void *a, const void *b)
 
 static void sort_want(struct world *w)
 {
+	if (w->nwant < 2) /* (none wanted: the list may not exist yet, and qsort takes no NULL) */
+		return;
 	for (int i = 0; i < w->nwant; i++) {
 		const struct block *b = &w->blocks[w->want[i]];
 		struct want_key *k = &w->want_sort[i];
