@@ -110,6 +110,14 @@ APID=
 #     once a second the picture shown is handed to the display again.  The
 #     app's CPU time (utime + stime) over 3 s paused against 3 s running,
 #     and the frames presented meanwhile.
+# the app's pid: its command line in /proc (not script's shell, which
+# holds the same words after "sh -c")
+find_app() {
+	for d in /proc/[0-9]*; do
+		c=$(tr '\0' ' ' <"$d/cmdline" 2>/dev/null)
+		case $c in "$BIN --platform x11 --size 168x126 "*) echo "${d#/proc/}"; return ;; esac
+	done
+}
 cputime() { awk -v hz="$(getconf CLK_TCK)" '{ printf "%.3f\n", ($14 + $15) / hz }' "/proc/$1/stat" 2>/dev/null; }
 now() { date +%s.%N; }
 mkfifo "$T/keys"
@@ -120,7 +128,7 @@ exec 4>"$T/keys"
 PPID5=
 n=0
 while [ -z "$PPID5" ] && [ $n -lt 100 ]; do
-	PPID5=$(pgrep -n -f -- "^$BIN --platform x11 --size 168x126 ") # (not script's shell)
+	PPID5=$(find_app)
 	[ -n "$PPID5" ] || sleep 0.1
 	n=$((n + 1))
 done
