@@ -193,7 +193,8 @@ void test_geojson_skips(void)
 			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: geometry Polygon (1 polygon, 1 ring))");
 }
 
-/* Widths from feature properties: an explicit width beats lanes, lanes
+/* Widths from feature properties: an explicit width (a number, or OSM's
+ * string of metres) beats lanes, lanes
  * beat the OSM highway class, the class beats the road_width default;
  * falloff likewise; other kinds keep their defaults; CSV cells are the
  * file's own. */
@@ -210,19 +211,21 @@ void test_road_widths(void)
 		"{\"type\":\"Feature\",\"properties\":{\"lanes\":2,\"highway\":\"motorway\",\"falloff\":2},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
 		"{\"type\":\"Feature\",\"properties\":null,\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
 		"{\"type\":\"Feature\",\"properties\":{\"kind\":\"river\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
-		"{\"type\":\"Feature\",\"id\":\"way/9\",\"properties\":{\"highway\":\"proposed\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}\n"
+		"{\"type\":\"Feature\",\"id\":\"way/9\",\"properties\":{\"highway\":\"proposed\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"width\":\"7.5\",\"highway\":\"motorway\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"width\":\"6 m\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}\n"
 		"]}";
 	/* road_width 10 (a lane 5), road_falloff 3 */
-	static const float want_w[10] = { 20, 15, 30, 2.5f, 20, 5, 10, 10, 10, 10 };
-	static const float want_f[10] = { 3, 3, 3, 3, 3, 3, 2, 3, 12, 3 };
+	static const float want_w[12] = { 20, 15, 30, 2.5f, 20, 5, 10, 10, 10, 10, 7.5f, 6 };
+	static const float want_f[12] = { 3, 3, 3, 3, 3, 3, 2, 3, 12, 3, 3, 3 };
 	struct curve_set s;
 	char err[512] = "";
 	int rc = curves_parse_geojson(geo, strlen(geo), "w.geojson", &s, err, sizeof(err));
-	CHECK(rc == 0 && s.npaths == 10, "widths file: %s", err);
-	if (rc == 0 && s.npaths == 10) {
+	CHECK(rc == 0 && s.npaths == 12, "widths file: %s", err);
+	if (rc == 0 && s.npaths == 12) {
 		curves_road_widths(&s, 10.0f, 3.0f);
 		int bad = 0;
-		for (int i = 0; i < 10; i++) {
+		for (int i = 0; i < 12; i++) {
 			bool ok = s.paths[i].width == want_w[i] && s.paths[i].falloff == want_f[i];
 			if (!ok)
 				printf("  feature %d: width %g falloff %g, want %g %g\n", i + 1, (double)s.paths[i].width,
@@ -240,6 +243,9 @@ void test_road_widths(void)
 			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "feature 1: \"lanes\" must be a whole number from 1 to 16");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"lanes\":0},\"geometry\":{\"type\":"
 			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"lanes\" must be a whole number");
+	/* OSM's width tag is a string of metres; other units are refused */
+	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"width\":\"7 ft\"},\"geometry\":{\"type\":"
+			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"width\" \"7 ft\" is not a width in metres");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"properties\":{\"highway\":3},\"geometry\":{\"type\":"
 			   "\"LineString\",\"coordinates\":[[0,0,1],[1,0,1]]}}", "\"highway\" must be a string");
 	/* CSV: a width cell is the file's own; a road without one gets road_width */

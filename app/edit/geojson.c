@@ -216,13 +216,24 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 		const struct json_value *v = json_get(props, curve_param_names[i]);
 		if (!v)
 			continue;
-		if (v->type != JSON_NUMBER)
+		double num = v->num;
+		if (v->type == JSON_STRING && !strcmp(curve_param_names[i], "width")) {
+			/* OSM's width tag is a string: metres, "7.5" or "7.5 m" */
+			char *end;
+			num = strtod(v->str, &end);
+			while (*end == ' ')
+				end++;
+			if (end == v->str || (*end && strcmp(end, "m")))
+				return gfail(g, v->line, what, "\"width\" \"%s\" is not a width in metres (\"7.5\" or \"7.5 m\")",
+					     v->str);
+		} else if (v->type != JSON_NUMBER) {
 			return gfail(g, v->line, what, "\"%s\" must be a number, not %s", curve_param_names[i],
 				     json_type_names[v->type]);
-		const char *why = curve_param_check(curve_param_names[i], v->num);
+		}
+		const char *why = curve_param_check(curve_param_names[i], num);
 		if (why)
-			return gfail(g, v->line, what, "\"%s\" = %g %s", curve_param_names[i], v->num, why);
-		curve_param_set(base, i, (float)v->num);
+			return gfail(g, v->line, what, "\"%s\" = %g %s", curve_param_names[i], num, why);
+		curve_param_set(base, i, (float)num);
 	}
 	return geo_road_class(g, props, what, base);
 }
