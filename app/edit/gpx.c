@@ -58,6 +58,17 @@ struct gpx {
 	bool text_long;
 };
 
+/* The parser's line now (expat 2.7 on: its 64-bit call; the old one is
+ * deprecated there). */
+static unsigned long xml_line(XML_Parser xp)
+{
+#ifdef ISOTERRA_HAVE_XML_LINE64
+	return (unsigned long)XML_GetCurrentLineNumber64(xp);
+#else
+	return (unsigned long)XML_GetCurrentLineNumber(xp);
+#endif
+}
+
 static void gpx_fail(struct gpx *g, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void gpx_fail(struct gpx *g, const char *fmt, ...)
 {
@@ -68,7 +79,7 @@ static void gpx_fail(struct gpx *g, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(msg, sizeof(msg), fmt, ap);
 	va_end(ap);
-	snprintf(g->err, g->errlen, "%s:%lu: %s", g->fname, (unsigned long)XML_GetCurrentLineNumber(g->xp), msg);
+	snprintf(g->err, g->errlen, "%s:%lu: %s", g->fname, xml_line(g->xp), msg);
 	g->failed = true;
 	XML_StopParser(g->xp, XML_FALSE);
 }
@@ -140,7 +151,7 @@ static void start_segment(struct gpx *g, bool route, int track, int part)
 	struct gpx_seg *s = &g->segs[g->nsegs++];
 	memset(s, 0, sizeof(*s));
 	s->first = g->npts;
-	s->line = (int)XML_GetCurrentLineNumber(g->xp);
+	s->line = (int)xml_line(g->xp);
 	s->route = route;
 	s->track = track;
 	s->part = part;
@@ -407,7 +418,7 @@ int curves_parse_gpx(const char *text, size_t len, const char *fname, struct cur
 	XML_SetStartDoctypeDeclHandler(g.xp, on_doctype);
 	int rc = 0;
 	if (XML_Parse(g.xp, text, (int)len, XML_TRUE) != XML_STATUS_OK && !g.failed)
-		snprintf(err, errlen, "%s:%lu: invalid XML: %s", fname, (unsigned long)XML_GetCurrentLineNumber(g.xp),
+		snprintf(err, errlen, "%s:%lu: invalid XML: %s", fname, xml_line(g.xp),
 			 XML_ErrorString(XML_GetErrorCode(g.xp)));
 	if (g.failed || XML_GetErrorCode(g.xp) != XML_ERROR_NONE)
 		rc = -1;
