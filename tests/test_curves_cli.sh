@@ -155,7 +155,7 @@ cat >width.geojson <<'J'
   "properties": { "width": "wide" },
   "geometry": { "type": "LineString", "coordinates": [[0, 0, 0], [1, 1, 1]] } }
 J
-expect_fail "width.geojson:2: feature 1: \"width\" must be a number" $SMALL --curves width.geojson
+expect_fail "width.geojson:2: feature 1: \"width\" \"wide\" is not a width in metres" $SMALL --curves width.geojson
 expect_fail "cannot open curves file" $SMALL --curves missing.geojson
 expect_fail "unknown format" $SMALL --curves roads.kml
 

@@ -16,6 +16,7 @@
 
 #include "geo_module.h"
 
+#ifdef ISOTERRA_HAVE_GDAL
 /* The module's map as the heightmap: samples taken over, georeference
  * copied. */
 static void from_module(struct geotiff_map *m, struct heightmap *hm)
@@ -42,6 +43,7 @@ static void from_module(struct geotiff_map *m, struct heightmap *hm)
 	snprintf(g->crs, sizeof(g->crs), "%s", m->crs);
 	snprintf(g->unit, sizeof(g->unit), "%s", m->unit);
 }
+#endif
 
 int heightmap_load(const char *path, struct heightmap *hm, char *err, size_t errlen)
 {
