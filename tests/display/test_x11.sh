@@ -114,7 +114,7 @@ APID=
 # holds the same words after "sh -c")
 find_app() {
 	for d in /proc/[0-9]*; do
-		c=$(tr '\0' ' ' <"$d/cmdline" 2>/dev/null)
+		c=$(tr '\0' ' ' 2>/dev/null <"$d/cmdline")
 		case $c in "$BIN --platform x11 --size 168x126 "*) echo "${d#/proc/}"; return ;; esac
 	done
 }
