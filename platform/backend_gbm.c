@@ -108,6 +108,15 @@ static void hide_cursor(struct gbm_head *h)
 		plog_debug("gbm: hiding the cursor: %s", strerror(errno));
 }
 
+/* An output's picture in the surface: its mode's size, turned back when
+ * the plane turns it a quarter (the surface holds the upright picture). */
+static void picture_size(const struct gbm_state *g, const drmModeModeInfo *m, int *w, int *h)
+{
+	bool odd = g->turned & 1;
+	*w = odd ? m->vdisplay : m->hdisplay;
+	*h = odd ? m->hdisplay : m->vdisplay;
+}
+
 /* The outputs' rectangles for the program (platform.h). */
 static void publish_outputs(struct gbm_state *g)
 {
@@ -119,8 +128,7 @@ static void publish_outputs(struct gbm_state *g)
 		snprintf(po->name, sizeof(po->name), "%s", h->kms.conn_name);
 		po->x = h->kms.x;
 		po->y = h->kms.y;
-		po->w = g->turned & 1 ? h->kms.mode.vdisplay : h->kms.mode.hdisplay;
-		po->h = g->turned & 1 ? h->kms.mode.hdisplay : h->kms.mode.vdisplay;
+		picture_size(g, &h->kms.mode, &po->w, &po->h);
 		po->on = h->connected && h->modeset_done;
 	}
 }
@@ -209,8 +217,8 @@ static int remake_surface(struct gbm_state *g)
 {
 	struct platform *p = g->p;
 	struct kms_output *k = &g->h[0].kms;
-	int w = g->turned & 1 ? k->mode.vdisplay : k->mode.hdisplay;
-	int h = g->turned & 1 ? k->mode.hdisplay : k->mode.vdisplay;
+	int w, h;
+	picture_size(g, &k->mode, &w, &h);
 	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, p->ctx)) {
 		plog_error("gbm: eglMakeCurrent(no surface): %s", egl_common_error_name(eglGetError()));
 		return -1;
@@ -246,8 +254,8 @@ static int follow_mode(struct gbm_state *g, struct gbm_head *h)
 {
 	if (g->atomic && kms_atomic_set_mode(&h->at, &h->kms) < 0)
 		return -1;
-	int w = g->turned & 1 ? h->kms.mode.vdisplay : h->kms.mode.hdisplay;
-	int ht = g->turned & 1 ? h->kms.mode.hdisplay : h->kms.mode.vdisplay;
+	int w, ht;
+	picture_size(g, &h->kms.mode, &w, &ht);
 	if (g->n == 1 && (w != g->p->width || ht != g->p->height))
 		return remake_surface(g);
 	return 0;
@@ -456,7 +464,8 @@ static void gbm_close(struct platform *p)
  * picture each), the surface's size.  One output: the whole surface. */
 static void lay_out(struct gbm_state *g, const struct platform_options *opt)
 {
-	int w = g->h[0].kms.mode.hdisplay, h = g->h[0].kms.mode.vdisplay;
+	int w, h; /* (turned only with one output: then x is 0) */
+	picture_size(g, &g->h[0].kms.mode, &w, &h);
 	float gap = (float)opt->outputs_gap + (float)opt->outputs_gap_per_w * (float)w;
 	for (int i = 0; i < g->n; i++) {
 		/* rounded as the wall's frame width is (wall.h: lroundf, gap >= 0) */
@@ -465,10 +474,6 @@ static void lay_out(struct gbm_state *g, const struct platform_options *opt)
 	}
 	g->p->width = g->h[g->n - 1].kms.x + w;
 	g->p->height = h;
-	if (g->turned & 1) { /* the plane turns the upright picture onto the mode */
-		g->p->width = h;
-		g->p->height = w;
-	}
 }
 
 /* --rotate on one output: the plane's rotation property where the driver
