@@ -11,11 +11,11 @@
 //          no-hash baseline of the benchmark)
 //   ctrl   control points (x, y, z, inclination tan α); quadratic f is
 //          curve_ctrl(f), (f+1), (f+2)
-//   prm    curve_prm(f) = (w/2, λ, kind, path)
+//   prm    curve_prm(f) = (w/2, λ, kind, surface)
 //
 //   vec4 curve_eval(vec2 xz);   // (height, Θ of the closest curve, |d| closest, Σ Θ)
-//                               // of the surface curves (every kind but tunnel)
-//   vec2 tunnel_eval(vec3 ws);  // (fill, tube) of the tunnel curves
+//                               // of the surface curves (every kind but tunnel and bridge)
+//   vec2 tunnel_eval(vec3 ws);  // (fill, tube) of the tunnel and bridge curves
 
 // HAS_CURVES 0 (carve.glsl): nothing here is compiled, and the pass takes
 // no storage block for curves it would never read.
@@ -245,7 +245,7 @@ vec4 curve_accumulate(vec2 pos, int start, int count)
 		int f = curve_index(i);
 		i++;
 		vec4 prm = curve_prm(f);
-		if (prm.z == float(CURVE_KIND_TUNNEL)) // not a surface: tunnel_eval
+		if (prm.z >= float(CURVE_KIND_TUNNEL)) // tunnel, bridge: not a surface (tunnel_eval)
 			continue;
 		vec4 cl = CURVE_CLOSEST(f, pos);
 		float ad = abs(cl.x);
@@ -294,16 +294,24 @@ vec4 curve_eval(vec2 pos)
 // λ, then straight down).  Over the tunnel curves in reach of ws:
 //   tube = min over curves of max(|(lateral, y - h - r/2)| - r, h - y)  (< 0: the tube's air)
 //   fill = max over curves of min(h - y, r + min(h - y, λ) - lateral)   (> 0: the embankment)
+// A bridge is a deck of its width w and thickness λ whose top is the curve,
+// added to the rock (the ground under it stays):
+//   fill = max(fill, min(min(h - y, λ - (h - y)), w/2 - lateral))
 vec2 tunnel_accumulate(vec3 ws, int start, int count)
 {
 	vec2 r = vec2(-1e30, 1e30);
 	for (int i = start; i < start + count; i++) {
 		int f = curve_index(i);
 		vec4 prm = curve_prm(f);
-		if (prm.z != float(CURVE_KIND_TUNNEL) || !curve_near(f, ws.xz))
+		if (prm.z < float(CURVE_KIND_TUNNEL) || !curve_near(f, ws.xz))
 			continue;
 		vec4 cl = CURVE_CLOSEST(f, ws.xz);
-		float ad = abs(cl.x), below = cl.z - ws.y, dy = ws.y - (cl.z + 0.5 * prm.x);
+		float ad = abs(cl.x), below = cl.z - ws.y;
+		if (prm.z == float(CURVE_KIND_BRIDGE)) {
+			r.x = max(r.x, min(min(below, prm.y - below), prm.x - ad));
+			continue;
+		}
+		float dy = ws.y - (cl.z + 0.5 * prm.x);
 		r.x = max(r.x, min(below, prm.x + min(below, prm.y) - ad));
 		r.y = min(r.y, max(sqrt(ad * ad + dy * dy) - prm.x, below));
 	}

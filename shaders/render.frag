@@ -13,6 +13,39 @@ in float v_ao;
 uniform vec3 u_eye;
 uniform float u_fog_density;
 layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
+#ifndef ROAD_MAP
+#define ROAD_MAP 0
+#endif
+#if ROAD_MAP
+// the curves' road map (edit/curves_gl.c edits_road_map): R paint, G surface, B height - y0
+layout(binding = TEX_ROADS) uniform highp sampler2D u_roads;
+uniform vec4 u_road_rect; // origin x, z; 1 / size x, z
+uniform vec2 u_road_y;    // y0, the height tolerance
+
+// A road's surface over the albedo: its paint where the road map's height
+// is this fragment's (the ground over a tunnel and under a bridge keeps
+// its colours).  Asphalt dark and fine-grained, gravel pale and speckled,
+// dirt brown, ballast grey-brown and coarse.
+vec3 road_paint(vec3 albedo, vec3 pos, float tex, float hgt)
+{
+	vec2 uv = (pos.xz - u_road_rect.xy) * u_road_rect.zw;
+	if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+		return albedo;
+	vec4 m = texture(u_roads, uv);
+	float w = m.r * (1.0 - smoothstep(u_road_y.y, 2.0 * u_road_y.y, abs(pos.y - u_road_y.x - m.b)));
+	if (w <= 0.0)
+		return albedo;
+	int s = int(m.g + 0.5);
+	vec3 c = vec3(0.20, 0.20, 0.21) * (0.9 + 0.2 * tex);
+	if (s == ROAD_SURFACE_GRAVEL)
+		c = vec3(0.62, 0.58, 0.50) * (0.75 + 0.5 * hgt);
+	else if (s == ROAD_SURFACE_DIRT)
+		c = vec3(0.50, 0.40, 0.28) * (0.8 + 0.4 * tex);
+	else if (s == ROAD_SURFACE_BALLAST)
+		c = vec3(0.42, 0.38, 0.35) * (0.6 + 0.8 * hgt);
+	return mix(albedo, c, clamp(w, 0.0, 1.0));
+}
+#endif
 out vec4 frag;
 
 #include "shade.glsl"
@@ -110,6 +143,9 @@ void main()
 	vec3 albedo = mix(rock, grass, flat_ground);
 	float snow = smoothstep(u_snow_line - 1.0, u_snow_line + 1.0, alt + hgt * 2.0) * smoothstep(0.5, 0.8, up_n);
 	albedo = mix(albedo, vec3(0.88, 0.90, 0.93), snow);
+#if ROAD_MAP
+	albedo = road_paint(albedo, v_pos, tex, hgt);
+#endif
 	albedo = srgb_to_linear(albedo);
 
 	vec3 l = sun_dir();

@@ -31,6 +31,7 @@ void test_tunnel_cpu(struct edits *ed);
 void test_io(void);
 void test_geojson_skips(void);
 void test_road_widths(void);
+void test_structures(void);
 void test_sizes(void);
 void test_geo(void);
 void test_gpx(void);

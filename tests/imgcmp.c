@@ -13,7 +13,8 @@
  *       was turned DEG (90, 180, 270) clockwise (--rotate); it is turned
  *       back before the comparison.
  *   imgcmp --to-png IN OUT.png
- *   imgcmp --info IN          prints "WxH mean R G B" (for diagnostics) */
+ *   imgcmp --info IN [X,Y,W,H] prints "WxH mean R G B" of the picture (or
+ *                             of that rectangle) */
 #include <errno.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -225,7 +226,7 @@ static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
 	                "[--region X,Y,W,H] [--unturn DEG] [--diff OUT.png]\n"
-	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN\n");
+	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN [X,Y,W,H]\n");
 	return 2;
 }
 
@@ -242,17 +243,26 @@ int main(int argc, char **argv)
 		image_free(&a);
 		return 0;
 	}
-	if (argc == 3 && strcmp(argv[1], "--info") == 0) {
+	if ((argc == 3 || argc == 4) && strcmp(argv[1], "--info") == 0) {
 		if (load(&a, argv[2], err, sizeof(err)) < 0) {
 			fprintf(stderr, "imgcmp: %s\n", err);
 			return 2;
 		}
+		int r[4] = { 0, 0, a.width, a.height };
+		if (argc == 4 && (sscanf(argv[3], "%d,%d,%d,%d", &r[0], &r[1], &r[2], &r[3]) != 4 || r[0] < 0 || r[1] < 0 ||
+				  r[2] < 1 || r[3] < 1 || r[0] + r[2] > a.width || r[1] + r[3] > a.height)) {
+			fprintf(stderr, "imgcmp: --info: '%s' is not a rectangle X,Y,W,H inside the %dx%d picture\n", argv[3],
+				a.width, a.height);
+			image_free(&a);
+			return 2;
+		}
 		double s[3] = { 0, 0, 0 };
-		size_t np = (size_t)a.width * a.height;
-		for (size_t i = 0; i < np; i++)
-			for (int c = 0; c < 3; c++)
-				s[c] += a.rgba[4 * i + c];
-		printf("%dx%d mean %.1f %.1f %.1f\n", a.width, a.height, s[0] / np, s[1] / np, s[2] / np);
+		size_t np = (size_t)r[2] * (size_t)r[3];
+		for (int y = r[1]; y < r[1] + r[3]; y++)
+			for (int x = r[0]; x < r[0] + r[2]; x++)
+				for (int c = 0; c < 3; c++)
+					s[c] += a.rgba[4 * ((size_t)y * a.width + x) + c];
+		printf("%dx%d mean %.1f %.1f %.1f\n", r[2], r[3], s[0] / np, s[1] / np, s[2] / np);
 		image_free(&a);
 		return 0;
 	}

@@ -164,6 +164,7 @@ int main(void)
 	test_io();
 	test_geojson_skips();
 	test_road_widths();
+	test_structures();
 	test_sizes();
 	int ncases = 1200;
 	float *items = malloc(sizeof(float) * 16 * (size_t)ncases);

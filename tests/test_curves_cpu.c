@@ -515,5 +515,25 @@ void test_tunnel_cpu(struct edits *ed)
 	CHECK(density_ref(&p, &ns, ed, 2.0f, 4.0f, 0.0f) < 0.0f, "tunnel in the open: air above the floor");
 	CHECK(density_ref(&p, &ns, ed, 2.0f, 1.0f, r + lam + 1.0f) == density_ref(&p, &ns, NULL, 2.0f, 1.0f, r + lam + 1.0f),
 	      "tunnel in the open: nothing beyond the reach");
+	/* a bridge 3 above the ground: a deck w wide and λ thick whose top is
+	 * the curve, the air under it and the ground below untouched */
+	cp.kind = CURVE_BRIDGE;
+	CHECK(edits_set_curves(ed, &cs, 8, err, sizeof(err)) == 0, "bridge: %s", err);
+	CHECK(edits_has_tunnels(ed), "a bridge takes the second walk too");
+	int bad_deck = 0, bad_under = 0, bad_above = 0, bad_ground = 0, bad_beside = 0;
+	n = 0;
+	for (float x = -12.0f; x <= 12.0f; x += 0.75f, n++) {
+		for (float z = -0.9f * r; z <= 0.9f * r; z += 0.45f * r)
+			bad_deck += !(density_ref(&p, &ns, ed, x, 3.0f - 0.5f * lam, z) > 0.0f);
+		bad_under += !(density_ref(&p, &ns, ed, x, 3.0f - lam - 0.3f, 0.0f) < 0.0f);
+		bad_above += !(density_ref(&p, &ns, ed, x, 3.3f, 0.0f) < 0.0f);
+		bad_ground += density_ref(&p, &ns, ed, x, -0.5f, 0.0f) != density_ref(&p, &ns, NULL, x, -0.5f, 0.0f);
+		bad_beside += !(density_ref(&p, &ns, ed, x, 3.0f - 0.5f * lam, r + 0.3f) < 0.0f);
+	}
+	CHECK(bad_deck == 0, "bridge: %d of %d points inside the deck are not rock", bad_deck, 5 * n);
+	CHECK(bad_under == 0, "bridge: %d of %d points under the deck are not air", bad_under, n);
+	CHECK(bad_above == 0, "bridge: %d of %d points above the deck are not air", bad_above, n);
+	CHECK(bad_ground == 0, "bridge: the ground under it changed at %d of %d points", bad_ground, n);
+	CHECK(bad_beside == 0, "bridge: %d of %d points beside the deck are not air", bad_beside, n);
 	edits_clear(ed);
 }

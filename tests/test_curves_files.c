@@ -261,6 +261,90 @@ void test_road_widths(void)
 	}
 }
 
+/* A valley: the ground 0 for |x| > 10, 10 deeper between (a cosine). */
+static bool valley_ground(void *ctx, float x, float z, float *y)
+{
+	(void)ctx;
+	(void)z;
+	*y = fabsf(x) < 10.0f ? -5.0f - 5.0f * cosf(x * 3.14159265f / 10.0f) : 0.0f;
+	return true;
+}
+
+/* OSM's bridge / tunnel / surface tags: a bridge=yes way is a deck, a
+ * tunnel=yes way a bore, each straight from the ground at one end to the
+ * ground at the other; surfaces from the surface tag, else the highway
+ * class, else the kind.  A 3D road that runs high over the valley is cut
+ * into road, bridge, road. */
+void test_structures(void)
+{
+	const char *geo =
+		"{\"type\":\"FeatureCollection\",\"features\":[\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"primary\",\"bridge\":\"yes\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-12,0],[0,0],[12,0]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"tags\":{\"highway\":\"secondary\",\"tunnel\":\"yes\"}},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-12,5],[12,5]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"residential\",\"bridge\":\"no\",\"surface\":\"gravel\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-12,9],[12,9]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"track\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-12,12],[12,12]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"highway\":\"footway\",\"surface\":\"paving_stones\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-12,14],[12,14]]}},\n"
+		"{\"type\":\"Feature\",\"properties\":{\"kind\":\"river\",\"bridge\":\"yes\"},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[-12,16],[12,16]]}}\n"
+		"]}";
+	struct curve_set s;
+	char err[512] = "";
+	int rc = curves_parse_geojson(geo, strlen(geo), "osm.geojson", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 6, "structures file: %s", err);
+	if (rc == 0 && s.npaths == 6) {
+		static const int kind[6] = { CURVE_BRIDGE, CURVE_TUNNEL, CURVE_ROAD, CURVE_ROAD, CURVE_ROAD, CURVE_RIVER };
+		static const int surf[6] = { SURFACE_ASPHALT, SURFACE_ASPHALT, SURFACE_GRAVEL, SURFACE_GRAVEL,
+					     SURFACE_ASPHALT, SURFACE_NONE };
+		int bad = 0;
+		for (int i = 0; i < 6; i++) {
+			bool ok = s.paths[i].kind == kind[i] && s.paths[i].surface == surf[i];
+			if (!ok)
+				printf("  feature %d: kind %s surface %s, want %s %s\n", i + 1, curve_kind_names[s.paths[i].kind],
+				       curve_surface_names[s.paths[i].surface], curve_kind_names[kind[i]],
+				       curve_surface_names[surf[i]]);
+			bad += !ok;
+		}
+		CHECK(bad == 0, "bridge/tunnel tags make decks and bores, an explicit kind wins; surfaces from the tag, "
+		      "the class, the kind: %d wrong", bad);
+		curves_road_widths(&s, 8.0f, 8.0f);
+		CHECK(s.paths[0].width == 16.0f && s.paths[0].falloff == 2.0f,
+		      "a primary bridge keeps its class's width (16), its falloff is the deck's thickness (2): %g %g",
+		      (double)s.paths[0].width, (double)s.paths[0].falloff);
+		CHECK(curves_follow_ground(&s, 2.0f, valley_ground, NULL, err, sizeof(err)) == 0, "follow: %s", err);
+		/* the deck and the bore run straight at 0 (both ends on the rim);
+		 * the road follows the valley's floor */
+		int off = 0;
+		for (int i = 0; i < 2; i++)
+			for (int k = 0; k < s.paths[i].npts; k++)
+				off += fabsf(s.paths[i].pts[3 * k + 1]) > 1e-5f;
+		CHECK(off == 0, "bridge and tunnel straight between their ends: %d points off", off);
+		float mid = 1.0f;
+		for (int k = 0; k < s.paths[2].npts; k++)
+			if (fabsf(s.paths[2].pts[3 * k]) < 0.5f)
+				mid = s.paths[2].pts[3 * k + 1];
+		CHECK(fabsf(mid + 10.0f) < 0.1f, "the road follows the ground into the valley: %g at x = 0", (double)mid);
+		curve_set_free(&s);
+	}
+	/* 3D: a road at 0 across the valley, 7 points: its middle three run
+	 * 6.5 .. 10 above the floor, more than w/2 + falloff = 4 */
+	const char *csv = "path,x,y,z,width,falloff\n"
+			  "a,-16,0,0,4,2\na,-12,0,0,,\na,-4,0,0,,\na,0,0,0,,\na,4,0,0,,\na,12,0,0,,\na,16,0,0,,\n";
+	rc = curves_parse_csv(csv, strlen(csv), "high.csv", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 1, "3D file: %s", err);
+	if (rc == 0 && s.npaths == 1) {
+		CHECK(curves_follow_ground(&s, 2.0f, valley_ground, NULL, err, sizeof(err)) == 0, "3D split: %s", err);
+		CHECK(s.npaths == 3 && s.paths[0].kind == CURVE_ROAD && s.paths[1].kind == CURVE_BRIDGE &&
+		      s.paths[2].kind == CURVE_ROAD, "road, bridge, road (%d paths)", s.npaths);
+		if (s.npaths == 3)
+			CHECK(s.paths[0].npts == 2 && s.paths[1].npts == 5 && s.paths[2].npts == 2 &&
+			      s.paths[1].pts[0] == -12.0f && s.paths[1].pts[12] == 12.0f && s.paths[1].width == 4.0f,
+			      "the bridge spans x -12 .. 12, sharing its end points, width kept (%d %d %d points)",
+			      s.paths[0].npts, s.paths[1].npts, s.paths[2].npts);
+		CHECK(notes_with(&s, "high.csv: 1 3D path runs far above or below the ground: 1 bridge and 0 tunnel part made") ==
+		      1, "the split noted");
+		curve_set_free(&s);
+	}
+}
+
 /* Work sized from the input and refused before it is done: a road a
  * million units wide over a 1024^2 hash (each piece in every cell), files
  * with more points than the tables hold; 200 000 paths read in linear time

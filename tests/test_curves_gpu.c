@@ -82,8 +82,9 @@ void test_eval_gpu(struct edits *ed, struct params *p)
 	printf("  curve evaluation through the GPU hash: %d points (%d influenced), worst |h|/Θ error %.3g\n", n,
 	       influenced, worst);
 	CHECK(bad == 0, "GPU curve_eval/carve vs CPU: %d of %d differ (worst %.3g)", bad, n, worst);
-	/* (path 3 is a tunnel: no surface, its tube checked by the carve above) */
-	CHECK(influenced > 150, "points under the surface curves' influence: %d", influenced);
+	/* (paths 3 and 4 are a tunnel and a bridge: no surface, their tube and
+	 * deck checked by the carve above) */
+	CHECK(influenced > 120, "points under the surface curves' influence: %d", influenced);
 	/* displacement bake: GPU vs CPU, and the iterative baseline near it */
 	struct bake_opts o = { { 96, 80 }, { -120, -110 }, { 240, 220 }, false, false };
 	float *g = malloc(sizeof(float) * 96 * 80), *c = malloc(sizeof(float) * 96 * 80), *gi = malloc(sizeof(float) * 96 * 80);

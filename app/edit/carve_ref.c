@@ -194,7 +194,7 @@ static void accumulate(const struct edits *e, const struct params *p, const floa
 		for (int k = 0; k < 3; k++)
 			memcpy(c[k], e->quads.ctrl[f + k], sizeof(float) * 4);
 		const float *prm = e->quads.prm[f];
-		if (!near(c, prm, pos) || prm[2] == (float)CURVE_TUNNEL) /* tunnels: tunnel_ref */
+		if (!near(c, prm, pos) || prm[2] >= (float)CURVE_TUNNEL) /* tunnels, bridges: tunnel_ref */
 			continue;
 		if (iterative)
 			closest_iter(c, pos, cl);
@@ -244,7 +244,7 @@ void carve_ref_eval(const struct edits *e, const struct params *p, float x, floa
 	accumulate(e, p, pos, h->index + h->pivot[2 * c], h->pivot[2 * c + 1], false, out);
 }
 
-/* curves.glsl tunnel_eval: (fill, tube) of the tunnel curves at (x, y, z) */
+/* curves.glsl tunnel_eval: (fill, tube) of the tunnel and bridge curves at (x, y, z) */
 static void tunnel_ref(const struct edits *e, float x, float y, float z, float out[2])
 {
 	out[0] = -1e30f;
@@ -261,10 +261,15 @@ static void tunnel_ref(const struct edits *e, float x, float y, float z, float o
 		for (int k = 0; k < 3; k++)
 			memcpy(c[k], e->quads.ctrl[f + k], sizeof(float) * 4);
 		const float *prm = e->quads.prm[f];
-		if (prm[2] != (float)CURVE_TUNNEL || !near(c, prm, pos))
+		if (prm[2] < (float)CURVE_TUNNEL || !near(c, prm, pos))
 			continue;
 		carve_ref_closest(c, pos, cl);
-		float ad = fabsf(cl[0]), below = cl[2] - y, dy = y - (cl[2] + 0.5f * prm[0]);
+		float ad = fabsf(cl[0]), below = cl[2] - y;
+		if (prm[2] == (float)CURVE_BRIDGE) { /* a deck: w wide, λ thick, its top the curve */
+			out[0] = fmaxf(out[0], fminf(fminf(below, prm[1] - below), prm[0] - ad));
+			continue;
+		}
+		float dy = y - (cl[2] + 0.5f * prm[0]);
 		out[0] = fmaxf(out[0], fminf(below, prm[0] + fminf(below, prm[1]) - ad));
 		out[1] = fminf(out[1], fmaxf(sqrtf(ad * ad + dy * dy) - prm[0], below));
 	}

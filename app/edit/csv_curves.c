@@ -188,7 +188,7 @@ static int csv_start_path(struct csv *c, char **f)
 	if (c->col[COL_KIND] >= 0 && *f[c->col[COL_KIND]]) {
 		kind = curve_kind_parse(f[c->col[COL_KIND]]);
 		if (kind < 0)
-			return cfail(c, c->lineno, "kind '%s' is not road, river, railway or tunnel", f[c->col[COL_KIND]]);
+			return cfail(c, c->lineno, "kind '%s' is not road, river, railway, tunnel or bridge", f[c->col[COL_KIND]]);
 	}
 	float *pts = c->cur.pts;
 	curve_path_defaults(&c->cur, kind);

@@ -70,6 +70,40 @@ float curve_highway_width(const char *cls)
 	return -1.0f;
 }
 
+/* OSM surface=* values (wiki "Key:surface") by look. */
+int curve_surface_of_tag(const char *v)
+{
+	static const char *const paved[] = { "asphalt", "paved", "concrete", "concrete:plates", "concrete:lanes",
+					     "paving_stones", "sett", "cobblestone", "unhewn_cobblestone", "chipseal",
+					     "metal", "wood", "bricks" };
+	static const char *const gravel[] = { "gravel", "fine_gravel", "compacted", "unpaved", "pebblestone", "rock",
+					      "shells" };
+	static const char *const dirt[] = { "dirt", "ground", "earth", "grass", "sand", "mud", "soil", "woodchips",
+					    "grass_paver" };
+	for (size_t i = 0; i < sizeof(paved) / sizeof(paved[0]); i++)
+		if (!strcmp(v, paved[i]))
+			return SURFACE_ASPHALT;
+	for (size_t i = 0; i < sizeof(gravel) / sizeof(gravel[0]); i++)
+		if (!strcmp(v, gravel[i]))
+			return SURFACE_GRAVEL;
+	for (size_t i = 0; i < sizeof(dirt) / sizeof(dirt[0]); i++)
+		if (!strcmp(v, dirt[i]))
+			return SURFACE_DIRT;
+	for (int k = 0; k < SURFACE_COUNT; k++)
+		if (!strcmp(v, curve_surface_names[k]))
+			return k;
+	return -1;
+}
+
+int curve_surface_of_highway(const char *cls)
+{
+	if (!strcmp(cls, "track"))
+		return SURFACE_GRAVEL;
+	if (!strcmp(cls, "path") || !strcmp(cls, "footway") || !strcmp(cls, "bridleway") || !strcmp(cls, "steps"))
+		return SURFACE_DIRT;
+	return SURFACE_ASPHALT;
+}
+
 void curves_road_widths(struct curve_set *s, float road_width, float road_falloff)
 {
 	for (int i = 0; i < s->npaths; i++) {

@@ -10,7 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const curve_kind_names[CURVE_KIND_COUNT] = { "road", "river", "railway", "tunnel" };
+const char *const curve_kind_names[CURVE_KIND_COUNT] = { "road", "river", "railway", "tunnel", "bridge" };
+const char *const curve_surface_names[SURFACE_COUNT] = { "none", "asphalt", "gravel", "dirt", "ballast" };
 
 #define MAX_INCLINATION 2.0f /* |tan α| cap (the thesis's MAX_INCLINATION) */
 
@@ -22,10 +23,14 @@ void curve_path_defaults(struct curve_path *p, int kind)
 		{ 10.0f, 12.0f, 0.0f, 0.5f }, /* river */
 		{ 5.0f, 6.0f, 0.0f, 0.5f },  /* railway */
 		{ 6.0f, 4.0f, 0.0f, 0.5f },  /* tunnel: w = the tube's diameter */
+		{ 8.0f, 2.0f, 0.0f, 0.5f },  /* bridge: w = the deck's width, λ its thickness */
 	};
+	static const int surf[CURVE_KIND_COUNT] = { SURFACE_ASPHALT, SURFACE_NONE, SURFACE_BALLAST, SURFACE_ASPHALT,
+						    SURFACE_ASPHALT };
 	if (kind < 0 || kind >= CURVE_KIND_COUNT)
 		kind = CURVE_ROAD;
 	p->kind = kind;
+	p->surface = surf[kind];
 	p->width = d[kind][0];
 	p->falloff = d[kind][1];
 	p->inclination = d[kind][2];
@@ -360,13 +365,14 @@ static void quad_box(const float p0[3], const float p1[3], const float p2[3], fl
 	}
 }
 
-/* (w/2, λ, kind, path) of path pi's control points. */
+/* (w/2, λ, kind, surface) of a path's control points. */
 static void set_prm(float prm[4], const struct curve_path *p, int pi)
 {
+	(void)pi;
 	prm[0] = 0.5f * p->width;
 	prm[1] = p->falloff;
 	prm[2] = (float)p->kind;
-	prm[3] = (float)pi;
+	prm[3] = (float)p->surface;
 }
 
 /* Appends path pi's quadratics (two per cubic, split at its XZ inflection or

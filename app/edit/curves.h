@@ -19,11 +19,21 @@
 
 /* Road, river and railway are surfaces: the ground is pulled to the curve's
  * height across its profile.  A tunnel is a tube through the rock with its
- * floor on the curve (the rock above stays), on an embankment in the open. */
-enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_TUNNEL, CURVE_KIND_COUNT };
-/* shaders/curves.glsl compares the kind with abi.h's CURVE_KIND_TUNNEL */
+ * floor on the curve (the rock above stays), on an embankment in the open.
+ * A bridge is a deck at the curve's height, added to the terrain: the
+ * ground under it stays. */
+enum curve_kind { CURVE_ROAD, CURVE_RIVER, CURVE_RAILWAY, CURVE_TUNNEL, CURVE_BRIDGE, CURVE_KIND_COUNT };
+/* shaders/curves.glsl compares the kind with abi.h's CURVE_KIND_TUNNEL / _BRIDGE */
 _Static_assert(CURVE_TUNNEL == CURVE_KIND_TUNNEL, "abi.h CURVE_KIND_TUNNEL is enum curve_kind's CURVE_TUNNEL");
-extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway", "tunnel" */
+_Static_assert(CURVE_BRIDGE == CURVE_KIND_BRIDGE, "abi.h CURVE_KIND_BRIDGE is enum curve_kind's CURVE_BRIDGE");
+extern const char *const curve_kind_names[CURVE_KIND_COUNT]; /* "road", "river", "railway", "tunnel", "bridge" */
+
+/* What a path's surface looks like in the shading (abi.h ROAD_SURFACE_*,
+ * render.frag): 0 leaves the ground's own colours (rivers). */
+enum curve_surface { SURFACE_NONE, SURFACE_ASPHALT, SURFACE_GRAVEL, SURFACE_DIRT, SURFACE_BALLAST, SURFACE_COUNT };
+_Static_assert(SURFACE_ASPHALT == ROAD_SURFACE_ASPHALT && SURFACE_BALLAST == ROAD_SURFACE_BALLAST,
+	       "abi.h ROAD_SURFACE_* are enum curve_surface");
+extern const char *const curve_surface_names[SURFACE_COUNT]; /* "none", "asphalt", "gravel", "dirt", "ballast" */
 
 /* What a file says of its coordinates (GeoJSON's "crs" member). */
 enum curve_crs { CURVE_CRS_UNSAID, CURVE_CRS_WGS84, CURVE_CRS_OTHER };
@@ -31,6 +41,8 @@ enum curve_crs { CURVE_CRS_UNSAID, CURVE_CRS_WGS84, CURVE_CRS_OTHER };
 /* One input polyline and its carving parameters. */
 struct curve_path {
 	int kind;              /* enum curve_kind */
+	int surface;           /* enum curve_surface: the file's surface tag, else
+				* its highway class's, else the kind's */
 	float width;           /* w: full width of the flat part */
 	float falloff;         /* λ: blend distance beyond w/2 */
 	float inclination;     /* gain of the lateral inclination: tan α = gain · XZ curvature */
@@ -119,7 +131,7 @@ int cubic_to_quad(const struct cubic3 *c, struct quad3 *q);
 /* The GPU layout (thesis Fig. 6.1): control points stored sequentially as
  * vec4 (x, y, z, inclination I = tan α); consecutive quadratics of one path
  * share their anchors, so quadratic k is ctrl[first[k] .. first[k]+2].
- * prm[first[k]] = (w/2, λ, kind, path) for that quadratic. */
+ * prm[first[k]] = (w/2, λ, kind, surface) for that quadratic. */
 struct curve_quads {
 	float (*ctrl)[4];
 	float (*prm)[4];

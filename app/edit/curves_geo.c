@@ -234,8 +234,131 @@ static int densify(struct curve_path *p, float step)
 	return 0;
 }
 
+/* A bridge's deck and a tunnel's bore run straight (along the path's
+ * length) from the ground at one end to the ground at the other, not over
+ * the valley's floor or the hill's top. */
+static void straight_between_ends(struct curve_path *p)
+{
+	double len = 0.0, at = 0.0;
+	for (int k = 1; k < p->npts; k++)
+		len += hypot(p->pts[3 * k] - p->pts[3 * k - 3], p->pts[3 * k + 2] - p->pts[3 * k - 1]);
+	float y0 = p->pts[1], y1 = p->pts[3 * (p->npts - 1) + 1];
+	for (int k = 1; k < p->npts - 1; k++) {
+		at += hypot(p->pts[3 * k] - p->pts[3 * k - 3], p->pts[3 * k + 2] - p->pts[3 * k - 1]);
+		p->pts[3 * k + 1] = y0 + (y1 - y0) * (float)(len > 0.0 ? at / len : 0.0);
+	}
+}
+
+/* A 3D road or railway that runs more than its reach (w/2 + λ) above the
+ * ground for two points or more is a bridge there, below it a tunnel: the
+ * path is cut into runs, each a path of its own (the run's end points
+ * shared, so the parts join).  Returns the number of parts added, -1 when
+ * out of memory. */
+static int split_off_ground(struct curve_set *s, int i, curve_ground_fn ground, void *ctx)
+{
+	struct curve_path *p = &s->paths[i];
+	if ((p->kind != CURVE_ROAD && p->kind != CURVE_RAILWAY) || p->npts < 2)
+		return 0;
+	int n = p->npts;
+	signed char *cls = malloc((size_t)n);
+	if (!cls)
+		return -1;
+	float thr = curve_path_reach(p);
+	bool any = false;
+	for (int k = 0; k < n; k++) {
+		const float *q = p->pts + 3 * k;
+		float g;
+		cls[k] = 0;
+		if (ground(ctx, q[0], q[2], &g))
+			cls[k] = (signed char)(q[1] - g > thr ? 1 : g - q[1] > thr ? -1 : 0);
+	}
+	/* a lone point off the ground is noise, not a structure */
+	for (int k = 0; k < n; k++)
+		if (cls[k] && (k == 0 || cls[k - 1] != cls[k]) && (k == n - 1 || cls[k + 1] != cls[k]))
+			cls[k] = 0;
+	for (int k = 0; k < n; k++)
+		any |= cls[k] != 0;
+	if (!any) {
+		free(cls);
+		return 0;
+	}
+	struct curve_path whole = *p; /* its points, owned here from now */
+	p->pts = NULL;
+	p->npts = 0;
+	int added = 0, first = 1;
+	/* segment k's class: an end's that is off the ground (so a structure
+	 * takes the points where it meets the ground) */
+#define SEG(k) (cls[(k) + 1] != 0 ? cls[(k) + 1] : cls[(k)])
+	for (int a = 0; a < n - 1;) {
+		int b = a + 1;
+		int c = SEG(a);
+		while (b < n - 1 && SEG(b) == c)
+			b++;
+#undef SEG
+		/* run [a, b]: kind by c */
+		struct curve_path part = whole;
+		part.npts = b - a + 1;
+		part.pts = whole.pts + 3 * a;
+		if (c != 0) {
+			curve_path_defaults(&part, c > 0 ? CURVE_BRIDGE : CURVE_TUNNEL);
+			part.surface = whole.surface;
+			part.width = whole.width;
+			part.width_set = true;
+		}
+		snprintf(part.label, sizeof(part.label), "%.150s, %s part", whole.label, curve_kind_names[part.kind]);
+		if (first) {
+			float *pts = malloc(sizeof(float) * 3 * (size_t)part.npts);
+			if (!pts)
+				goto oom;
+			memcpy(pts, part.pts, sizeof(float) * 3 * (size_t)part.npts);
+			part.pts = pts;
+			s->paths[i] = part;
+			p = &s->paths[i];
+			first = 0;
+		} else {
+			if (curve_set_add(s, &part) < 0)
+				goto oom;
+			added++;
+		}
+		a = b;
+	}
+	free(whole.pts);
+	free(cls);
+	return added;
+oom:
+	free(whole.pts);
+	free(cls);
+	return -1;
+}
+
 int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground, void *ctx, char *err, size_t errlen)
 {
+	int nsplit = 0, nbridge = 0, ntunnel = 0;
+	for (int i = 0, n0 = s->npaths; i < n0 && ground; i++) {
+		if (s->paths[i].follow_ground)
+			continue;
+		int before = s->npaths, kind0 = s->paths[i].kind;
+		int rc = split_off_ground(s, i, ground, ctx);
+		if (rc < 0) {
+			snprintf(err, errlen, "%s: out of memory", s->paths[i].label);
+			return -1;
+		}
+		if (rc > 0 || s->paths[i].kind != kind0) {
+			nsplit++;
+			for (int k = before - 1; k < s->npaths; k++) {
+				int j = k == before - 1 ? i : k;
+				nbridge += s->paths[j].kind == CURVE_BRIDGE;
+				ntunnel += s->paths[j].kind == CURVE_TUNNEL;
+			}
+		}
+	}
+	if (nsplit && curve_set_note(s, "%s: %d 3D path%s run%s far above or below the ground: %d bridge and %d tunnel "
+				     "part%s made (more than w/2 + falloff off the ground for two points or more)",
+				     s->source, nsplit, nsplit == 1 ? "" : "s", nsplit == 1 ? "s" : "", nbridge, ntunnel,
+				     nbridge + ntunnel == 1 ? "" : "s") < 0) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
 	for (int i = 0; i < s->npaths; i++) {
 		struct curve_path *p = &s->paths[i];
 		if (!p->follow_ground)
@@ -264,6 +387,8 @@ int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground
 				return -1;
 			}
 		}
+		if (p->kind == CURVE_BRIDGE || p->kind == CURVE_TUNNEL)
+			straight_between_ends(p);
 	}
 	return 0;
 }

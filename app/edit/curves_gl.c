@@ -1,9 +1,11 @@
 /* isoterra — GL side of the terrain edits: the curve hash in one SSBO of
  * four sections (BIND_CURVES: pivot, index, ctrl, prm), the heightmap as an R32F texture
  * (TEX_HEIGHTMAP), the control map likewise (TEX_CONTROL), the
- * displacement-map bake and the shader test hook.
+ * displacement-map bake, the road map (the same bake, BAKE_MATERIAL) and
+ * the shader test hook.
  * The GL objects belong to one edit state (struct edits_gl). */
 #include "edits.h"
+#include "core.h"
 #include "gpu.h"
 
 #include <math.h>
@@ -21,6 +23,10 @@ struct edits_gl {
 	unsigned hm_gen, control_gen;
 	bool hm_ready, control_ready;
 	GLuint p_bake[8], p_test;     /* bake: [iterative | dense << 1 | heightmap << 2] */
+	GLuint p_material, road_tex;  /* the road map's bake and texture */
+	struct road_map road;
+	unsigned road_gen;
+	bool road_ready;
 	GLuint b_bake, b_zero, b_tiles, b_in, b_out;
 	GLsizeiptr bake_cap, zero_cap, tiles_cap, in_cap, out_cap;
 };
@@ -49,6 +55,10 @@ void edits_gl_release(struct edits *ed)
 			glDeleteProgram(G->p_bake[i]);
 	if (G->p_test)
 		glDeleteProgram(G->p_test);
+	if (G->p_material)
+		glDeleteProgram(G->p_material);
+	if (G->road_tex)
+		glDeleteTextures(1, &G->road_tex);
 	GLuint bufs[5] = { G->b_bake, G->b_zero, G->b_tiles, G->b_in, G->b_out };
 	for (int i = 0; i < 5; i++)
 		if (bufs[i])
@@ -407,6 +417,107 @@ int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts
 		snprintf(err, errlen, "reading the displacement map back failed");
 		return -1;
 	}
+	return 0;
+}
+
+/* The most texels of the road map: 8 MB of half floats, and as much again
+ * in the bake's buffer while it is made. */
+#define ROAD_MAP_MAX_TEXELS (1L << 20)
+
+int edits_road_map(struct edits *ed, const struct params *p, struct road_map *out, char *err, size_t errlen)
+{
+	memset(out, 0, sizeof(*out));
+	if (errlen)
+		err[0] = '\0';
+	if (edits_load(ed, p, err, errlen) < 0)
+		return -1;
+	struct edits_gl *G = gl_of(ed, err, errlen);
+	if (!G)
+		return -1;
+	if (G->road_ready && G->road_gen == ed->curves_gen) {
+		*out = G->road;
+		return 0;
+	}
+	const struct curve_quads *q = &ed->quads;
+	float hw_min = INFINITY;
+	double ysum = 0.0;
+	int nsurf = 0;
+	for (int k = 0; k < q->nquads; k++) {
+		const float *prm = q->prm[q->first[k]];
+		if (prm[3] == 0.0f)
+			continue;
+		hw_min = fminf(hw_min, prm[0]);
+		ysum += q->ctrl[q->first[k]][1];
+		nsurf++;
+	}
+	G->road_ready = true;
+	G->road_gen = ed->curves_gen;
+	memset(&G->road, 0, sizeof(G->road));
+	if (nsurf == 0 || !ed->hash.pivot)
+		return 0;
+	/* over the hash's rectangle (every padded box), a texel a third of the
+	 * narrowest half width, coarser when that would exceed the texel
+	 * budget or the GL's texture size */
+	GLint max_tex = 2048;
+	glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
+	const float *size = ed->hash.size;
+	double texel = fmax(hw_min / 3.0, sqrt((double)size[0] * size[1] / (double)ROAD_MAP_MAX_TEXELS));
+	texel = fmax(texel, fmax(size[0], size[1]) / (double)max_tex);
+	int w = (int)ceil(size[0] / texel), h = (int)ceil(size[1] / texel);
+	w = w < 1 ? 1 : w > max_tex ? max_tex : w;
+	h = h < 1 ? 1 : h > max_tex ? max_tex : h;
+	struct bake_opts o = { { w, h }, { ed->hash.origin[0], ed->hash.origin[1] }, { size[0], size[1] }, false, false };
+	if (!G->p_material &&
+	    !(G->p_material = gpu_compute_program("curve_bake.comp", "#define BAKE_MATERIAL 1\n", err, errlen)))
+		return -1;
+	GLuint prog = G->p_material;
+	GLsizeiptr bytes = (GLsizeiptr)w * h * 8;
+	if (bake_room(G, &o, bytes, err, errlen) < 0)
+		return -1;
+	if (edits_gl_bind(ed, prog, p, err, errlen) < 0) {
+		if (!err[0])
+			snprintf(err, errlen, "curves could not be bound for the road map (see the log)");
+		return -1;
+	}
+	float y0 = (float)(ysum / nsurf);
+	gpu_set_param_uniforms(prog, p);
+	glProgramUniform2i(prog, gpu_uniform(prog, "u_bake_res"), w, h);
+	glProgramUniform2f(prog, gpu_uniform(prog, "u_bake_origin"), o.origin[0], o.origin[1]);
+	glProgramUniform2f(prog, gpu_uniform(prog, "u_bake_texel"), size[0] / (float)w, size[1] / (float)h);
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_bake_y0"), y0);
+	glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_AUX_OUT, G->b_bake);
+	glUseProgram(prog);
+	if (bake_tiled(G, ed, prog, &o, bytes, err, errlen) < 0) {
+		glUseProgram(0);
+		return -1;
+	}
+	glUseProgram(0);
+	glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+	if (G->road_tex)
+		glDeleteTextures(1, &G->road_tex);
+	glGenTextures(1, &G->road_tex);
+	GLint prev = 0;
+	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
+	glActiveTexture(GL_TEXTURE0 + TEX_ROADS);
+	glBindTexture(GL_TEXTURE_2D, G->road_tex);
+	glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	glBindBuffer(GL_PIXEL_UNPACK_BUFFER, G->b_bake);
+	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_HALF_FLOAT, (const void *)0);
+	glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+	glActiveTexture((GLenum)prev);
+	if (gpu_check("road map") < 0) {
+		snprintf(err, errlen, "the %dx%d road map could not be made (GL error)", w, h);
+		return -1;
+	}
+	G->road = (struct road_map){ G->road_tex, { o.origin[0], o.origin[1] }, { size[0], size[1] }, y0,
+				     (float)fmax(0.75, 1.5 * texel) };
+	log_info("road map: %dx%d texels of %.3g world units over %d curve pieces with a surface", w, h, texel, nsurf);
+	*out = G->road;
 	return 0;
 }
 

@@ -23,6 +23,11 @@ void curve_param_set(struct curve_path *p, int i, float v);
 /* An OSM highway class's width in units of road_width (a lane is 1/2:
  * the default road has two), or -1 for a class not in the table. */
 float curve_highway_width(const char *cls);
+/* enum curve_surface of an OSM surface=* value (or one of
+ * curve_surface_names), -1 when unknown; of an OSM highway class (tracks
+ * gravel, paths dirt, the rest asphalt). */
+int curve_surface_of_tag(const char *v);
+int curve_surface_of_highway(const char *cls);
 /* 3D input whose every height is 0 (n positions; axis names it): an
  * export's placeholder, not a road at altitude 0.  Every path follows the
  * ground instead, said in a note.  0, or -1 when out of memory. */

@@ -327,7 +327,7 @@ void edits_clear(struct edits *ed)
 bool edits_has_tunnels(const struct edits *ed)
 {
 	for (int k = 0; k < ed->quads.nquads; k++)
-		if (ed->quads.prm[ed->quads.first[k]][2] == (float)CURVE_TUNNEL)
+		if (ed->quads.prm[ed->quads.first[k]][2] >= (float)CURVE_TUNNEL) /* tunnel or bridge */
 			return true;
 	return false;
 }

@@ -166,6 +166,20 @@ struct bake_opts {
 int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts *o, float *out, char *err,
 		size_t errlen);
 
+/* The road map (curve_bake.comp with BAKE_MATERIAL, render.frag): an
+ * RGBA16F texture over the curves' hash rectangle, per texel the closest
+ * curve with a surface: R its paint (1 on the flat part, w/2), G the
+ * surface (abi.h ROAD_SURFACE_*), B its height less y0; the shading paints
+ * a fragment within tol of that height.  Made again when the curves change;
+ * the texture belongs to the edit state.  tex 0 when no curve has a
+ * surface.  0, or -1 with err. */
+struct road_map {
+	GLuint tex;
+	float origin[2], size[2];
+	float y0, tol;
+};
+int edits_road_map(struct edits *ed, const struct params *p, struct road_map *out, char *err, size_t errlen);
+
 /* Test hook: runs shaders/curve_test.comp (mode 0: closest point on given
  * quadratics, 1: curve_eval + carve_density at points, 2: heightmap
  * height) on n inputs; see the shader.  in has 16 floats per item in mode

@@ -209,8 +209,16 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 	const struct json_value *k = json_get(props, "kind");
 	if (k) {
 		if (k->type != JSON_STRING || curve_kind_parse(k->str) < 0)
-			return gfail(g, k->line, what, "\"kind\" must be \"road\", \"river\", \"railway\" or \"tunnel\"");
+			return gfail(g, k->line, what, "\"kind\" must be \"road\", \"river\", \"railway\", \"tunnel\" or \"bridge\"");
 		curve_path_defaults(base, curve_kind_parse(k->str));
+	} else {
+		/* OSM's bridge=* / tunnel=* (any value but "no"): a deck or a
+		 * bore, not a cut */
+		const struct json_value *br = osm_tag(props, "bridge"), *tu = osm_tag(props, "tunnel");
+		if (br && br->type == JSON_STRING && strcmp(br->str, "no"))
+			curve_path_defaults(base, CURVE_BRIDGE);
+		else if (tu && tu->type == JSON_STRING && strcmp(tu->str, "no") && strcmp(tu->str, "building_passage"))
+			curve_path_defaults(base, CURVE_TUNNEL);
 	}
 	for (int i = 0; i < CURVE_NPARAMS; i++) {
 		const struct json_value *v = json_get(props, curve_param_names[i]);
@@ -235,7 +243,16 @@ static int geo_props(struct gctx *g, const struct json_value *props, const char 
 			return gfail(g, v->line, what, "\"%s\" = %g %s", curve_param_names[i], num, why);
 		curve_param_set(base, i, (float)num);
 	}
-	return geo_road_class(g, props, what, base);
+	if (geo_road_class(g, props, what, base) < 0)
+		return -1;
+	/* the surface: its OSM surface tag, else its highway class's */
+	const struct json_value *sf = osm_tag(props, "surface"), *hw = osm_tag(props, "highway");
+	int s = sf && sf->type == JSON_STRING ? curve_surface_of_tag(sf->str) : -1;
+	if (s < 0 && hw && hw->type == JSON_STRING && base->surface != SURFACE_NONE)
+		s = curve_surface_of_highway(hw->str);
+	if (s >= 0)
+		base->surface = s;
+	return 0;
 }
 
 /* GeoJSON's axes, for messages (the CSV's are x, y up, z) */

@@ -48,6 +48,7 @@
 #define TEX_NOISE2 2
 #define TEX_HEIGHTMAP 3    /* the heightmap (edit/curves_gl.c) */
 #define TEX_CONTROL 4      /* the control map (edit/curves_gl.c) */
+#define TEX_ROADS 6        /* the curves' road map: Θ, surface, height (edit/curves_gl.c, render.frag) */
 #define TEX_SURFACE 7      /* the generated surface texture (render/surface_tex.c) */
 #define TEX_FRAME 0        /* the finished frame, read by the V4L2 conversion and the OSD's pass */
 #define NOISE_TEX_SIZE 16  /* the 3D noise textures' edge, texels (terrain/noise.c, noise_gl.c) */
@@ -58,6 +59,11 @@
 /* ---- curves ------------------------------------------------------------- */
 #define CURVE_KIND_TUNNEL 3 /* the kind (a curve's params .z) that bores instead of shaping the surface
 			     * (edit/curves.h enum curve_kind, curves.glsl) */
+#define CURVE_KIND_BRIDGE 4 /* the kind that adds a deck instead of shaping the surface */
+#define ROAD_SURFACE_ASPHALT 1 /* a curve's params .w, the road map's green (edit/curves.h enum curve_surface, */
+#define ROAD_SURFACE_GRAVEL 2  /* curve_bake.comp, render.frag); 0: none (rivers) */
+#define ROAD_SURFACE_DIRT 3
+#define ROAD_SURFACE_BALLAST 4
 
 /* ---- shading ------------------------------------------------------------ */
 #define DETAIL_RANGE 25.0  /* world units: the detail normals fade out there (render.frag); farther meshes

@@ -48,6 +48,8 @@ struct renderer {
 	const struct params *par; /* this frame's parameters (renderer_begin's) */
 	float clear[3];
 	GLuint surface;
+	GLuint road_tex;          /* renderer_set_road_map */
+	float road[6];            /* origin x z, 1 / size x z, y0, tol */
 	float scale;  /* the governor's render scale: the frame is drawn at */
 	int sw, sh;   /* sw x sh in the lower-left corner, then upscaled */
 	struct upscale up;
@@ -231,6 +233,16 @@ static void terrain_uniforms(struct terrain_prog *t, const struct camera *c, con
 	glUniform1f(t->l_sink, 0.0f);
 }
 
+void renderer_set_road_map(struct renderer *r, GLuint tex, const float origin[2], const float size[2], float y0,
+			   float tol)
+{
+	r->road_tex = tex;
+	if (tex) {
+		float v[6] = { origin[0], origin[1], 1.0f / size[0], 1.0f / size[1], y0, tol };
+		memcpy(r->road, v, sizeof(v));
+	}
+}
+
 /* The terrain's program for p: specialized (params_glsl_specialization:
  * the shape's and soil's branches folded, the marble colour compiled only
  * when on; a software rasterizer runs a uniform branch's both sides),
@@ -241,10 +253,13 @@ static void terrain_uniforms(struct terrain_prog *t, const struct camera *c, con
 static int terrain_program(struct renderer *r, const struct params *p)
 {
 	char key[RENDER_KEY_MAX];
-	if (params_glsl_specialization(p, key, sizeof(key)) < 0) {
+	if (params_glsl_specialization(p, key, sizeof(key)) < 0 ||
+	    (r->road_tex && strlen(key) + 24 >= sizeof(key))) {
 		log_error("terrain program: specialization key too long");
 		return -1;
 	}
+	if (r->road_tex)
+		strcat(key, "#define ROAD_MAP 1\n");
 	if (r->tp[PROG_NEAR].prog && !strcmp(key, r->key))
 		return 0;
 	GLuint prog = terrain_variant(key, PROG_NEAR);
@@ -309,6 +324,17 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	r->par = p;
 	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
+	if (r->road_tex) {
+		glActiveTexture(GL_TEXTURE0 + TEX_ROADS);
+		glBindTexture(GL_TEXTURE_2D, r->road_tex);
+		for (int i = 0; i < PROG_COUNT; i++)
+			if (r->tp[i].prog) {
+				GLuint pr = r->tp[i].prog;
+				glProgramUniform4f(pr, gpu_uniform(pr, "u_road_rect"), r->road[0], r->road[1], r->road[2],
+						   r->road[3]);
+				glProgramUniform2f(pr, gpu_uniform(pr, "u_road_y"), r->road[4], r->road[5]);
+			}
+	}
 	glActiveTexture(GL_TEXTURE0);
 	glBindVertexArray(r->vao);
 	return 0;

@@ -78,6 +78,13 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
  * renderer_end, so overlays and sinks still see the full size.  0, or -1
  * with err (the upscale pass could not be made). */
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen);
+/* Paint on the ground: an RGBA16F texture over the XZ rectangle origin ..
+ * origin + size, per texel (paint weight, surface ROAD_SURFACE_*, height
+ * less y0); a fragment within tol of that height takes the surface's
+ * colours (the edit state's road map, edits_road_map).  tex 0: none, and
+ * the terrain's program is built without the term. */
+void renderer_set_road_map(struct renderer *r, GLuint tex, const float origin[2], const float size[2], float y0,
+			   float tol);
 /* Background colour (tests paint it a colour the terrain never has). */
 void renderer_set_clear(struct renderer *r, float red, float green, float blue);
 /* Draws the pipeline's mesh with its indirect command.  0 or -1. */

@@ -87,6 +87,10 @@ struct scene {
 /* The scenes.  p must outlive the scene: the world's autopilot reads the
  * parameters the controls change.  NULL with err. */
 struct scene *scene_volume_create(const struct params *p, char *err, size_t errlen);
+/* Within the scenes: the edit state's road map handed to the renderer for
+ * this frame (scene_roads.c).  0, or -1 with err. */
+struct edits;
+int scene_roads(struct edits *ed, const struct params *p, struct renderer *r, char *err, size_t errlen);
 struct scene *scene_world_create(const struct params *p, char *err, size_t errlen);
 /* The scene p->scene names. */
 static inline struct scene *scene_create(const struct params *p, char *err, size_t errlen)

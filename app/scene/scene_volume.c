@@ -129,6 +129,8 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 		camera_orbit(&cam, p, &vs->g, t, scene_frame_aspect(fr));
 	}
 	camera_window(&cam, fr->view);
+	if (scene_roads(vs->ed, p, fr->r, err, errlen) < 0)
+		return -1;
 	if (renderer_draw(fr->r, &d, &cam, p) < 0)
 		return -1;
 	if (fr->timing) {

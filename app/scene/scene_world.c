@@ -150,6 +150,8 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 		td = clock_ms();
 		fr->timing->update_ms = td - t0;
 	}
+	if (scene_roads(ws->ed, &eff, fr->r, err, errlen) < 0)
+		return -1;
 	if (world_draw(ws->w, fr->r, &cam, &eff, t) < 0)
 		return -1;
 	empty_view(ws, p, &cam, t);
