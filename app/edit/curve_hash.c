@@ -124,6 +124,10 @@ static long hash_starts(struct curve_hash *h, size_t ncell)
 int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen)
 {
 	memset(h, 0, sizeof(*h));
+	if (dim == 0) { /* auto: about four pieces a cell were they spread evenly */
+		dim = (int)lrint(sqrt((double)q->nquads / 4.0));
+		dim = dim < 16 ? 16 : dim > 256 ? 256 : dim;
+	}
 	if (dim < 1)
 		dim = 1;
 	h->dim = dim;

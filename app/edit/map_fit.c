@@ -47,7 +47,8 @@ void heightmap_fit(const struct heightmap *hm, struct params *p)
 	set_open(p, "vol_height", frac);
 	set_open(p, "vol_y", 0.5 * (lo + hi));
 	/* the shading's lengths, made for the default 96-unit volume, scaled
-	 * to this one (textures, fog, waves); snow on the top quarter */
+	 * to this one (textures, fog, waves); snow on the top quarter, but
+	 * not below 1500 m (no snow-capped hills by the sea) */
 	double r = 96.0 / size;
 	const struct param_info *pi;
 	if ((pi = params_find("tex_scale")) && open_param(p, "tex_scale"))
@@ -56,7 +57,21 @@ void heightmap_fit(const struct heightmap *hm, struct params *p)
 		set_open(p, "fog_height", pi->def * r);
 	if ((pi = params_find("water_freq")) && open_param(p, "water_freq"))
 		set_open(p, "water_freq", pi->def * r);
-	set_open(p, "snow_line", lo + 0.75 * (hi - lo));
+	set_open(p, "snow_line", fmax(lo + 0.75 * (hi - lo), 1500.0 * kz));
+	/* the streaming world over the map: a finest cell a quarter of a
+	 * sample (block_size 8 samples), the whole map within view; the
+	 * autopilot starts over the map's edge and crosses it through its
+	 * centre on its first heading (0.3 rad from +x towards +z), a
+	 * twentieth of the map above the ground, in a minute; its clearance
+	 * scaled as the block (the defaults' 1.5 of air for a block of 4) */
+	double bs = 8.0 * g->cell * k;
+	set_open(p, "block_size", bs);
+	set_open(p, "view_distance", 1.5 * fmax(ex, ez));
+	set_open(p, "fly_height", size / 20.0);
+	set_open(p, "fly_speed", size / 60.0);
+	set_open(p, "fly_clearance", 1.5 * bs / 4.0);
+	set_open(p, "fly_x", -0.42 * size * cos(0.3));
+	set_open(p, "fly_z", -0.42 * size * sin(0.3));
 	/* the sea where the map reaches below sea level, else no water */
 	if (open_param(p, "water_level")) {
 		if (g->zmin < 0.0 && g->zmax > 0.0)

@@ -223,7 +223,7 @@ static void spawn(struct autopilot *a)
 		return;
 	for (int i = 0; i < 16; i++) {
 		float ang = (float)i * 2.4f, rad = 6.0f * sqrtf((float)i);
-		if (spawn_column(a, rad * cosf(ang), rad * sinf(ang)))
+		if (spawn_column(a, a->p->fly_x + rad * cosf(ang), a->p->fly_z + rad * sinf(ang)))
 			return;
 	}
 	if (!spawn_shells(a))
