@@ -32,6 +32,7 @@ void test_io(void);
 void test_geojson_skips(void);
 void test_road_widths(void);
 void test_structures(void);
+void test_areas(void);
 void test_sizes(void);
 void test_geo(void);
 void test_gpx(void);

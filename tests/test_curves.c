@@ -165,6 +165,7 @@ int main(void)
 	test_geojson_skips();
 	test_road_widths();
 	test_structures();
+	test_areas();
 	test_sizes();
 	int ncases = 1200;
 	float *items = malloc(sizeof(float) * 16 * (size_t)ncases);

@@ -61,7 +61,8 @@ J
 expect_ok $SMALL --curves lonlat.geojson
 
 # a Polygon and a Point among line strings: the lines are carved, one
-# warning each for the area and the point; a good file warns of nothing
+# warning each for the area (areas need a heightmap) and the point; a good
+# file warns of nothing
 cat >mix.geojson <<'J'
 { "type": "FeatureCollection", "features": [
   { "type": "Feature", "properties": { "width": 4 },
@@ -87,9 +88,9 @@ expect_warn() {
 	fi
 	ok
 }
-expect_warn "warning: mix.geojson: 1 feature skipped, areas are not carved .only lines are.: feature 2 .id .way/7.. Polygon .1 polygon, 1 ring." 1 \
+expect_warn "warning: mix.geojson: 1 area .1 ring. not carved: areas flatten or flood a heightmap .field = heightmap., and this field is terrain" 1 \
 	$SMALL --curves mix.geojson --curves-crs local
-expect_warn "warning: mix.geojson: 1 feature skipped, not carved .only LineString and MultiLineString are.: feature 3 Point" 1 \
+expect_warn "warning: mix.geojson: 1 feature skipped, not carved .only lines and polygons are.: feature 3 Point" 1 \
 	$SMALL --curves mix.geojson --curves-crs local
 expect_warn "warning" 2 $SMALL --curves mix.geojson --curves-crs local
 expect_warn "warning" 0 $SMALL --curves road.geojson
@@ -149,7 +150,7 @@ expect_fail "twod.geojson:4: feature 2: position 1 has 4 coordinates; GeoJSON po
 cat >poly.geojson <<'J'
 { "type": "Feature", "geometry": { "type": "Polygon", "coordinates": [] } }
 J
-expect_fail "poly.geojson:1: GeoJSON: no line strings to carve .skipped: feature 1 Polygon .malformed" $SMALL --curves poly.geojson
+expect_fail "poly.geojson:1: GeoJSON: no line strings or polygons to carve .skipped: feature 1 Polygon .malformed" $SMALL --curves poly.geojson
 cat >width.geojson <<'J'
 { "type": "Feature",
   "properties": { "width": "wide" },

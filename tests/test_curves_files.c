@@ -85,7 +85,7 @@ void test_io(void)
 	expect_parse_error(false, "[1, 2]", "top level");
 	expect_parse_error(false, "", "t.geojson:1: invalid JSON");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":null}",
-			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: feature 1 without geometry (null))");
+			   "t.geojson:1: GeoJSON: no line strings or polygons to carve (skipped: feature 1 without geometry (null))");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"geometry\":5}", "\"geometry\" must be a geometry object or null");
 	expect_parse_error(false, "{\"type\":\"Circle\"}", "type \"Circle\" is not GeoJSON");
 	expect_parse_error(false, "{\"type\":\"Feature\",\"bbox\":[0,0,1],\"geometry\":{\"type\":\"LineString\","
@@ -137,15 +137,15 @@ void test_geojson_skips(void)
 	int rc = curves_parse_geojson(mix, strlen(mix), "mix.geojson", &s, err, sizeof(err));
 	CHECK(rc == 0, "a Polygon and a Point among line strings: loaded (%s)", err);
 	if (rc == 0) {
-		CHECK(s.npaths == 3 && s.paths[0].npts == 3 && s.paths[1].npts == 2 && s.paths[2].npts == 3,
-		      "the 3 line strings loaded (%d paths)", s.npaths);
-		CHECK(s.nnotes == 2, "two notes (one per reason), got %d", s.nnotes);
-		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, not carved (only LineString and MultiLineString are): "
+		/* the line, the polygon's outer ring and its hole, the two lines */
+		CHECK(s.npaths == 5 && s.paths[0].npts == 3 && !s.paths[0].area && s.paths[1].area == AREA_FLAT &&
+		      s.paths[1].ring == 0 && s.paths[2].area == AREA_FLAT && s.paths[2].ring == 1 && s.paths[3].npts == 2 &&
+		      s.paths[4].npts == 3 && !s.paths[4].area,
+		      "3 line strings and the Polygon's 2 rings loaded (%d paths)", s.npaths);
+		CHECK(s.nnotes == 1, "one note (the Point), got %d", s.nnotes);
+		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, not carved (only lines and polygons are): "
 				     "feature 3 (id \"node/5\") Point") == 1,
 		      "the Point named once: %s", s.nnotes ? s.notes[0] : "none");
-		CHECK(notes_with(&s, "mix.geojson: 1 feature skipped, areas are not carved (only lines are): feature 2 (id 7) "
-				     "Polygon (1 polygon, 2 rings)") == 1,
-		      "the Polygon named once: %s", s.nnotes > 1 ? s.notes[1] : "none");
 		curve_set_free(&s);
 	}
 	/* good input: no note */
@@ -170,16 +170,16 @@ void test_geojson_skips(void)
 			   "{\"type\":\"Feature\",\"geometry\":{\"type\":\"MultiPolygon\",\"coordinates\":"
 			   "[[[[0,0],[1,0],[1,1],[0,0]]],[[[2,2],[3,2],[3,3],[2,2]]]]}}]}";
 	rc = curves_parse_geojson(many, strlen(many), "many.geojson", &s, err, sizeof(err));
-	CHECK(rc == 0 && s.npaths == 1, "one line among skipped features (%s)", err);
+	CHECK(rc == 0 && s.npaths == 3 && s.paths[1].area && s.paths[2].area && s.paths[2].ring == 0,
+	      "one line and the MultiPolygon's two outer rings among skipped features (%s)", err);
 	if (rc == 0) {
-		CHECK(s.nnotes == 3, "three notes (bbox, other, areas), got %d", s.nnotes);
-		CHECK(notes_with(&s, "5 features skipped, not carved (only LineString and MultiLineString are): feature 2 "
+		CHECK(s.nnotes == 3, "three notes (bbox, other, malformed areas), got %d", s.nnotes);
+		CHECK(notes_with(&s, "5 features skipped, not carved (only lines and polygons are): feature 2 "
 				     "Point, feature 3 MultiPoint, feature 4 GeometryCollection, feature 5 without geometry "
 				     "(null), and 1 more") == 1,
 		      "five skipped, four named");
-		CHECK(notes_with(&s, "2 features skipped, areas are not carved (only lines are): feature 7 Polygon "
-				     "(malformed: ring 1 is not closed (its last position is not its first)), feature 8 "
-				     "MultiPolygon (2 polygons, 2 rings)") == 1,
+		CHECK(notes_with(&s, "1 feature skipped, malformed areas: feature 7 Polygon "
+				     "(malformed: ring 1 is not closed (its last position is not its first))") == 1,
 		      "areas: the malformed one says why");
 		CHECK(notes_with(&s, "many.geojson:1: the \"bbox\" [0, 0, 0.5, 0.5] does not hold every position: they span "
 				     "x [0, 3], y [0, 3]; the positions are used") == 1,
@@ -189,8 +189,8 @@ void test_geojson_skips(void)
 		curve_set_free(&s);
 	}
 	/* nothing to carve: refused, naming what was skipped */
-	expect_parse_error(false, "{\"type\":\"Polygon\",\"coordinates\":[[[0,0],[1,0],[1,1],[0,0]]]}",
-			   "t.geojson:1: GeoJSON: no line strings to carve (skipped: geometry Polygon (1 polygon, 1 ring))");
+	expect_parse_error(false, "{\"type\":\"Point\",\"coordinates\":[0,0]}",
+			   "t.geojson:1: GeoJSON: no line strings or polygons to carve (skipped: geometry Point)");
 }
 
 /* Widths from feature properties: an explicit width (a number, or OSM's
@@ -841,4 +841,83 @@ void test_heightmap_cpu(struct edits *ed, struct params *p, const struct noise_s
 	float ex = (1.0f - 0.5f * (HM_W - 1)) * 2.0f, ez = (2.3f - 0.5f * (HM_H - 1)) * 2.0f;
 	float l = heightmap_ref_height(e, p, ns, ex - 1e-3f, ez, true), r = heightmap_ref_height(e, p, ns, ex + 1e-3f, ez, true);
 	CHECK(fabsf(l - r) < 0.05f, "continuous across a cell edge: %g vs %g", l, r);
+}
+
+/* Areas on a heightmap: a ramp (height x + 16 at x, one sample a unit);
+ * a flat square is set to its rim's mean height, a pond to its rim's
+ * lowest less 2 m (one lake at the rim's level), samples beyond the
+ * falloff untouched; without the curves file the map's own samples are
+ * back. */
+void test_areas(void)
+{
+	enum { W = 33 };
+	static uint16_t ramp[W * W];
+	for (int j = 0; j < W; j++)
+		for (int i = 0; i < W; i++)
+			ramp[j * W + i] = (uint16_t)(i * 1000);
+	char hm[256], geo[256], err[512] = "";
+	hm_path(hm, sizeof(hm), "ramp.png");
+	hm_path(geo, sizeof(geo), "areas.geojson");
+	CHECK(image_write_png_gray16(hm, ramp, W, W, err, sizeof(err)) == 0, "write ramp: %s", err);
+	FILE *f = fopen(geo, "w");
+	CHECK(f != NULL, "write %s", geo);
+	if (!f)
+		return;
+	fputs("{\"type\":\"FeatureCollection\",\"features\":[\n"
+	      "{\"type\":\"Feature\",\"properties\":{\"leisure\":\"park\"},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
+	      "[[[-10,2],[-4,2],[-4,8],[-10,8],[-10,2]]]}},\n"
+	      "{\"type\":\"Feature\",\"properties\":{\"natural\":\"water\"},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
+	      "[[[4,2],[10,2],[10,8],[4,8],[4,2]]]}}]}\n",
+	      f);
+	fclose(f);
+	struct params p;
+	params_defaults(&p);
+	char kv[700];
+	snprintf(kv, sizeof(kv), "field=heightmap;heightmap=%s;heightmap_scale=1;heightmap_base=0;heightmap_height=65.535;"
+		 "heightmap_detail=0;heightmap_noise=0;curves=%s;curves_crs=local;road_falloff=2", hm, geo);
+	set(&p, kv);
+	struct edits *ed = edits_create();
+	struct terrain *tr = terrain_create(ed);
+	CHECK(edits_load(ed, &p, err, sizeof(err)) == 0, "areas on a heightmap: %s", err);
+	CHECK(ed->curves.npaths == 0 && ed->areas.npaths == 2 && ed->nlakes == 1, "two areas, no curve, one lake (%d, %d, %d)",
+	      ed->curves.npaths, ed->areas.npaths, ed->nlakes);
+	float k = 65.535f / 65535.0f;
+#define AT(x, z) (ed->hm.w == W ? ed->hm.v[((z) + 16) * W + (x) + 16] * k : NAN)
+	/* the park: its rim runs x -10 .. -4 (ground 6 .. 12), mean 9 */
+	int bad = 0;
+	for (int z = -7; z <= -3; z++)
+		for (int x = -9; x <= -5; x++)
+			bad += fabsf(AT(x, z) - 9.0f) > 0.05f;
+	CHECK(bad == 0, "the park flat at its rim's mean height 9: %d of 25 samples off (centre %g)", bad, AT(-7, -5));
+	/* the pond: its rim's lowest ground is 20 (x = 4), the bed 2 below */
+	bad = 0;
+	for (int z = -7; z <= -3; z++)
+		for (int x = 5; x <= 9; x++)
+			bad += fabsf(AT(x, z) - 18.0f) > 0.05f;
+	CHECK(bad == 0, "the pond's bed at 20 - 2: %d of 25 samples off (centre %g)", bad, AT(7, -5));
+	if (ed->nlakes == 1)
+		CHECK(fabsf(ed->lakes[0][4] - 20.0f) < 0.05f && fabsf(ed->lakes[0][0] - 4.0f) < 1e-4f &&
+		      fabsf(ed->lakes[0][2] - 10.0f) < 1e-4f && fabsf(ed->lakes[0][1] + 8.0f) < 1e-4f &&
+		      fabsf(ed->lakes[0][3] + 2.0f) < 1e-4f,
+		      "the lake at 20 over x 4 .. 10, z -8 .. -2: %g over %g .. %g, %g .. %g", (double)ed->lakes[0][4],
+		      (double)ed->lakes[0][0], (double)ed->lakes[0][2], (double)ed->lakes[0][1], (double)ed->lakes[0][3]);
+	/* beyond the falloff (2): the ramp */
+	bad = 0;
+	for (int z = -16; z <= 16; z++)
+		for (int x = -16; x <= 16; x++) {
+			bool near = (z >= -11 && z <= 1) && ((x >= -13 && x <= -1) || (x >= 1 && x <= 13));
+			bad += !near && fabsf(AT(x, z) - (float)(x + 16)) > 1e-3f;
+		}
+	CHECK(bad == 0, "samples beyond the areas' falloff untouched: %d differ", bad);
+	/* no curves file: the ramp back, no lake */
+	p.curves[0] = '\0';
+	CHECK(edits_load(ed, &p, err, sizeof(err)) == 0, "areas dropped: %s", err);
+	bad = 0;
+	for (int z = -16; z <= 16; z++)
+		for (int x = -16; x <= 16; x++)
+			bad += fabsf(AT(x, z) - (float)(x + 16)) > 1e-3f;
+	CHECK(bad == 0 && ed->nlakes == 0, "the map's own samples back: %d differ, %d lakes", bad, ed->nlakes);
+#undef AT
+	terrain_destroy(tr);
+	edits_destroy(ed);
 }

@@ -462,6 +462,8 @@ int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, si
 		goto oom;
 	for (int pi = 0; pi < s->npaths; pi++) {
 		const struct curve_path *p = &s->paths[pi];
+		if (p->area) /* a polygon's ring: the edit state's areas (areas.c), no curve */
+			continue;
 		int ncub = p->npts - 1;
 		struct cubic3 *nb = realloc(cubics, sizeof(*cubics) * (size_t)(ncub > 0 ? ncub : 1));
 		if (!nb)

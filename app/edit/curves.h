@@ -35,6 +35,11 @@ _Static_assert(SURFACE_ASPHALT == ROAD_SURFACE_ASPHALT && SURFACE_BALLAST == ROA
 	       "abi.h ROAD_SURFACE_* are enum curve_surface");
 extern const char *const curve_surface_names[SURFACE_COUNT]; /* "none", "asphalt", "gravel", "dirt", "ballast" */
 
+/* An area (a GeoJSON Polygon's rings): flattened to its mean rim height
+ * (plazas, fields, landuse), or water filled to its lowest rim height
+ * (natural=water, water=*, waterway=riverbank, landuse=reservoir|basin). */
+enum curve_area { AREA_NONE, AREA_FLAT, AREA_WATER };
+
 /* What a file says of its coordinates (GeoJSON's "crs" member). */
 enum curve_crs { CURVE_CRS_UNSAID, CURVE_CRS_WGS84, CURVE_CRS_OTHER };
 
@@ -43,6 +48,12 @@ struct curve_path {
 	int kind;              /* enum curve_kind */
 	int surface;           /* enum curve_surface: the file's surface tag, else
 				* its highway class's, else the kind's */
+	int area;              /* enum curve_area: a ring of a polygon (GeoJSON),
+				* not a curve: the edit state takes it out of the
+				* curves (edits.c) and flattens or floods the
+				* heightmap under it (areas.c) */
+	int ring;              /* an area's ring: 0 the outer one, k > 0 its holes
+				* (which follow it in the set) */
 	float width;           /* w: full width of the flat part */
 	float falloff;         /* λ: blend distance beyond w/2 */
 	float inclination;     /* gain of the lateral inclination: tan α = gain · XZ curvature */

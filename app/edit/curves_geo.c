@@ -257,7 +257,7 @@ static void straight_between_ends(struct curve_path *p)
 static int split_off_ground(struct curve_set *s, int i, curve_ground_fn ground, void *ctx)
 {
 	struct curve_path *p = &s->paths[i];
-	if ((p->kind != CURVE_ROAD && p->kind != CURVE_RAILWAY) || p->npts < 2)
+	if ((p->kind != CURVE_ROAD && p->kind != CURVE_RAILWAY) || p->area || p->npts < 2)
 		return 0;
 	int n = p->npts;
 	signed char *cls = malloc((size_t)n);

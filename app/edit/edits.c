@@ -197,6 +197,39 @@ fail:
 	return -1;
 }
 
+/* The areas (polygon rings) out of s into ed->areas, the lines left in s.
+ * 0, or -1 (out of memory). */
+static int take_areas(struct edits *ed, struct curve_set *s, const struct params *p, char *err, size_t errlen)
+{
+	curve_set_free(&ed->areas);
+	int keep = 0, nrings = 0, npoly = 0;
+	for (int i = 0; i < s->npaths; i++) {
+		struct curve_path *c = &s->paths[i];
+		if (!c->area) {
+			s->paths[keep++] = *c;
+			continue;
+		}
+		nrings++;
+		npoly += c->ring == 0;
+		if (curve_set_add(&ed->areas, c) < 0) {
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		free(c->pts);
+	}
+	s->npaths = keep;
+	if (npoly && p->field != FIELD_HEIGHTMAP) {
+		char field[32] = "?";
+		const struct param_info *pi = params_find("field");
+		if (pi)
+			params_enum_name(pi, p->field, field, sizeof(field));
+		log_warn("%s: %d area%s (%d ring%s) not carved: areas flatten or flood a heightmap (field = heightmap), "
+			 "and this field is %s", p->curves, npoly, npoly == 1 ? "" : "s", nrings, nrings == 1 ? "" : "s",
+			 field);
+	}
+	return 0;
+}
+
 /* The curves file p->curves, (re)loaded when it changed. */
 static int load_curves(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
@@ -210,11 +243,21 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 		}
 		/* a new heightmap: a new frame for lon/lat, new ground for 2D */
 		if (!same_key(&k, &ed->curves_file) || !ed->curves_from_file || ed->curves_hm_gen != ed->hm_gen) {
+			/* the ground 2D curves and rims follow is the map's own */
+			unsigned g0 = ed->hm_gen;
+			areas_restore(ed);
 			struct curve_set s;
 			if (load_curves_file(ed, p, &s, err, errlen) < 0)
 				return -1;
-			if (install_curves(ed, &s, p->curve_hash_dim, true, err, errlen) < 0)
+			if (take_areas(ed, &s, p, err, errlen) < 0) {
+				curve_set_free(&s);
 				return -1;
+			}
+			if (install_curves(ed, &s, p->curve_hash_dim, true, err, errlen) < 0 ||
+			    areas_apply(ed, p, err, errlen) < 0)
+				return -1;
+			if (ed->hm_gen != g0)
+				note_change(ed, whole_plane);
 			ed->curves_file = k;
 			ed->curves_hm_gen = ed->hm_gen;
 		} else if (p->curve_hash_dim != ed->hash_dim) {
@@ -230,6 +273,12 @@ static int load_curves(struct edits *ed, const struct params *p, char *err, size
 		struct curve_set none = { .paths = NULL, .npaths = 0 };
 		if (install_curves(ed, &none, p->curve_hash_dim, false, err, errlen) < 0)
 			return -1;
+		if (ed->areas.npaths) {
+			curve_set_free(&ed->areas);
+			if (areas_apply(ed, p, err, errlen) < 0) /* restores, no lakes */
+				return -1;
+			note_change(ed, whole_plane);
+		}
 		memset(&ed->curves_file, 0, sizeof(ed->curves_file));
 	}
 	return 0;
@@ -255,6 +304,9 @@ static int load_heightmap(struct edits *ed, const struct params *p, char *err, s
 			log_info("%s", line);
 			heightmap_free(&ed->hm);
 			ed->hm = hm;
+			free(ed->hm_pristine); /* the old map's: the curves load again, and the areas */
+			ed->hm_pristine = NULL;
+			ed->hm_pristine_n = 0;
 			ed->hm_gen++;
 			ed->hm_file = k;
 			note_change(ed, whole_plane);
@@ -310,6 +362,13 @@ int edits_load(struct edits *ed, const struct params *p, char *err, size_t errle
 void edits_clear(struct edits *ed)
 {
 	curve_set_free(&ed->curves);
+	curve_set_free(&ed->areas);
+	free(ed->hm_pristine);
+	ed->hm_pristine = NULL;
+	ed->hm_pristine_n = 0;
+	free(ed->lakes);
+	ed->lakes = NULL;
+	ed->nlakes = 0;
 	curve_quads_free(&ed->quads);
 	curve_hash_free(&ed->hash);
 	heightmap_free(&ed->hm);

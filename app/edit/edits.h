@@ -91,7 +91,10 @@ struct edits {
 	struct curve_quads quads;  /* after the curve pipeline */
 	struct curve_hash hash;    /* over quads */
 	bool curves_from_file;
-	struct heightmap hm;       /* w == 0: none */
+	struct heightmap hm;       /* w == 0: none; with areas, edited (areas.c) */
+	struct curve_set areas;    /* the curves file's polygons' rings (curves.h enum curve_area) */
+	float (*lakes)[5];         /* per water area: x0, z0, x1, z1 of its rim, its level */
+	int nlakes;
 	struct heightmap control;  /* the control map, samples 0..65535; w == 0: none */
 	unsigned curves_gen, hm_gen; /* bumped on every change (GPU re-upload) */
 	unsigned control_gen;
@@ -105,7 +108,18 @@ struct edits {
 	struct edits_gl *gl;
 	edits_ground_fn ground; /* edits_set_ground: 2D curves follow it */
 	void *ground_ctx;
+	float *hm_pristine;     /* the heightmap's samples before the areas (NULL: none applied) */
+	long hm_pristine_n;
 };
+
+/* Areas on the heightmap (areas.c): the samples under ed->areas flattened
+ * (to the rim's mean height) or flooded (the rim's lowest less 2 m), blended
+ * over road_falloff (at least 1.5 samples) beyond the rim; the water areas
+ * listed in ed->lakes.  Restores the samples first; nothing without a
+ * heightmap field.  0, or -1 with err (out of memory). */
+int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errlen);
+/* The heightmap's own samples back (the areas undone). */
+void areas_restore(struct edits *ed);
 
 /* An empty edit state (no curves, no heightmap); NULL when out of memory. */
 struct edits *edits_create(void);

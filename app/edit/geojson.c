@@ -3,9 +3,11 @@
  * z up] positions, the per-path parameters in "properties", the "crs"
  * member noted for curves_geo_project, "bbox" members checked.  Errors
  * name file:line and the feature, and the axis convention where a
- * position is wrong.  A feature that is no line (Point, Polygon, ...) is
- * skipped, not refused: one note (curve_set_note) per kind of skip names
- * the features and their types. */
+ * position is wrong.  Polygon / MultiPolygon rings are areas (paths with
+ * `area` set: edits.c takes them out).  A feature that is neither (Point,
+ * GeometryCollection, ...) or a malformed polygon is skipped, not refused:
+ * one note (curve_set_note) per kind of skip names the features and their
+ * types. */
 #include "curves.h"
 #include "curves_internal.h"
 #include "json.h"
@@ -263,7 +265,7 @@ static int geo_line(struct gctx *g, const struct json_value *coords, const char 
 {
 	char label[128];
 	if (part >= 0)
-		snprintf(label, sizeof(label), "%s, line string %d", what, part + 1);
+		snprintf(label, sizeof(label), "%s, %s %d", what, base->area ? "ring" : "line string", part + 1);
 	else
 		snprintf(label, sizeof(label), "%s", what);
 	if (coords->type != JSON_ARRAY)
@@ -369,9 +371,47 @@ static const char *poly_check(const struct json_value *rings, int *nrings, char 
 	return NULL;
 }
 
-/* A Polygon or MultiPolygon: checked and counted, then skipped (areas are
- * not carved), named in the areas note. */
-static void geo_area(struct gctx *g, const char *type, const struct json_value *coords, const char *what)
+/* An area's class from its properties: "kind": "water" | "flat", else
+ * OSM's water tags, else flat. */
+static int area_class(const struct json_value *props)
+{
+	if (!props || props->type != JSON_OBJECT)
+		return AREA_FLAT;
+	const struct json_value *k = json_get(props, "kind");
+	if (k && k->type == JSON_STRING)
+		return !strcmp(k->str, "water") ? AREA_WATER : AREA_FLAT;
+	static const char *const tags[][2] = { { "natural", "water" }, { "waterway", "riverbank" },
+					       { "landuse", "reservoir" }, { "landuse", "basin" },
+					       { "natural", "bay" } };
+	for (size_t i = 0; i < sizeof(tags) / sizeof(tags[0]); i++) {
+		const struct json_value *v = osm_tag(props, tags[i][0]);
+		if (v && v->type == JSON_STRING && !strcmp(v->str, tags[i][1]))
+			return AREA_WATER;
+	}
+	const struct json_value *w = osm_tag(props, "water");
+	return w && w->type == JSON_STRING ? AREA_WATER : AREA_FLAT;
+}
+
+/* A valid Polygon's rings as area paths: the outer ring, then its holes. */
+static int geo_polygon(struct gctx *g, const struct json_value *rings, const char *what, int cls, int *part)
+{
+	struct curve_path base;
+	memset(&base, 0, sizeof(base));
+	curve_path_defaults(&base, CURVE_ROAD);
+	base.surface = SURFACE_NONE;
+	base.area = cls;
+	for (int r = 0; r < rings->n; r++) {
+		base.ring = r;
+		if (geo_line(g, &rings->items[r], what, &base, (*part)++) < 0)
+			return -1;
+	}
+	return 0;
+}
+
+/* A Polygon or MultiPolygon: checked; a malformed one is skipped, named in
+ * the areas note, a valid one's rings become area paths. */
+static int geo_area(struct gctx *g, const char *type, const struct json_value *coords, const struct json_value *props,
+		    const char *what)
 {
 	char why[96], detail[128];
 	const char *bad = NULL;
@@ -387,12 +427,18 @@ static void geo_area(struct gctx *g, const char *type, const struct json_value *
 		for (int i = 0; !bad && i < coords->n; i++, npoly++)
 			bad = poly_check(&coords->items[i], &nrings, why, sizeof(why));
 	}
-	if (bad)
+	if (bad) {
 		snprintf(detail, sizeof(detail), " (malformed: %s)", bad);
-	else
-		snprintf(detail, sizeof(detail), " (%d polygon%s, %d ring%s)", npoly, npoly == 1 ? "" : "s", nrings,
-			 nrings == 1 ? "" : "s");
-	skip_add(&g->areas, what, type, detail);
+		skip_add(&g->areas, what, type, detail);
+		return 0;
+	}
+	int cls = area_class(props), part = 0;
+	if (!strcmp(type, "Polygon"))
+		return geo_polygon(g, coords, what, cls, &part);
+	for (int i = 0; i < coords->n; i++)
+		if (geo_polygon(g, &coords->items[i], what, cls, &part) < 0)
+			return -1;
+	return 0;
 }
 
 static int geo_geometry(struct gctx *g, const struct json_value *geom, const struct json_value *props, const char *what)
@@ -411,10 +457,8 @@ static int geo_geometry(struct gctx *g, const struct json_value *geom, const str
 		return -1;
 	const struct json_value *coords = json_get(geom, "coordinates");
 	bool multi = !strcmp(t->str, "MultiLineString");
-	if (!strcmp(t->str, "Polygon") || !strcmp(t->str, "MultiPolygon")) {
-		geo_area(g, t->str, coords, what);
-		return 0;
-	}
+	if (!strcmp(t->str, "Polygon") || !strcmp(t->str, "MultiPolygon"))
+		return geo_area(g, t->str, coords, props, what);
 	if (!multi && strcmp(t->str, "LineString")) {
 		char type[48];
 		snprintf(type, sizeof(type), "%.40s", t->str);
@@ -558,8 +602,7 @@ static int bbox_note(struct gctx *g, const struct json_value *root, const struct
 static int skip_notes(struct gctx *g)
 {
 	const struct skips *k[2] = { &g->other, &g->areas };
-	static const char *const why[2] = { "not carved (only LineString and MultiLineString are)",
-					    "areas are not carved (only lines are)" };
+	static const char *const why[2] = { "not carved (only lines and polygons are)", "malformed areas" };
 	if (g->classes.n) {
 		char more[48] = "";
 		if (g->classes.n > SKIP_NAMED)
@@ -616,7 +659,7 @@ int curves_parse_geojson(const char *text, size_t len, const char *fname, struct
 		if (g.other.n || g.areas.n)
 			snprintf(skipped, sizeof(skipped), " (skipped: %s%s%s)", g.other.named, g.other.n && g.areas.n ? ", " : "",
 				 g.areas.named);
-		rc = gfail(&g, root.line, "GeoJSON", "no line strings to carve%s", skipped);
+		rc = gfail(&g, root.line, "GeoJSON", "no line strings or polygons to carve%s", skipped);
 	}
 	if (rc == 0 && (bbox_note(&g, &root, &st) < 0 || skip_notes(&g) < 0 ||
 			(g.n3d && !g.n3d_nonzero && curves_flat_zero(s, g.n3d, "z (up)") < 0)))

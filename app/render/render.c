@@ -49,6 +49,8 @@ struct renderer {
 	float clear[3];
 	GLuint surface;
 	GLuint road_tex;          /* renderer_set_road_map */
+	const float (*lakes)[5];  /* renderer_set_lakes (borrowed) */
+	int nlakes;
 	float road[6];            /* origin x z, 1 / size x z, y0, tol */
 	float scale;  /* the governor's render scale: the frame is drawn at */
 	int sw, sh;   /* sw x sh in the lower-left corner, then upscaled */
@@ -489,6 +491,29 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	glUseProgram(r->tp[r->cur].prog);
 }
 
+void renderer_set_lakes(struct renderer *r, const float (*lakes)[5], int n)
+{
+	r->lakes = lakes;
+	r->nlakes = lakes ? n : 0;
+}
+
+void renderer_lakes(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
+{
+	if (p->shape == SHAPE_PLANET)
+		return;
+	for (int i = 0; i < r->nlakes; i++) {
+		const float *l = r->lakes[i];
+		float q[4] = { fmaxf(l[0], rect[0]), fmaxf(l[1], rect[1]), fminf(l[2], rect[2]), fminf(l[3], rect[3]) };
+		/* the sea at the same height already covers it */
+		if (q[0] >= q[2] || q[1] >= q[3] || (p->water && fabsf(l[4] - p->water_level) < 1e-3f))
+			continue;
+		struct params w = *p;
+		w.water = true;
+		w.water_level = l[4];
+		renderer_water(r, c, &w, q);
+	}
+}
+
 int renderer_end(struct renderer *r)
 {
 	glDisable(GL_CULL_FACE); /* the passes after the frame draw whatever their winding */
@@ -571,6 +596,7 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	    ((p->field == FIELD_TERRAIN && p->shape == SHAPE_PLANET) ||
 	     (p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)))
 		renderer_water(r, c, p, rect);
+	renderer_lakes(r, c, p, rect);
 	return renderer_end(r);
 }
 

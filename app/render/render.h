@@ -85,6 +85,14 @@ int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen
  * the terrain's program is built without the term. */
 void renderer_set_road_map(struct renderer *r, GLuint tex, const float origin[2], const float size[2], float y0,
 			   float tol);
+/* Lakes: water surfaces of their own, n of them, each (x0, z0, x1, z1,
+ * level) — the rectangle around its rim and its surface's height (the edit
+ * state's water areas, edits.h lakes); drawn after the terrain like the
+ * sea, whether or not the sea is on.  The array is borrowed until the next
+ * call.  n 0: none. */
+void renderer_set_lakes(struct renderer *r, const float (*lakes)[5], int n);
+/* Draws the lakes (renderer_set_lakes) inside rect (x0, z0, x1, z1). */
+void renderer_lakes(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4]);
 /* Background colour (tests paint it a colour the terrain never has). */
 void renderer_set_clear(struct renderer *r, float red, float green, float blue);
 /* Draws the pipeline's mesh with its indirect command.  0 or -1. */

@@ -249,6 +249,7 @@ int world_draw(struct world *w, struct renderer *r, const struct camera *c, cons
 	float rect[4] = { c->eye[0] - p->view_distance, c->eye[2] - p->view_distance, c->eye[0] + p->view_distance,
 			  c->eye[2] + p->view_distance };
 	renderer_water(r, c, p, rect);
+	renderer_lakes(r, c, p, rect);
 	int rc = renderer_end(r);
 	w->frame_fence[w->draws % FRAMES_IN_FLIGHT] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 	if (!w->frame_fence[w->draws % FRAMES_IN_FLIGHT])
