@@ -212,6 +212,29 @@ int main(void)
 		edits_clear(ed);
 		params_defaults(&p);
 	}
+	/* a dense network (a town's roads: 600 paths in the volume, bridges
+	 * and tunnels among them): the auto-sized hash keeps every cell within
+	 * CURVE_CELL_MAX pieces, so a software rasterizer's loop limit (65535
+	 * iterations an invocation) loses no sample of the density pass */
+	{
+		struct curve_set s;
+		random_set(&s, 600, 40.0f);
+		for (int i = 0; i < s.npaths; i++) { /* streets: 2 .. 4 wide */
+			s.paths[i].width = frange(2, 4);
+			s.paths[i].falloff = frange(1, 3);
+		}
+		char err[256];
+		CHECK(edits_set_curves(ed, &s, 0, err, sizeof(err)) == 0, "dense network: %s", err);
+		printf("  dense network: %d pieces, hash %dx%d, at most %d a cell\n", ed->quads.nquads, ed->hash.dim,
+		       ed->hash.dim, ed->hash.max_per_cell);
+		CHECK(ed->hash.max_per_cell <= CURVE_CELL_MAX, "dense network: %d pieces in a cell, more than %d",
+		      ed->hash.max_per_cell, CURVE_CELL_MAX);
+		set(&p, "octaves=4");
+		check_density(ed, "terrain + a dense network", &p, 24);
+		curve_set_free(&s);
+		edits_clear(ed);
+		params_defaults(&p);
+	}
 	/* a tunnel through the terrain beside a road: the tube, its embankment,
 	 * the road's blend skipping the tunnel */
 	{

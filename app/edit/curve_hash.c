@@ -121,13 +121,9 @@ static long hash_starts(struct curve_hash *h, size_t ncell)
 	return start;
 }
 
-int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen)
+static int build_dim(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen)
 {
 	memset(h, 0, sizeof(*h));
-	if (dim == 0) { /* auto: about four pieces a cell were they spread evenly */
-		dim = (int)lrint(sqrt((double)q->nquads / 4.0));
-		dim = dim < 16 ? 16 : dim > 256 ? 256 : dim;
-	}
 	if (dim < 1)
 		dim = 1;
 	h->dim = dim;
@@ -174,4 +170,33 @@ oom:
 	curve_hash_free(h);
 	snprintf(err, errlen, "out of memory building the curve hash");
 	return -1;
+}
+
+int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen)
+{
+	if (dim != 0)
+		return build_dim(q, dim, h, err, errlen);
+	/* auto: about four pieces a cell were they spread evenly, 16 .. 256
+	 * cells a side; then finer (up to 1024) while a cell lists more than
+	 * CURVE_CELL_MAX (roads bunch up in towns) */
+	dim = (int)lrint(sqrt((double)q->nquads / 4.0));
+	dim = dim < 16 ? 16 : dim > 256 ? 256 : dim;
+	if (build_dim(q, dim, h, err, errlen) < 0)
+		return -1;
+	/* finer while it helps: a point that wide curves all reach keeps them
+	 * in its cell however fine the grid (and the entries grow) */
+	while (h->max_per_cell > CURVE_CELL_MAX && dim < 1024) {
+		struct curve_hash f;
+		char ferr[8];
+		dim = dim * 3 / 2 > 1024 ? 1024 : dim * 3 / 2;
+		if (build_dim(q, dim, &f, ferr, sizeof(ferr)) < 0)
+			break; /* too large: the coarser grid stays */
+		if (f.max_per_cell > h->max_per_cell * 9 / 10) {
+			curve_hash_free(&f);
+			break;
+		}
+		curve_hash_free(h);
+		*h = f;
+	}
+	return 0;
 }

@@ -195,6 +195,14 @@ struct curve_hash {
  * CURVE_TABLE_MAX_BYTES (its size is counted from the boxes first, before
  * any cell is filled). */
 int curve_hash_build(const struct curve_quads *q, int dim, struct curve_hash *h, char *err, size_t errlen);
+/* The most curve pieces one hash cell should list.  A pass that carves
+ * walks a cell's list per sample (twice with tunnels or bridges), and the
+ * density pass takes 32 samples an invocation: a software rasterizer
+ * (Mesa's gallivm: llvmpipe, lavapipe) ends an invocation's loops after
+ * 65535 iterations in all, and the samples after that are lost.  dim 0
+ * (auto) makes the grid finer until no cell lists more (up to 1024 cells a
+ * side); the edit state warns when a cell still does. */
+#define CURVE_CELL_MAX 192
 void curve_hash_free(struct curve_hash *h);
 /* Cell of (x, z), or -1 outside the grid (same arithmetic as the shader). */
 int curve_hash_cell(const struct curve_hash *h, float x, float z);

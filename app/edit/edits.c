@@ -83,6 +83,13 @@ static int install_curves(struct edits *ed, struct curve_set *s, int dim, bool f
 		curve_set_free(s);
 		return -1;
 	}
+	if (q.nquads)
+		log_debug("curves: %d pieces, hash %dx%d cells, at most %d a cell", q.nquads, h.dim, h.dim, h.max_per_cell);
+	if (h.max_per_cell > CURVE_CELL_MAX)
+		log_warn("curves: a cell of the %dx%d curve hash lists %d curve pieces, more than %d: a software "
+			 "rasterizer (llvmpipe) ends a shader's loops after 65535 iterations and the carve may lose "
+			 "samples; raise curve_hash_dim (0: sized to the curves)", h.dim, h.dim, h.max_per_cell,
+			 CURVE_CELL_MAX);
 	float box[4];
 	if (curves_affected_bounds(&ed->curves, s, box))
 		note_change(ed, box);
