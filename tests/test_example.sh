@@ -8,7 +8,8 @@
 #     README.md) rendered with the command docs/CURVES.md gives, compared
 #     with the stored picture docs/curves-goteborg.png, with no warning.
 #     Needs the GeoTIFF module (GDAL): skipped, with the reason, in a build
-#     without it.
+#     without it.  The same files as a world: the first frame looks across
+#     the map.
 BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
 IMGCMP=${2:?imgcmp}
 GDAL=${3:-yes}
@@ -83,6 +84,27 @@ else
 		bad "the worked example differs from docs/curves-goteborg.png: $(cat cmp)"
 	fi
 	cat cmp
+	# the world's start fitted to the map: the flight begins over its
+	# western edge looking across it, so the lower half of the first frame
+	# is the map (ground and river), darker than the sky above by far; an
+	# unfitted start (--no-fit: blocks of 4, 60 units of view) looks over a
+	# hazy plain (0.745 of the sky's luminance in this frame, 0.60 fitted)
+	if ISOTERRA_MODULE_DIR=${ISOTERRA_MODULE_DIR:-${ISOTERRA_BUILD:-$SRC/build}} \
+		"$BIN" --scene world --heightmap "$EX/dem.tif" --curves "$EX/roads.geojson" --vertical-exaggeration 3 \
+		--curves-follow-step 8 --size 320x180 --count 1 --out world.png 2>err && [ -s world.png ] &&
+		! grep -q warning err; then
+		ok
+	else
+		bad "the worked example as a world: $(cat err)"
+	fi
+	lo=$(lum world.png 0,90,320,90)
+	sky=$(lum world.png 0,0,320,30)
+	echo "world's first frame: lower half luminance $lo, the sky band's $sky"
+	if awk -v a="$lo" -v s="$sky" 'BEGIN { exit !(a < 0.7 * s) }'; then
+		ok
+	else
+		bad "the world over the map starts looking at haze or sky: lower half $lo, sky $sky"
+	fi
 fi
 
 echo "example: $pass passed, $fail failed"
