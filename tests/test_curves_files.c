@@ -324,6 +324,21 @@ void test_structures(void)
 		CHECK(fabsf(mid + 10.0f) < 0.1f, "the road follows the ground into the valley: %g at x = 0", (double)mid);
 		curve_set_free(&s);
 	}
+	/* CSV: a surface column (our names or OSM's values), per path */
+	const char *sc = "path,x,y,z,surface\na,0,0,0,gravel\na,1,0,0,\nb,0,0,1,ground\nb,1,0,1,ground\nc,0,0,2,\nc,1,0,2,\n";
+	rc = curves_parse_csv(sc, strlen(sc), "s.csv", &s, err, sizeof(err));
+	CHECK(rc == 0 && s.npaths == 3 && s.paths[0].surface == SURFACE_GRAVEL && s.paths[1].surface == SURFACE_DIRT &&
+	      s.paths[2].surface == SURFACE_ASPHALT, "CSV surfaces gravel, dirt (OSM ground), the road's asphalt (%s)", err);
+	if (rc == 0)
+		curve_set_free(&s);
+	rc = curves_parse_csv("path,x,y,z,surface\na,0,0,0,lava\na,1,0,0,\n", 41, "s.csv", &s, err, sizeof(err));
+	CHECK(rc < 0 && strstr(err, "s.csv:2: surface 'lava' is not asphalt"), "an unknown surface refused: %s", err);
+	if (rc == 0)
+		curve_set_free(&s);
+	rc = curves_parse_csv("path,x,y,z,surface\na,0,0,0,gravel\na,1,0,0,dirt\n", 47, "s.csv", &s, err, sizeof(err));
+	CHECK(rc < 0 && strstr(err, "surface of path 'a' changes along the path"), "a changing surface refused: %s", err);
+	if (rc == 0)
+		curve_set_free(&s);
 	/* 3D: a road at 0 across the valley, 7 points: its middle three run
 	 * 6.5 .. 10 above the floor, more than w/2 + falloff = 4 */
 	const char *csv = "path,x,y,z,width,falloff\n"

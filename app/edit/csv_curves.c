@@ -1,5 +1,5 @@
 /* isoterra — curve input, CSV: a header line naming the columns
- * path,x,y,z[,kind,width,falloff,inclination,smoothing] (any order, any
+ * path,x,y,z[,kind,width,falloff,inclination,smoothing,surface] (any order, any
  * case), then one point a row, y up; a path's rows are consecutive, its
  * properties may be given on any of them but must not change.  Blank lines
  * and lines starting with '#' are skipped.  Errors name file:line. */
@@ -14,9 +14,9 @@
 #include <string.h>
 #include <strings.h>
 
-enum { COL_PATH, COL_X, COL_Y, COL_Z, COL_KIND, COL_WIDTH, COL_FALLOFF, COL_INCL, COL_SMOOTH, NCOL };
+enum { COL_PATH, COL_X, COL_Y, COL_Z, COL_KIND, COL_WIDTH, COL_FALLOFF, COL_INCL, COL_SMOOTH, COL_SURFACE, NCOL };
 static const char *const col_names[NCOL] = { "path", "x", "y", "z", "kind", "width", "falloff", "inclination",
-					     "smoothing" };
+					     "smoothing", "surface" };
 #define MAX_FIELDS 32
 #define MAX_ID 64
 
@@ -27,6 +27,7 @@ struct csv {
 	struct curve_set *s;
 	int lineno;
 	int col[NCOL];             /* field of each column, -1 when absent */
+	bool surface_set;          /* the path's surface came from a cell */
 	int nhead;                 /* fields in the header */
 	bool have_header;
 	struct curve_path cur;     /* the path being read */
@@ -193,6 +194,7 @@ static int csv_start_path(struct csv *c, char **f)
 	float *pts = c->cur.pts;
 	curve_path_defaults(&c->cur, kind);
 	c->cur.pts = pts;
+	c->surface_set = false;
 	c->cur.npts = 0;
 	snprintf(c->cur.label, sizeof(c->cur.label), "%.80s:%d: path '%.63s'", c->fname, c->lineno, id);
 	memset(c->set_prop, 0, sizeof(c->set_prop));
@@ -221,6 +223,17 @@ static int csv_props(struct csv *c, char **f)
 	int kcol = c->col[COL_KIND];
 	if (kcol >= 0 && *f[kcol] && curve_kind_parse(f[kcol]) != c->cur.kind)
 		return cfail(c, c->lineno, "kind of path '%s' changes along the path", c->cur_id);
+	int scol = c->col[COL_SURFACE];
+	if (scol >= 0 && *f[scol]) {
+		int s = curve_surface_of_tag(f[scol]);
+		if (s < 0)
+			return cfail(c, c->lineno, "surface '%s' is not asphalt, gravel, dirt, ballast, none or an OSM "
+				     "surface value (paved, compacted, ground, ...)", f[scol]);
+		if (c->surface_set && s != c->cur.surface)
+			return cfail(c, c->lineno, "surface of path '%s' changes along the path", c->cur_id);
+		c->cur.surface = s;
+		c->surface_set = true;
+	}
 	return 0;
 }
 

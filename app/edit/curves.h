@@ -228,7 +228,7 @@ void curve_path_padded_box(const struct curve_path *p, float box[4]);
  * y north, z up] -> world (x, z_up, -y), in degrees until
  * curves_geo_project; other geometries skipped with a note), GPX
  * (curves_parse_gpx) or CSV (header line,
- * columns path,x,y,z[,kind,width,falloff,inclination,smoothing], y up).
+ * columns path,x,y,z[,kind,width,falloff,inclination,smoothing,surface], y up).
  * The format is chosen by the extension (.geojson/.json, .gpx, .csv).
  * Errors name file:line and the feature.  0 or -1 with err; s->notes
  * holds what was skipped or assumed instead of refused. */
