@@ -12,43 +12,76 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Even-odd: is (x, z) inside the ring's XZ polygon? */
-static bool ring_inside(const struct curve_path *r, float x, float z)
+/* The samples of a polygon's bounding box [i0, i1] x [j0, j1] (world x =
+ * (i - cx) * sc, z = (j - cz) * sc): inside (even-odd over its rings, the
+ * outer one and its holes: a row's crossings sorted, the spans between
+ * filled; O(rows x edges + samples)), and the distance to the nearest ring
+ * edge where it is under fall (each edge visits the samples of its box
+ * grown by fall; elsewhere INFINITY).  inside and dist hold nx * nz. */
+struct poly_grid {
+	int i0, j0, nx, nz;
+	float cx, cz, sc;
+};
+
+static int cmp_float(const void *a, const void *b)
 {
-	bool in = false;
-	for (int i = 0, j = r->npts - 1; i < r->npts; j = i++) {
-		float xi = r->pts[3 * i], zi = r->pts[3 * i + 2], xj = r->pts[3 * j], zj = r->pts[3 * j + 2];
-		if ((zi > z) != (zj > z) && x < (xj - xi) * (z - zi) / (zj - zi) + xi)
-			in = !in;
-	}
-	return in;
+	float x = *(const float *)a, y = *(const float *)b;
+	return x < y ? -1 : x > y;
 }
 
-/* The XZ distance from (x, z) to the ring's edges. */
-static float ring_distance(const struct curve_path *r, float x, float z)
+static int poly_fill(const struct curve_path *rings, int first, int end, const struct poly_grid *g, unsigned char *inside,
+		     float *xs)
 {
-	float best = INFINITY;
-	for (int i = 0, j = r->npts - 1; i < r->npts; j = i++) {
-		float ax = r->pts[3 * j], az = r->pts[3 * j + 2], bx = r->pts[3 * i] - ax, bz = r->pts[3 * i + 2] - az;
-		float l2 = bx * bx + bz * bz, t = l2 > 0.0f ? ((x - ax) * bx + (z - az) * bz) / l2 : 0.0f;
-		t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
-		float dx = x - ax - bx * t, dz = z - az - bz * t;
-		best = fminf(best, dx * dx + dz * dz);
+	for (int r = 0; r < g->nz; r++) {
+		float z = ((float)(g->j0 + r) - g->cz) * g->sc;
+		int n = 0;
+		for (int k = first; k < end; k++) {
+			const struct curve_path *c = &rings[k];
+			for (int i = 0, j = c->npts - 1; i < c->npts; j = i++) {
+				float zi = c->pts[3 * i + 2], zj = c->pts[3 * j + 2];
+				if ((zi > z) != (zj > z)) {
+					float xi = c->pts[3 * i], xj = c->pts[3 * j];
+					xs[n++] = xi + (xj - xi) * (z - zi) / (zj - zi);
+				}
+			}
+		}
+		qsort(xs, (size_t)n, sizeof(float), cmp_float);
+		for (int p = 0; p + 1 < n; p += 2) {
+			int a = (int)ceilf(xs[p] / g->sc + g->cx) - g->i0, b = (int)floorf(xs[p + 1] / g->sc + g->cx) - g->i0;
+			a = a < 0 ? 0 : a;
+			b = b > g->nx - 1 ? g->nx - 1 : b;
+			for (int i = a; i <= b; i++)
+				inside[(size_t)r * g->nx + i] = 1;
+		}
 	}
-	return sqrtf(best);
+	return 0;
 }
 
-/* The polygon of rings [first, end): inside the outer ring and no hole;
- * the distance to its nearest ring. */
-static bool poly_inside(const struct curve_path *rings, int first, int end, float x, float z, float *dist)
+static void poly_band(const struct curve_path *rings, int first, int end, const struct poly_grid *g, float fall,
+		      float *dist)
 {
-	bool in = ring_inside(&rings[first], x, z);
-	*dist = ring_distance(&rings[first], x, z);
-	for (int k = first + 1; k < end; k++) {
-		in = in && !ring_inside(&rings[k], x, z);
-		*dist = fminf(*dist, ring_distance(&rings[k], x, z));
+	for (int k = first; k < end; k++) {
+		const struct curve_path *c = &rings[k];
+		for (int i = 0, j = c->npts - 1; i < c->npts; j = i++) {
+			float ax = c->pts[3 * j], az = c->pts[3 * j + 2], bx = c->pts[3 * i] - ax, bz = c->pts[3 * i + 2] - az;
+			float l2 = bx * bx + bz * bz;
+			int x0 = (int)floorf((fminf(ax, ax + bx) - fall) / g->sc + g->cx) - g->i0;
+			int x1 = (int)ceilf((fmaxf(ax, ax + bx) + fall) / g->sc + g->cx) - g->i0;
+			int z0 = (int)floorf((fminf(az, az + bz) - fall) / g->sc + g->cz) - g->j0;
+			int z1 = (int)ceilf((fmaxf(az, az + bz) + fall) / g->sc + g->cz) - g->j0;
+			x0 = x0 < 0 ? 0 : x0, z0 = z0 < 0 ? 0 : z0;
+			x1 = x1 > g->nx - 1 ? g->nx - 1 : x1, z1 = z1 > g->nz - 1 ? g->nz - 1 : z1;
+			for (int zz = z0; zz <= z1; zz++)
+				for (int xx = x0; xx <= x1; xx++) {
+					float x = ((float)(g->i0 + xx) - g->cx) * g->sc, z = ((float)(g->j0 + zz) - g->cz) * g->sc;
+					float t = l2 > 0.0f ? ((x - ax) * bx + (z - az) * bz) / l2 : 0.0f;
+					t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
+					float dx = x - ax - bx * t, dz = z - az - bz * t;
+					float *d = &dist[(size_t)zz * g->nx + xx];
+					*d = fminf(*d, sqrtf(dx * dx + dz * dz));
+				}
+		}
 	}
-	return in;
 }
 
 static void restore(struct edits *ed)
@@ -127,22 +160,41 @@ int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errl
 		int j0 = (int)floorf((lo[1] - fall) / sc + 0.5f * (float)(hm->h - 1)), j1 = (int)ceilf((hi[1] + fall) / sc + 0.5f * (float)(hm->h - 1));
 		i0 = i0 < 0 ? 0 : i0, j0 = j0 < 0 ? 0 : j0;
 		i1 = i1 > hm->w - 1 ? hm->w - 1 : i1, j1 = j1 > hm->h - 1 ? hm->h - 1 : j1;
-		for (int j = j0; j <= j1; j++)
-			for (int i = i0; i <= i1; i++) {
-				float x = ((float)i - 0.5f * (float)(hm->w - 1)) * sc, z = ((float)j - 0.5f * (float)(hm->h - 1)) * sc;
-				float d;
-				bool in = poly_inside(a->paths, first, end, x, z, &d);
-				float w = 1.0f, target = in ? floor_y : level;
-				if (!in) {
-					float t = 1.0f - d / fall;
-					if (t <= 0.0f)
-						continue;
-					w = t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
-				}
-				float *v = &hm->v[(size_t)j * hm->w + i];
-				float y = base + *v * k;
-				*v = (y + (target - y) * w - base) / k;
+		if (i1 >= i0 && j1 >= j0) {
+			struct poly_grid g = { i0, j0, i1 - i0 + 1, j1 - j0 + 1, 0.5f * (float)(hm->w - 1),
+					       0.5f * (float)(hm->h - 1), sc };
+			size_t nxz = (size_t)g.nx * (size_t)g.nz;
+			long nedge = 0;
+			for (int r = first; r < end; r++)
+				nedge += a->paths[r].npts;
+			unsigned char *inside = calloc(nxz, 1);
+			float *dist = malloc(sizeof(float) * nxz), *xs = malloc(sizeof(float) * (size_t)(nedge + 1));
+			if (!inside || !dist || !xs) {
+				free(inside), free(dist), free(xs);
+				snprintf(err, errlen, "out of memory for the areas");
+				return -1;
 			}
+			for (size_t q = 0; q < nxz; q++)
+				dist[q] = INFINITY;
+			poly_fill(a->paths, first, end, &g, inside, xs);
+			poly_band(a->paths, first, end, &g, fall, dist);
+			for (int r = 0; r < g.nz; r++)
+				for (int c = 0; c < g.nx; c++) {
+					size_t q = (size_t)r * g.nx + c;
+					bool in = inside[q];
+					float w = 1.0f, target = in ? floor_y : level;
+					if (!in) {
+						float t = 1.0f - dist[q] / fall;
+						if (!(t > 0.0f))
+							continue;
+						w = t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+					}
+					float *v = &hm->v[(size_t)(j0 + r) * hm->w + i0 + c];
+					float y = base + *v * k;
+					*v = (y + (target - y) * w - base) / k;
+				}
+			free(inside), free(dist), free(xs);
+		}
 		if (water) {
 			float *l = ed->lakes[ed->nlakes++];
 			l[0] = lo[0], l[1] = lo[1], l[2] = hi[0], l[3] = hi[1], l[4] = level;
