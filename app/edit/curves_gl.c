@@ -511,6 +511,13 @@ int edits_road_map(struct edits *ed, const struct params *p, struct road_map *ou
 	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_HALF_FLOAT, (const void *)0);
 	glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 	glActiveTexture((GLenum)prev);
+	/* the bake's map and its zeros (as large as the texture) are not kept:
+	 * boards share their memory with the CPU (the GL keeps them until the
+	 * copy is done) */
+	GLuint scratch[2] = { G->b_bake, G->b_zero };
+	glDeleteBuffers(2, scratch);
+	G->b_bake = G->b_zero = 0;
+	G->bake_cap = G->zero_cap = 0;
 	if (gpu_check("road map") < 0) {
 		snprintf(err, errlen, "the %dx%d road map could not be made (GL error)", w, h);
 		return -1;
