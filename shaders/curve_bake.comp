@@ -9,8 +9,9 @@
 //   CURVE_ITERATIVE (+ BAKE_DENSE) the benchmark's baseline: 32 line
 //                  segments per curve, every curve, no hash
 //   BAKE_MATERIAL  the road map instead (render.frag): per texel the
-//                  closest curve of any kind with a surface, as two words
-//                  of half floats, (Θ, surface) and (height, 0)
+//                  curve of any kind with a surface that paints it most,
+//                  as two words of half floats, (paint, surface) and
+//                  (height - u_bake_y0, 0)
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "curves.glsl"
 #ifdef BAKE_HEIGHTMAP
@@ -26,11 +27,7 @@ layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer BakeOut { uint 
 // crossing a road is the road's), then the nearer.
 vec3 material_at(vec2 pos)
 {
-	vec2 l = pos - u_curve_hash_origin;
-	if (u_curve_count == 0 || !(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
-		return vec3(0.0);
-	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
-	ivec2 piv = curve_pivot(c.x + c.y * u_curve_hash_dim.x);
+	ivec2 piv = curve_cell(pos);
 	float bd = 1e30, bw = 0.0, kind = 0.0;
 	vec3 best = vec3(0.0);
 	best.x = -1.0;

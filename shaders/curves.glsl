@@ -268,6 +268,17 @@ vec4 curve_accumulate(vec2 pos, int start, int count)
 	return vec4(h, bth, bd, sw);
 }
 
+// The hash cell's list at pos: (start, count) into curve_index, (0, 0)
+// outside the hash's rectangle or with no curves.
+ivec2 curve_cell(vec2 pos)
+{
+	vec2 l = pos - u_curve_hash_origin;
+	if (u_curve_count == 0 || !(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
+		return ivec2(0);
+	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
+	return curve_pivot(c.x + c.y * u_curve_hash_dim.x);
+}
+
 vec4 curve_eval(vec2 pos)
 {
 	vec4 none = vec4(0.0, 0.0, 1e30, 0.0);
@@ -276,11 +287,7 @@ vec4 curve_eval(vec2 pos)
 #ifdef CURVE_ITERATIVE
 	return curve_accumulate(pos, u_curve_all_offset, u_curve_count);
 #else
-	vec2 l = pos - u_curve_hash_origin;
-	if (!(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
-		return none;
-	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
-	ivec2 piv = curve_pivot(c.x + c.y * u_curve_hash_dim.x);
+	ivec2 piv = curve_cell(pos);
 	if (piv.y == 0)
 		return none;
 	return curve_accumulate(pos, piv.x, piv.y);
@@ -326,11 +333,7 @@ vec2 tunnel_eval(vec3 ws)
 #ifdef CURVE_ITERATIVE
 	return tunnel_accumulate(ws, u_curve_all_offset, u_curve_count);
 #else
-	vec2 l = ws.xz - u_curve_hash_origin;
-	if (!(l.x >= 0.0 && l.y >= 0.0 && l.x < u_curve_hash_size.x && l.y < u_curve_hash_size.y))
-		return none;
-	ivec2 c = min(ivec2(floor(l / u_curve_hash_cell)), u_curve_hash_dim - 1);
-	ivec2 piv = curve_pivot(c.x + c.y * u_curve_hash_dim.x);
+	ivec2 piv = curve_cell(ws.xz);
 	return tunnel_accumulate(ws, piv.x, piv.y);
 #endif
 }

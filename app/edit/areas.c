@@ -23,14 +23,20 @@ struct poly_grid {
 	float cx, cz, sc;
 };
 
+/* v (a sample index, in float) as an int within [lo, hi] */
+static int clamp_index(float v, int lo, int hi)
+{
+	return v < (float)lo ? lo : v > (float)hi ? hi : (int)v;
+}
+
 static int cmp_float(const void *a, const void *b)
 {
 	float x = *(const float *)a, y = *(const float *)b;
 	return x < y ? -1 : x > y;
 }
 
-static int poly_fill(const struct curve_path *rings, int first, int end, const struct poly_grid *g, unsigned char *inside,
-		     float *xs)
+static void poly_fill(const struct curve_path *rings, int first, int end, const struct poly_grid *g, unsigned char *inside,
+		      float *xs)
 {
 	for (int r = 0; r < g->nz; r++) {
 		float z = ((float)(g->j0 + r) - g->cz) * g->sc;
@@ -47,14 +53,15 @@ static int poly_fill(const struct curve_path *rings, int first, int end, const s
 		}
 		qsort(xs, (size_t)n, sizeof(float), cmp_float);
 		for (int p = 0; p + 1 < n; p += 2) {
-			int a = (int)ceilf(xs[p] / g->sc + g->cx) - g->i0, b = (int)floorf(xs[p + 1] / g->sc + g->cx) - g->i0;
-			a = a < 0 ? 0 : a;
-			b = b > g->nx - 1 ? g->nx - 1 : b;
+			float fa = ceilf(xs[p] / g->sc + g->cx) - (float)g->i0;
+			float fb = floorf(xs[p + 1] / g->sc + g->cx) - (float)g->i0;
+			if (fb < fa)
+				continue;
+			int a = clamp_index(fa, 0, g->nx), b = clamp_index(fb, -1, g->nx - 1);
 			for (int i = a; i <= b; i++)
 				inside[(size_t)r * g->nx + i] = 1;
 		}
 	}
-	return 0;
 }
 
 static void poly_band(const struct curve_path *rings, int first, int end, const struct poly_grid *g, float fall,
@@ -65,12 +72,10 @@ static void poly_band(const struct curve_path *rings, int first, int end, const 
 		for (int i = 0, j = c->npts - 1; i < c->npts; j = i++) {
 			float ax = c->pts[3 * j], az = c->pts[3 * j + 2], bx = c->pts[3 * i] - ax, bz = c->pts[3 * i + 2] - az;
 			float l2 = bx * bx + bz * bz;
-			int x0 = (int)floorf((fminf(ax, ax + bx) - fall) / g->sc + g->cx) - g->i0;
-			int x1 = (int)ceilf((fmaxf(ax, ax + bx) + fall) / g->sc + g->cx) - g->i0;
-			int z0 = (int)floorf((fminf(az, az + bz) - fall) / g->sc + g->cz) - g->j0;
-			int z1 = (int)ceilf((fmaxf(az, az + bz) + fall) / g->sc + g->cz) - g->j0;
-			x0 = x0 < 0 ? 0 : x0, z0 = z0 < 0 ? 0 : z0;
-			x1 = x1 > g->nx - 1 ? g->nx - 1 : x1, z1 = z1 > g->nz - 1 ? g->nz - 1 : z1;
+			int x0 = clamp_index(floorf((fminf(ax, ax + bx) - fall) / g->sc + g->cx) - (float)g->i0, 0, g->nx);
+			int x1 = clamp_index(ceilf((fmaxf(ax, ax + bx) + fall) / g->sc + g->cx) - (float)g->i0, -1, g->nx - 1);
+			int z0 = clamp_index(floorf((fminf(az, az + bz) - fall) / g->sc + g->cz) - (float)g->j0, 0, g->nz);
+			int z1 = clamp_index(ceilf((fmaxf(az, az + bz) + fall) / g->sc + g->cz) - (float)g->j0, -1, g->nz - 1);
 			for (int zz = z0; zz <= z1; zz++)
 				for (int xx = x0; xx <= x1; xx++) {
 					float x = ((float)(g->i0 + xx) - g->cx) * g->sc, z = ((float)(g->j0 + zz) - g->cz) * g->sc;
@@ -84,26 +89,71 @@ static void poly_band(const struct curve_path *rings, int first, int end, const 
 	}
 }
 
-static void restore(struct edits *ed)
+void areas_restore(struct edits *ed)
 {
 	if (!ed->hm_pristine)
 		return;
-	if (ed->hm.w * ed->hm.h == ed->hm_pristine_n)
-		memcpy(ed->hm.v, ed->hm_pristine, sizeof(float) * (size_t)ed->hm_pristine_n);
+	memcpy(ed->hm.v, ed->hm_pristine, sizeof(float) * (size_t)ed->hm.w * (size_t)ed->hm.h);
 	free(ed->hm_pristine);
 	ed->hm_pristine = NULL;
-	ed->hm_pristine_n = 0;
 	ed->hm_gen++;
 }
 
-void areas_restore(struct edits *ed)
+/* The sample index of world coordinate x on an axis of n samples centred
+ * on 0, sc apart, rounded by `round`, clamped to [-1, n] (so a far polygon
+ * makes an empty range, never an int overflow). */
+static int sample_at(float x, float sc, int n, float (*round)(float))
 {
-	restore(ed);
+	return clamp_index(round(x / sc + 0.5f * (float)(n - 1)), -1, n);
+}
+
+/* One polygon, rings [first, end) (the outer one first), on the heightmap:
+ * inside set to floor_y, beyond the rim blended to level over fall (the
+ * quintic Θ).  The samples are world heights base + v * k.  0, or -1 when
+ * out of memory. */
+static int apply_polygon(struct heightmap *hm, const struct curve_path *rings, int first, int end, const float lo[2],
+			 const float hi[2], float level, float floor_y, float fall, float base, float k, float sc)
+{
+	int i0 = sample_at(lo[0] - fall, sc, hm->w, floorf), i1 = sample_at(hi[0] + fall, sc, hm->w, ceilf);
+	int j0 = sample_at(lo[1] - fall, sc, hm->h, floorf), j1 = sample_at(hi[1] + fall, sc, hm->h, ceilf);
+	i0 = i0 < 0 ? 0 : i0, j0 = j0 < 0 ? 0 : j0;
+	i1 = i1 > hm->w - 1 ? hm->w - 1 : i1, j1 = j1 > hm->h - 1 ? hm->h - 1 : j1;
+	if (i1 < i0 || j1 < j0)
+		return 0;
+	struct poly_grid g = { i0, j0, i1 - i0 + 1, j1 - j0 + 1, 0.5f * (float)(hm->w - 1), 0.5f * (float)(hm->h - 1), sc };
+	size_t nxz = (size_t)g.nx * (size_t)g.nz;
+	long nedge = 0;
+	for (int r = first; r < end; r++)
+		nedge += rings[r].npts;
+	unsigned char *inside = calloc(nxz, 1);
+	float *dist = malloc(sizeof(float) * nxz), *xs = malloc(sizeof(float) * (size_t)(nedge + 1));
+	int rc = inside && dist && xs ? 0 : -1;
+	if (rc == 0) {
+		for (size_t q = 0; q < nxz; q++)
+			dist[q] = INFINITY;
+		poly_fill(rings, first, end, &g, inside, xs);
+		poly_band(rings, first, end, &g, fall, dist);
+		for (size_t q = 0; q < nxz; q++) {
+			float w = 1.0f, t = 1.0f - dist[q] / fall;
+			if (!inside[q]) {
+				if (!(t > 0.0f))
+					continue;
+				w = t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+			}
+			float *v = &hm->v[(size_t)(j0 + (int)(q / (size_t)g.nx)) * hm->w + i0 + (int)(q % (size_t)g.nx)];
+			float y = base + *v * k, target = inside[q] ? floor_y : level;
+			*v = (y + (target - y) * w - base) / k;
+		}
+	}
+	free(inside);
+	free(dist);
+	free(xs);
+	return rc;
 }
 
 int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errlen)
 {
-	restore(ed);
+	areas_restore(ed);
 	free(ed->lakes);
 	ed->lakes = NULL;
 	ed->nlakes = 0;
@@ -111,7 +161,6 @@ int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errl
 	if (a->npaths == 0 || !ed->hm.w || p->field != FIELD_HEIGHTMAP)
 		return 0;
 	struct heightmap *hm = &ed->hm;
-	long n = (long)hm->w * hm->h;
 	if (!(p->heightmap_height > 0.0f) || !(p->heightmap_scale > 0.0f)) {
 		log_warn("areas: the heightmap has no relief to edit (heightmap_height %g): %d ring%s unused",
 			 (double)p->heightmap_height, a->npaths, a->npaths == 1 ? "" : "s");
@@ -120,7 +169,8 @@ int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errl
 	int npoly = 0;
 	for (int i = 0; i < a->npaths; i++)
 		npoly += a->paths[i].ring == 0;
-	ed->hm_pristine = malloc(sizeof(float) * (size_t)n);
+	size_t n = (size_t)hm->w * (size_t)hm->h;
+	ed->hm_pristine = malloc(sizeof(float) * n);
 	ed->lakes = calloc((size_t)(npoly ? npoly : 1), sizeof(*ed->lakes));
 	if (!ed->hm_pristine || !ed->lakes) {
 		free(ed->hm_pristine);
@@ -128,18 +178,17 @@ int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errl
 		snprintf(err, errlen, "out of memory for the areas");
 		return -1;
 	}
-	memcpy(ed->hm_pristine, hm->v, sizeof(float) * (size_t)n);
-	ed->hm_pristine_n = n;
+	memcpy(ed->hm_pristine, hm->v, sizeof(float) * n);
+	ed->hm_gen++;
 	/* a sample's world height and back (carve_ref.c heightmap_ref_base) */
 	float k = p->heightmap_height / 65535.0f, base = p->heightmap_base, sc = p->heightmap_scale;
 	float fall = fmaxf(p->road_falloff, 1.5f * sc);
 	float depth = 2.0f * p->curves_geo_scale * p->vertical_exaggeration;
 	int nflat = 0, nwater = 0;
 	double t0 = clock_ms();
-	for (int first = 0; first < a->npaths;) {
-		int end = first + 1;
-		while (end < a->npaths && a->paths[end].ring > 0)
-			end++;
+	for (int first = 0, end; first < a->npaths; first = end) {
+		for (end = first + 1; end < a->npaths && a->paths[end].ring > 0; end++)
+			;
 		const struct curve_path *outer = &a->paths[first];
 		float lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY, -INFINITY }, ymin = INFINITY;
 		double ysum = 0.0, len = 0.0;
@@ -155,56 +204,18 @@ int areas_apply(struct edits *ed, const struct params *p, char *err, size_t errl
 		}
 		bool water = outer->area == AREA_WATER;
 		float level = water ? ymin : (float)(len > 0.0 ? ysum / len : outer->pts[1]);
-		float floor_y = water ? level - depth : level;
-		int i0 = (int)floorf((lo[0] - fall) / sc + 0.5f * (float)(hm->w - 1)), i1 = (int)ceilf((hi[0] + fall) / sc + 0.5f * (float)(hm->w - 1));
-		int j0 = (int)floorf((lo[1] - fall) / sc + 0.5f * (float)(hm->h - 1)), j1 = (int)ceilf((hi[1] + fall) / sc + 0.5f * (float)(hm->h - 1));
-		i0 = i0 < 0 ? 0 : i0, j0 = j0 < 0 ? 0 : j0;
-		i1 = i1 > hm->w - 1 ? hm->w - 1 : i1, j1 = j1 > hm->h - 1 ? hm->h - 1 : j1;
-		if (i1 >= i0 && j1 >= j0) {
-			struct poly_grid g = { i0, j0, i1 - i0 + 1, j1 - j0 + 1, 0.5f * (float)(hm->w - 1),
-					       0.5f * (float)(hm->h - 1), sc };
-			size_t nxz = (size_t)g.nx * (size_t)g.nz;
-			long nedge = 0;
-			for (int r = first; r < end; r++)
-				nedge += a->paths[r].npts;
-			unsigned char *inside = calloc(nxz, 1);
-			float *dist = malloc(sizeof(float) * nxz), *xs = malloc(sizeof(float) * (size_t)(nedge + 1));
-			if (!inside || !dist || !xs) {
-				free(inside), free(dist), free(xs);
-				snprintf(err, errlen, "out of memory for the areas");
-				return -1;
-			}
-			for (size_t q = 0; q < nxz; q++)
-				dist[q] = INFINITY;
-			poly_fill(a->paths, first, end, &g, inside, xs);
-			poly_band(a->paths, first, end, &g, fall, dist);
-			for (int r = 0; r < g.nz; r++)
-				for (int c = 0; c < g.nx; c++) {
-					size_t q = (size_t)r * g.nx + c;
-					bool in = inside[q];
-					float w = 1.0f, target = in ? floor_y : level;
-					if (!in) {
-						float t = 1.0f - dist[q] / fall;
-						if (!(t > 0.0f))
-							continue;
-						w = t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
-					}
-					float *v = &hm->v[(size_t)(j0 + r) * hm->w + i0 + c];
-					float y = base + *v * k;
-					*v = (y + (target - y) * w - base) / k;
-				}
-			free(inside), free(dist), free(xs);
+		if (apply_polygon(hm, a->paths, first, end, lo, hi, level, water ? level - depth : level, fall, base, k,
+				  sc) < 0) {
+			snprintf(err, errlen, "out of memory for the areas");
+			return -1;
 		}
 		if (water) {
 			float *l = ed->lakes[ed->nlakes++];
 			l[0] = lo[0], l[1] = lo[1], l[2] = hi[0], l[3] = hi[1], l[4] = level;
-			nwater++;
-		} else {
-			nflat++;
 		}
-		first = end;
+		nwater += water;
+		nflat += !water;
 	}
-	ed->hm_gen++;
 	log_info("areas: %d flattened, %d filled with water, on the heightmap's %dx%d samples (blended over %g world "
 		 "units), in %.2f ms", nflat, nwater, hm->w, hm->h, (double)fall, clock_ms() - t0);
 	return 0;

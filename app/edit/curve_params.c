@@ -71,24 +71,27 @@ float curve_highway_width(const char *cls)
 }
 
 /* OSM surface=* values (wiki "Key:surface") by look. */
+static const struct {
+	const char *tag;
+	int surface;
+} osm_surfaces[] = {
+	{ "paved", SURFACE_ASPHALT },        { "concrete", SURFACE_ASPHALT },      { "concrete:plates", SURFACE_ASPHALT },
+	{ "concrete:lanes", SURFACE_ASPHALT }, { "paving_stones", SURFACE_ASPHALT }, { "sett", SURFACE_ASPHALT },
+	{ "cobblestone", SURFACE_ASPHALT },  { "unhewn_cobblestone", SURFACE_ASPHALT }, { "chipseal", SURFACE_ASPHALT },
+	{ "metal", SURFACE_ASPHALT },        { "wood", SURFACE_ASPHALT },          { "bricks", SURFACE_ASPHALT },
+	{ "fine_gravel", SURFACE_GRAVEL },   { "compacted", SURFACE_GRAVEL },      { "unpaved", SURFACE_GRAVEL },
+	{ "pebblestone", SURFACE_GRAVEL },   { "rock", SURFACE_GRAVEL },           { "shells", SURFACE_GRAVEL },
+	{ "ground", SURFACE_DIRT },          { "earth", SURFACE_DIRT },            { "grass", SURFACE_DIRT },
+	{ "sand", SURFACE_DIRT },            { "mud", SURFACE_DIRT },              { "soil", SURFACE_DIRT },
+	{ "woodchips", SURFACE_DIRT },       { "grass_paver", SURFACE_DIRT },
+};
+
 int curve_surface_of_tag(const char *v)
 {
-	static const char *const paved[] = { "asphalt", "paved", "concrete", "concrete:plates", "concrete:lanes",
-					     "paving_stones", "sett", "cobblestone", "unhewn_cobblestone", "chipseal",
-					     "metal", "wood", "bricks" };
-	static const char *const gravel[] = { "gravel", "fine_gravel", "compacted", "unpaved", "pebblestone", "rock",
-					      "shells" };
-	static const char *const dirt[] = { "dirt", "ground", "earth", "grass", "sand", "mud", "soil", "woodchips",
-					    "grass_paver" };
-	for (size_t i = 0; i < sizeof(paved) / sizeof(paved[0]); i++)
-		if (!strcmp(v, paved[i]))
-			return SURFACE_ASPHALT;
-	for (size_t i = 0; i < sizeof(gravel) / sizeof(gravel[0]); i++)
-		if (!strcmp(v, gravel[i]))
-			return SURFACE_GRAVEL;
-	for (size_t i = 0; i < sizeof(dirt) / sizeof(dirt[0]); i++)
-		if (!strcmp(v, dirt[i]))
-			return SURFACE_DIRT;
+	for (size_t i = 0; i < sizeof(osm_surfaces) / sizeof(osm_surfaces[0]); i++)
+		if (!strcmp(v, osm_surfaces[i].tag))
+			return osm_surfaces[i].surface;
+	/* our own names, which OSM shares for asphalt, gravel and dirt */
 	for (int k = 0; k < SURFACE_COUNT; k++)
 		if (!strcmp(v, curve_surface_names[k]))
 			return k;

@@ -366,9 +366,8 @@ static void quad_box(const float p0[3], const float p1[3], const float p2[3], fl
 }
 
 /* (w/2, λ, kind, surface) of a path's control points. */
-static void set_prm(float prm[4], const struct curve_path *p, int pi)
+static void set_prm(float prm[4], const struct curve_path *p)
 {
-	(void)pi;
 	prm[0] = 0.5f * p->width;
 	prm[1] = p->falloff;
 	prm[2] = (float)p->kind;
@@ -395,7 +394,7 @@ static int add_path_quads(struct curve_quads *q, const struct curve_path *p, int
 			q->path[qi] = pi;
 			memcpy(q->ctrl[c + 1], qq[h]->p[1], sizeof(float) * 3);
 			memcpy(q->ctrl[c + 2], qq[h]->p[2], sizeof(float) * 3);
-			set_prm(q->prm[c], p, pi);
+			set_prm(q->prm[c], p);
 			c += 2;
 		}
 	}
@@ -473,7 +472,7 @@ int curves_build(const struct curve_set *s, struct curve_quads *q, char *err, si
 		int base = q->nctrl;
 		int c = add_path_quads(q, p, pi, cubics);
 		path_inclination(q, p, base, 2 * ncub);
-		set_prm(q->prm[c], p, pi); /* last anchor: same parameters */
+		set_prm(q->prm[c], p); /* last anchor: same parameters */
 		q->nctrl = c + 1;
 	}
 	for (int k = 0; k < q->nquads; k++) {

@@ -343,13 +343,13 @@ int curves_follow_ground(struct curve_set *s, float step, curve_ground_fn ground
 			snprintf(err, errlen, "%s: out of memory", s->paths[i].label);
 			return -1;
 		}
-		if (rc > 0 || s->paths[i].kind != kind0) {
-			nsplit++;
-			for (int k = before - 1; k < s->npaths; k++) {
-				int j = k == before - 1 ? i : k;
-				nbridge += s->paths[j].kind == CURVE_BRIDGE;
-				ntunnel += s->paths[j].kind == CURVE_TUNNEL;
-			}
+		if (rc == 0 && s->paths[i].kind == kind0)
+			continue;
+		nsplit++;
+		/* path i's first part, then the parts added after it */
+		for (int j = i; j < s->npaths; j = j == i ? before : j + 1) {
+			nbridge += s->paths[j].kind == CURVE_BRIDGE;
+			ntunnel += s->paths[j].kind == CURVE_TUNNEL;
 		}
 	}
 	if (nsplit && curve_set_note(s, "%s: %d 3D path%s run%s far above or below the ground: %d bridge and %d tunnel "

@@ -120,9 +120,11 @@ static int upload_curves(struct edits_gl *G, const struct edits *e, char *err, s
 	return 0;
 }
 
-/* A map of samples (heightmap, control map) as an R32F texture on unit
- * `unit` (a 1x1 zero texture when there is none). */
-static int upload_map(GLuint *tex, const struct heightmap *m, int unit, const char *what, char *err, size_t errlen)
+/* *tex made again: a w x h texture of one level of fmt on unit `unit`,
+ * clamped at its edges, filtered by `filter`, left bound there for its
+ * upload.  Returns the active texture unit before, for the caller to
+ * restore. */
+static GLint new_texture(GLuint *tex, int unit, GLenum fmt, int w, int h, GLint filter)
 {
 	if (*tex)
 		glDeleteTextures(1, tex);
@@ -131,24 +133,31 @@ static int upload_map(GLuint *tex, const struct heightmap *m, int unit, const ch
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
 	glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
 	glBindTexture(GL_TEXTURE_2D, *tex);
+	glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+	return prev;
+}
+
+/* A map of samples (heightmap, control map) as an R32F texture on unit
+ * `unit` (a 1x1 zero texture when there is none). */
+static int upload_map(GLuint *tex, const struct heightmap *m, int unit, const char *what, char *err, size_t errlen)
+{
 	int w = m->w ? m->w : 1, hh = m->w ? m->h : 1;
 	GLint max_tex = 0;
 	glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
 	if (max_tex > 0 && (w > max_tex || hh > max_tex)) {
 		snprintf(err, errlen, "%s of %dx%d samples exceeds the GL texture limit (%d)", what, w, hh, max_tex);
-		glActiveTexture((GLenum)prev);
 		return -1;
 	}
 	static const float zero = 0.0f;
-	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-	glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, hh);
-	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, hh, GL_RED, GL_FLOAT, m->w ? (const void *)m->v : &zero);
 	/* R32F is not filterable in ES: texelFetch only, and NEAREST keeps the
 	 * texture complete */
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	GLint prev = new_texture(tex, unit, GL_R32F, w, hh, GL_NEAREST);
+	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, hh, GL_RED, GL_FLOAT, m->w ? (const void *)m->v : &zero);
 	glActiveTexture((GLenum)prev);
 	return gpu_check(what);
 }
@@ -429,8 +438,6 @@ int edits_road_map(struct edits *ed, const struct params *p, struct road_map *ou
 	memset(out, 0, sizeof(*out));
 	if (errlen)
 		err[0] = '\0';
-	if (edits_load(ed, p, err, errlen) < 0)
-		return -1;
 	struct edits_gl *G = gl_of(ed, err, errlen);
 	if (!G)
 		return -1;
@@ -494,20 +501,8 @@ int edits_road_map(struct edits *ed, const struct params *p, struct road_map *ou
 	}
 	glUseProgram(0);
 	glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-	if (G->road_tex)
-		glDeleteTextures(1, &G->road_tex);
-	glGenTextures(1, &G->road_tex);
-	GLint prev = 0;
-	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
-	glActiveTexture(GL_TEXTURE0 + TEX_ROADS);
-	glBindTexture(GL_TEXTURE_2D, G->road_tex);
-	glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	GLint prev = new_texture(&G->road_tex, TEX_ROADS, GL_RGBA16F, w, h, GL_LINEAR);
 	glBindBuffer(GL_PIXEL_UNPACK_BUFFER, G->b_bake);
-	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 	glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_HALF_FLOAT, (const void *)0);
 	glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 	glActiveTexture((GLenum)prev);

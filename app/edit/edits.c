@@ -313,7 +313,6 @@ static int load_heightmap(struct edits *ed, const struct params *p, char *err, s
 			ed->hm = hm;
 			free(ed->hm_pristine); /* the old map's: the curves load again, and the areas */
 			ed->hm_pristine = NULL;
-			ed->hm_pristine_n = 0;
 			ed->hm_gen++;
 			ed->hm_file = k;
 			note_change(ed, whole_plane);
@@ -372,7 +371,6 @@ void edits_clear(struct edits *ed)
 	curve_set_free(&ed->areas);
 	free(ed->hm_pristine);
 	ed->hm_pristine = NULL;
-	ed->hm_pristine_n = 0;
 	free(ed->lakes);
 	ed->lakes = NULL;
 	ed->nlakes = 0;

@@ -108,8 +108,8 @@ struct edits {
 	struct edits_gl *gl;
 	edits_ground_fn ground; /* edits_set_ground: 2D curves follow it */
 	void *ground_ctx;
-	float *hm_pristine;     /* the heightmap's samples before the areas (NULL: none applied) */
-	long hm_pristine_n;
+	float *hm_pristine;     /* the heightmap's w x h samples before the areas (NULL: none applied;
+				 * dropped with the map it was taken of) */
 };
 
 /* Areas on the heightmap (areas.c): the samples under ed->areas flattened
@@ -184,9 +184,10 @@ int curves_bake(struct edits *ed, const struct params *p, const struct bake_opts
  * RGBA16F texture over the curves' hash rectangle, per texel the closest
  * curve with a surface: R its paint (1 on the flat part, w/2), G the
  * surface (abi.h ROAD_SURFACE_*), B its height less y0; the shading paints
- * a fragment within tol of that height.  Made again when the curves change;
- * the texture belongs to the edit state.  tex 0 when no curve has a
- * surface.  0, or -1 with err. */
+ * a fragment within tol of that height.  Made again when the curves change
+ * (the caller has brought the state in line with p this frame:
+ * edits_load, or a pass's edits_gl_bind); the texture belongs to the edit
+ * state.  tex 0 when no curve has a surface.  0, or -1 with err. */
 struct road_map {
 	GLuint tex;
 	float origin[2], size[2];

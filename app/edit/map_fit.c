@@ -61,7 +61,7 @@ void heightmap_fit(const struct heightmap *hm, struct params *p)
 	/* the streaming world over the map: a finest cell a quarter of a
 	 * sample (block_size 8 samples), the whole map within view; the
 	 * autopilot starts over the map's edge and crosses it through its
-	 * centre on its first heading (0.3 rad from +x towards +z), a
+	 * centre on its first heading (FLY_START_HEADING), a
 	 * twentieth of the map above the ground, in a minute; its clearance
 	 * scaled as the block (the defaults' 1.5 of air for a block of 4) */
 	double bs = 8.0 * g->cell * k;
@@ -70,8 +70,8 @@ void heightmap_fit(const struct heightmap *hm, struct params *p)
 	set_open(p, "fly_height", size / 20.0);
 	set_open(p, "fly_speed", size / 60.0);
 	set_open(p, "fly_clearance", 1.5 * bs / 4.0);
-	set_open(p, "fly_x", -0.42 * size * cos(0.3));
-	set_open(p, "fly_z", -0.42 * size * sin(0.3));
+	set_open(p, "fly_x", -0.42 * size * cos(FLY_START_HEADING));
+	set_open(p, "fly_z", -0.42 * size * sin(FLY_START_HEADING));
 	/* the sea where the map reaches below sea level, else no water */
 	if (open_param(p, "water_level")) {
 		if (g->zmin < 0.0 && g->zmax > 0.0)

@@ -31,6 +31,11 @@ enum param_flags {
 
 #define PARAM_STR_MAX 256
 
+/* The autopilot's first heading, radians from +x towards +z (the flight
+ * starts at fly_x, fly_z on it: scene/autopilot.c; a georeferenced map's
+ * fit aims it across the map: edit/map_fit.c). */
+#define FLY_START_HEADING 0.3f
+
 struct params {
 #define PF(name, def, lo, hi, flags, help) float name;
 #define PI(name, def, lo, hi, flags, help) int name;

@@ -455,19 +455,22 @@ void renderer_set_clear(struct renderer *r, float red, float green, float blue)
 /* water.vert's sphere: 96 x 48 quads of two triangles */
 #define WATER_SPHERE_VERTICES (96 * 48 * 6)
 
-void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
+/* Water at `level` over rect: the sea (renderer_water) or a lake. */
+static void water_pass(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4],
+		       float level)
 {
 	/* a planet's sea is a sphere water_level above planet_radius (a flat
 	 * plane would cut through the planet); water.vert makes it */
 	bool sphere = p->shape == SHAPE_PLANET;
-	float radius = p->planet_radius + p->water_level;
-	if (!p->water || (sphere && radius <= 0.0f))
+	float radius = p->planet_radius + level;
+	if (sphere && radius <= 0.0f)
 		return;
 	glDisable(GL_CULL_FACE); /* the plane is seen from both sides */
 	glUseProgram(r->water);
 	glUniform1f(gpu_uniform(r->water, "u_water_sphere"), sphere ? radius : 0.0f);
 	glUniform3f(gpu_uniform(r->water, "u_water_centre"), 0.0f, -p->planet_radius, 0.0f);
 	shading_uniforms(r->water, p);
+	glUniform1f(gpu_uniform(r->water, "u_water_level"), level); /* over the parameter's */
 	glUniformMatrix4fv(gpu_uniform(r->water, "u_viewproj"), 1, GL_FALSE, c->viewproj);
 	glUniform3fv(gpu_uniform(r->water, "u_eye"), 1, c->eye);
 	glUniform4fv(gpu_uniform(r->water, "u_water_rect"), 1, rect);
@@ -491,6 +494,12 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
 	glUseProgram(r->tp[r->cur].prog);
 }
 
+void renderer_water(struct renderer *r, const struct camera *c, const struct params *p, const float rect[4])
+{
+	if (p->water)
+		water_pass(r, c, p, rect, p->water_level);
+}
+
 void renderer_set_lakes(struct renderer *r, const float (*lakes)[5], int n)
 {
 	r->lakes = lakes;
@@ -507,10 +516,7 @@ void renderer_lakes(struct renderer *r, const struct camera *c, const struct par
 		/* the sea at the same height already covers it */
 		if (q[0] >= q[2] || q[1] >= q[3] || (p->water && fabsf(l[4] - p->water_level) < 1e-3f))
 			continue;
-		struct params w = *p;
-		w.water = true;
-		w.water_level = l[4];
-		renderer_water(r, c, &w, q);
+		water_pass(r, c, p, q, l[4]);
 	}
 }
 

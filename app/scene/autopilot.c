@@ -186,8 +186,8 @@ static bool spawn_shells(struct autopilot *a)
 	return false;
 }
 
-/* The first heading: along x, turned 0.3 rad towards z. */
-#define START_HEADING 0.3f
+/* The first heading: along x, turned towards z (params.h) */
+#define START_HEADING FLY_START_HEADING
 
 /* Air all along the segment from p to q (its last tenth may touch rock). */
 static bool clear_sight(const struct autopilot *a, const float p[3], const float q[3])
