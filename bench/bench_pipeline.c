@@ -8,8 +8,9 @@
  *     vertices, indices; pipeline_profile: glFinish after every pass), with
  *     the flags' ambient occlusion and without it; AO = the vertex pass
  *     with AO minus without;
- *  2. whole runs: the density pass alone, the whole pipeline with and
- *     without AO, with the process's CPU time;
+ *  2. whole runs: the density pass alone (and with every sample whole:
+ *     --no-density-cut), the whole pipeline with and without AO, with the
+ *     process's CPU time;
  *  3. the peers, when installed (bench/peer.h): libnoise's Perlin module as
  *     the same fBm, VTK's flying edges on the same volume;
  *  4. the compaction methods with identical work (AO off on all three:
@@ -233,7 +234,8 @@ static void print_passes(const struct series *on, const struct series *off, int 
 
 /* Whole runs (no glFinish between passes) against the density pass alone;
  * full[0] with the flags' AO, full[1] (if nfull is 2) without. */
-static void print_whole(const struct series *dens, const struct series *const *full, int nfull, const struct grid *g)
+static void print_whole(const struct series *dens, const struct series *dens_whole, const struct series *const *full,
+			int nfull, const struct grid *g)
 {
 	char a[64], b[64];
 	printf("\nwhole runs (glFinish at the end only), ms median [min-max]; /dens: ratio of the medians to the density pass's:\n");
@@ -244,6 +246,10 @@ static void print_whole(const struct series *dens, const struct series *const *f
 	if (!dens->n)
 		return;
 	double dw = series_stat(dens, V_WALL).med, dc = series_stat(dens, V_CPU).med;
+	if (dens_whole && dens_whole->n) /* the far samples' cut off: every sample's octaves (docs/PIPELINE.md) */
+		printf("  %-28s %-26s %-26s %9.3f %8.3f\n", "  every sample whole", stat_str(dens_whole, V_WALL, a, sizeof(a)),
+		       stat_str(dens_whole, V_CPU, b, sizeof(b)), series_stat(dens_whole, V_WALL).med / dw,
+		       series_stat(dens_whole, V_CPU).med / dc);
 	double vox = (double)g->nx * g->ny * g->nz;
 	for (int i = 0; i < nfull; i++) {
 		const struct series *s = full[i];
@@ -281,14 +287,19 @@ static void measure_grid(const struct params *p, const struct field *f, const st
 	struct params off = *p;
 	off.ao_rays = 0;
 	bool ao = p->ao_rays > 0;
-	struct series dens, full, full_off, prof, prof_off;
+	struct params whole = *p;
+	whole.density_cut = false;
+	struct series dens, dens_whole, full, full_off, prof, prof_off;
 	isoterra_series(&dens, "density pass alone", pl, p, S_DENSITY);
+	isoterra_series(&dens_whole, "density pass, no cut", pl, &whole, S_DENSITY);
 	isoterra_series(&full, ao ? "whole pipeline, AO as given" : "whole pipeline (AO off)", pl, p, S_FULL);
 	isoterra_series(&full_off, "whole pipeline, AO off", pl, &off, S_FULL);
 	isoterra_series(&prof, "profiled, AO as given", pl, p, S_PROFILED);
 	isoterra_series(&prof_off, "profiled, AO off", pl, &off, S_PROFILED);
-	struct series *s[5 + PEER_SERIES] = { &dens, &full, &prof };
+	struct series *s[6 + PEER_SERIES] = { &dens, &full, &prof };
 	int ns = 3;
+	if (p->density_cut)
+		s[ns++] = &dens_whole;
 	if (ao) {
 		s[ns++] = &full_off;
 		s[ns++] = &prof_off;
@@ -299,7 +310,7 @@ static void measure_grid(const struct params *p, const struct field *f, const st
 	series_rounds(s, ns, o->runs);
 	print_passes(&prof, ao ? &prof_off : NULL, o->runs);
 	const struct series *fulls[2] = { &full, &full_off };
-	print_whole(&dens, fulls, ao ? 2 : 1, &g);
+	print_whole(&dens, p->density_cut ? &dens_whole : NULL, fulls, ao ? 2 : 1, &g);
 	peers_report(pe, &dens, ao ? &prof_off : &prof, ao ? &full_off : &full);
 	peers_close(pe);
 	pipeline_destroy(pl);

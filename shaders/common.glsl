@@ -73,12 +73,36 @@ uint sign_slab_bits()
 // packing the bits through shared memory cost llvmpipe 10 ns a sample, more
 // than an octave of noise).  Dispatch: (ceil(words of a slab / WG_SIZE),
 // slabs) groups of WG_SIZE.
+//
+// Far samples (DENSITY_CUT, app/extract/field.h): the field may stop a
+// sample's octaves once their sign is settled, and says so in
+// g_density_cut; the pass writes those flags as bits beside the signs, and
+// the field's tag for the sample (g_density_tag) into the 4 lowest bits of
+// its value, where the refine variant finds it (g_refine_tag) to go on
+// from where the sample was cut.
+// After the last slab, the debris filter marks the samples next to a sign
+// change, refine_mark.comp lists the cut samples within one step of those
+// (two of a sign change), and the refine variant (DENSITY_REFINE)
+// computes them whole: the vertex pass interpolates the two ends of a
+// crossing edge and takes central differences around each, all within
+// that reach.
 float density(vec3 ws); // the field's
+#ifdef DENSITY_REFINE // reads what the density pass stored
+layout(std430, binding = BIND_DENSITY) restrict buffer DensOut { float dens_out[]; };
+#else
 layout(std430, binding = BIND_DENSITY) restrict writeonly buffer DensOut { float dens_out[]; };
-layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer SignOut { uint sign_out[]; };
+#endif
 uniform float u_density_bias; // subtracted (coarse LOD blocks erode a little)
 uniform uint u_sign_words;    // the sign buffer's capacity in words
 uniform int u_z0;             // first z slab of this dispatch (a block's density over two frames)
+#ifdef DENSITY_CUT
+bool g_density_cut;   // set by the field: this sample's finest octaves were left out
+int g_density_tag;    // and what it needs to go on from there (0..15), kept in the value's 4 lowest bits
+#endif
+#ifdef DENSITY_REFINE
+float g_refine_stored; // the cut sample's value, as the density pass stored it
+int g_refine_tag;      // its tag, or -1: compute the sample from scratch
+#endif
 
 // Density grid sample of slab index i (x + dim.x * y): y by a float
 // reciprocal corrected once each way (exact while i < 2^23; no integer
@@ -97,6 +121,29 @@ ivec2 slab_xy(int i, int dx)
 	return ivec2(x, y);
 }
 
+// The value stored for density grid sample id (margin included).
+float density_sample(ivec3 id, ivec3 dim)
+{
+	vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
+	float d = density(ws) - u_density_bias;
+	if (u_closed != 0) {
+		// air on the border corners (walls where the box cuts rock) and
+		// clearly air in the margin (so the walls' gradients point out)
+		ivec3 lo = ivec3(u_margin), hi = dim - 1 - u_margin;
+		if (any(lessThan(id, lo)) || any(greaterThan(id, hi)))
+			d = min(d, u_iso - u_cell);
+		else if (any(equal(id, lo)) || any(equal(id, hi)))
+			d = min(d, u_iso - 1e-3 * u_cell);
+	}
+	return d;
+}
+
+#ifndef DENSITY_REFINE
+layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer SignOut { uint sign_out[]; };
+#ifdef DENSITY_CUT
+layout(std430, binding = BIND_CUT) restrict writeonly buffer CutOut { uint cut_out[]; };
+#endif
+
 void main()
 {
 	ivec3 dim = dens_dims();
@@ -109,32 +156,86 @@ void main()
 	int i0 = int(wv) * 32;
 	ivec2 xy = slab_xy(i0, dim.x);
 	uint bits = 0u;
-	for (int j = 0; j < 32; ++j) {
+#ifdef DENSITY_CUT
+	uint cut = 0u;
+#endif
+	int j = 0;
+	do { // tested at the end: no 33rd, masked, sample (see fractal.glsl)
 		if (i0 + j < n) {
-			ivec3 id = ivec3(xy, z);
-			vec3 ws = u_origin + vec3(u_base + id - u_margin) * u_cell;
-			float d = density(ws) - u_density_bias;
-			if (u_closed != 0) {
-				// air on the border corners (walls where the box cuts rock) and
-				// clearly air in the margin (so the walls' gradients point out)
-				ivec3 lo = ivec3(u_margin), hi = dim - 1 - u_margin;
-				if (any(lessThan(id, lo)) || any(greaterThan(id, hi)))
-					d = min(d, u_iso - u_cell);
-				else if (any(equal(id, lo)) || any(equal(id, hi)))
-					d = min(d, u_iso - 1e-3 * u_cell);
-			}
+#ifdef DENSITY_CUT
+			g_density_cut = false;
+#endif
+			float d = density_sample(ivec3(xy, z), dim);
+#ifdef DENSITY_CUT
+			// the field's tag in the 4 lowest mantissa bits of the value,
+			// which is no more than a bound already (a few ulp of it)
+			if (g_density_cut)
+				d = uintBitsToFloat((floatBitsToUint(d) & ~15u) | uint(g_density_tag));
+#endif
 			dens_out[i0 + j + n * z] = d;
 			bits |= uint(d > u_iso) << uint(j);
+#ifdef DENSITY_CUT
+			cut |= uint(g_density_cut) << uint(j);
+#endif
 		}
 		if (++xy.x == dim.x) {
 			xy.x = 0;
 			xy.y++;
 		}
-	}
+	} while (++j < 32);
 	uint wi = uint(z) * words + wv;
-	if (wi < u_sign_words)
+	if (wi < u_sign_words) {
 		sign_out[wi] = bits;
+#ifdef DENSITY_CUT
+		cut_out[wi] = cut;
+#endif
+	}
 }
+#else // DENSITY_REFINE: the listed cut samples near the surface, computed whole
+layout(std430, binding = BIND_CUT) restrict readonly buffer CutIn { uint cut_in[]; };
+layout(std430, binding = BIND_REFINE) restrict readonly buffer RefineIn { uint rf[]; };
+uniform uint u_refine_cap; // sample entries the list holds
+
+// An invocation per entry of the list refine_mark.comp wrote (dispatched
+// from its header): first the sample entries, from u_refine_cap on 32 per
+// word entry.  Every invocation evaluates the field once, and only for a
+// sample that needs it (no loop whose length differs from lane to lane).
+void main()
+{
+	uint S = min(rf[RF_SAMPLES], u_refine_cap), W = rf[RF_WORDS];
+	uint T = W > 0u ? u_refine_cap + 32u * W : S; // the entries' invocations
+	uint stride = gl_NumWorkGroups.x * gl_NumWorkGroups.y * uint(WG_SIZE);
+	ivec3 dim = dens_dims();
+	int n = dim.x * dim.y;
+	int words = int(sign_slab_bits() / 32u);
+	uint k = lin_id();
+	do { // more than one round only past the dispatch's largest size
+		bool valid;
+		uint b;
+		if (k < u_refine_cap) {
+			valid = k < S;
+			b = rf[RF_HEAD + min(k, max(S, 1u) - 1u)];
+		} else {
+			uint e = (k - u_refine_cap) >> 5u, j = (k - u_refine_cap) & 31u;
+			uint w = e < W ? rf[RF_HEAD + u_refine_cap + e] : 0u;
+			valid = e < W && ((cut_in[w] >> j) & 1u) != 0u;
+			b = w * 32u + j;
+		}
+		if (valid) {
+			ivec2 zw = divmod(int(b >> 5u), words); // slab, word in it
+			int i = zw.y * 32 + int(b & 31u);
+			ivec3 id = ivec3(slab_xy(i, dim.x), zw.x);
+			g_refine_stored = dens_out[i + n * zw.x];
+			g_refine_tag = int(floatBitsToUint(g_refine_stored) & 15u);
+			// a closed volume's border: the value may be the wall's, not the field's
+			if (u_closed != 0 && (any(lessThanEqual(id, ivec3(u_margin))) || any(greaterThanEqual(id, dim - 1 - u_margin))))
+				g_refine_tag = -1;
+			dens_out[i + n * zw.x] = density_sample(id, dim);
+		}
+		k += stride;
+	} while (k < T);
+}
+#endif // DENSITY_REFINE
 #elif defined(FIELD_PASS_BOUND)
 #include "block_bound.glsl"
 #else // every other pass reads the densities, or their sign bits

@@ -176,40 +176,52 @@ float density(vec3 ws)
 		d = -ws.y * u_ground_slope;
 	}
 
+	// the terms that do not depend on the noise, summed first (the far
+	// samples' cut below weighs the noise against everything else)
+	float extra = 0.0;
+#if TERM_FLOOR_STRENGTH
+	// hard floor on the pre-warp height ("sediment")
+	extra += dens_sat((u_floor_y - ws_orig.y) * u_floor_sharpness) * u_floor_strength;
+#endif
+
+#if TERM_MARBLE_AMP
+	if (u_marble_amp != 0.0)
+		extra += marble_term(ws);
+#endif
+
+	if (u_terrace == TERRACE_PRE)
+		extra += terrace_term(ws_orig.y);
+	else if (u_terrace == TERRACE_POST)
+		extra += terrace_term(ws.y);
+
+	if (u_shelf == SHELF_PRE)
+		extra += shelf_term(ws_orig.y);
+	else if (u_shelf == SHELF_POST)
+		extra += shelf_term(ws.y);
+
+	// landing pad (GPU Gems' corrected formula): d + flat_k ((flat_y - y) - d)
+	float flat_k = 0.0, flat_to = 0.0;
+	if (u_flat_spot != 0) {
+		float dx = ws_orig.x - u_flat_x, dz = ws_orig.z - u_flat_z;
+		float dist = sqrt(dx * dx + dz * dz);
+		flat_k = dens_sat((u_flat_outer - dist) * (1.0 / max(u_flat_outer - u_flat_inner, 1e-4))) * 0.9;
+		flat_to = u_flat_y - ws_orig.y;
+	}
+
 #if TERM_NOISE_AMP
 	float amp = u_noise_amp;
 #if TERM_CONTROL_STRENGTH
 	amp *= 1.0 - u_control_strength * (1.0 - control_value(ws_orig.xz));
 #endif
+#if defined(DENSITY_CUT) || defined(DENSITY_REFINE)
+	// the stored value as an affine function of the fractal sum
+	cut_setup((1.0 - flat_k) * (d + extra) + flat_k * flat_to, (1.0 - flat_k) * amp);
+#endif
 	d += amp * fractal(ws);
 #endif
-
-#if TERM_FLOOR_STRENGTH
-	// hard floor on the pre-warp height ("sediment")
-	d += dens_sat((u_floor_y - ws_orig.y) * u_floor_sharpness) * u_floor_strength;
-#endif
-
-#if TERM_MARBLE_AMP
-	if (u_marble_amp != 0.0)
-		d += marble_term(ws);
-#endif
-
-	if (u_terrace == TERRACE_PRE)
-		d += terrace_term(ws_orig.y);
-	else if (u_terrace == TERRACE_POST)
-		d += terrace_term(ws.y);
-
-	if (u_shelf == SHELF_PRE)
-		d += shelf_term(ws_orig.y);
-	else if (u_shelf == SHELF_POST)
-		d += shelf_term(ws.y);
-
-	if (u_flat_spot != 0) { // landing pad (GPU Gems' corrected formula)
-		float dx = ws_orig.x - u_flat_x, dz = ws_orig.z - u_flat_z;
-		float dist = sqrt(dx * dx + dz * dz);
-		float amount = dens_sat((u_flat_outer - dist) * (1.0 / max(u_flat_outer - u_flat_inner, 1e-4))) * 0.9;
-		d = d + amount * ((u_flat_y - ws_orig.y) - d);
-	}
+	d += extra;
+	if (u_flat_spot != 0)
+		d = d + flat_k * (flat_to - d);
 	return carve_density(ws_orig, d); // curves: cut and fill
 }
 

@@ -18,6 +18,13 @@ layout(local_size_x = WG_SIZE) in;
 #include "common.glsl"
 layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer Filtered { uint filtered[]; };
 uniform uint u_sign_words; // both buffers' capacity in words
+#ifdef DEBRIS_NEAR
+// After a density pass that cut far samples (common.glsl): the raw samples
+// with a six-neighbour of the other sign (one beyond the grid does not
+// count: no edge leads there), for the refine passes, after the cut bits
+// in the same buffer.
+layout(std430, binding = BIND_CUT) restrict writeonly buffer Near { uint near_out[]; };
+#endif
 
 uint raw_word(uint w) { return w < u_sign_words ? signs[w] : 0u; }
 
@@ -54,10 +61,13 @@ void main()
 	uint next = wv + 1u < words ? raw_word(w0 + wv + 1u) : 0u;
 	uint xm = (c << 1) | (prev >> 31), xp = (c >> 1) | (next << 31);
 	int x = divmod(b0, dim.x).y;
+	uint xm_ok = ~0u, xp_ok = ~0u; // the bits whose neighbour exists
 	for (int j = x == 0 ? 0 : dim.x - x; j < 32; j += dim.x)
-		xm &= ~(1u << uint(j)); // x == 0: no sample at x - 1
+		xm_ok &= ~(1u << uint(j)); // x == 0: no sample at x - 1
 	for (int j = dim.x - 1 - x; j < 32; j += dim.x)
-		xp &= ~(1u << uint(j)); // x == dim.x - 1: none at x + 1
+		xp_ok &= ~(1u << uint(j)); // x == dim.x - 1: none at x + 1
+	xm &= xm_ok;
+	xp &= xp_ok;
 	// y: a row (dim.x samples) before and after, inside the slab
 	uint ym = b0 >= dim.x ? raw_run32(w0 * 32u + uint(b0 - dim.x))
 	                      : (dim.x - b0 < 32 ? raw_run32(w0 * 32u) << uint(dim.x - b0) : 0u);
@@ -67,6 +77,14 @@ void main()
 	uint zp = z + 1 < dim.z ? raw_word(w0 + words + wv) : 0u;
 	uint any6 = xm | xp | ym | yp | zm | zp, all6 = xm & xp & ym & yp & zm & zp;
 	uint wi = w0 + wv;
-	if (wi < u_sign_words)
+	if (wi < u_sign_words) {
 		filtered[wi] = ((c & any6) | (~c & all6)) & valid;
+#ifdef DEBRIS_NEAR
+		// a neighbour beyond the grid is no sign change (no edge leads there)
+		uint ym_ok = ~bits_below(b0 - dim.x, 0), yp_ok = bits_below(b0 + dim.x, n);
+		uint zm_ok = z > 0 ? ~0u : 0u, zp_ok = z + 1 < dim.z ? ~0u : 0u;
+		near_out[u_sign_words + wi] = (((c ^ xm) & xm_ok) | ((c ^ xp) & xp_ok) | ((c ^ ym) & ym_ok) |
+					       ((c ^ yp) & yp_ok) | ((c ^ zm) & zm_ok) | ((c ^ zp) & zp_ok)) & valid;
+#endif
+	}
 }

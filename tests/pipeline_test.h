@@ -74,6 +74,7 @@ void cmp_print(const char *what, const struct mesh_cmp *r);
 void check_cache(void);
 void check_terms(void);
 void check_curves_switch(void);
+void check_cut_cache(void);
 
 /* test_pipeline.c */
 extern struct noise_set ns;

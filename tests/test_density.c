@@ -23,6 +23,7 @@
  * CPU, the GPU part, the order of the checks) and test_density_noise.c
  * (half floats, the noise tables and functions). */
 #include "density_test.h"
+#include "cut_check.h"
 #include "density_ref.h"
 #include "terrain.h"
 #include "gpu.h"
@@ -285,7 +286,34 @@ struct gcase {
 	bool texture;
 };
 
-static void gpu_compare(const char *what, int n, const char *settings, bool texture)
+/* GPU against CPU over a cube of m^3 samples (tests/cut_check.h: where the
+ * field may cut far samples, their contract).  expect_cut: 1 = some
+ * samples must be cut (the test sees the cut at work), 0 = none may be,
+ * -1 = either. */
+static void compare_volume(const char *what, const struct params *p, int m, const float *gv, const float *cv,
+			   double tol, bool texture, int expect_cut)
+{
+	struct cut_stats st;
+	cut_compare(p, m, m, m, gv, cv, tol, &st);
+	size_t cnt = (size_t)m * m * m, at = st.at_far, fb = st.first_bad;
+	printf("  %-44s grid %2d  max|gpu-cpu| %.3g near the surface, %.3g elsewhere (tol %.3g%s); %zu of %zu samples "
+	       "cut (bound %.3g)\n",
+	       what, m - 3, st.err_near, st.err_far, tol, texture ? ", texture" : "", st.cut, cnt,
+	       cut_may(p) ? cut_bound(p) : 0.0);
+	CHECK(st.err_far <= tol, "%s grid %d: max |gpu - cpu| = %g at %zu (gpu %g, cpu %g), tol %g%s", what, m - 3,
+	      st.err_far, at, (double)gv[at], (double)cv[at], tol, cut_may(p) ? " (nor within the cut's bound)" : "");
+	CHECK(st.bad_sign == 0 && st.bad_rock == 0 && st.bad_near == 0,
+	      "%s grid %d: cut samples with the wrong sign %zu, too shallow in rock %zu, near the surface %zu (first at "
+	      "%zu: gpu %g, cpu %g)",
+	      what, m - 3, st.bad_sign, st.bad_rock, st.bad_near, fb, fb < cnt ? (double)gv[fb] : 0.0,
+	      fb < cnt ? (double)cv[fb] : 0.0);
+	if (expect_cut == 1)
+		CHECK(st.cut > 0, "%s grid %d: no sample cut (the far samples' cut is not at work)", what, m - 3);
+	else if (expect_cut == 0)
+		CHECK(st.cut == 0, "%s grid %d: %zu samples cut with the cut off", what, m - 3, st.cut);
+}
+
+static void gpu_compare_cut(const char *what, int n, const char *settings, bool texture, int expect_cut)
 {
 	struct params p;
 	params_defaults(&p);
@@ -313,28 +341,22 @@ static void gpu_compare(const char *what, int n, const char *settings, bool text
 		static struct noise_set ns;
 		noise_set_init(&ns, p.seed);
 		density_ref_volume(&p, &ns, ed, g.origin, g.cell, n, n, n, cv);
-		double err_max = 0, dmax = 0;
-		size_t at = 0;
-		for (size_t i = 0; i < cnt; i++) {
-			double e = fabs((double)gv[i] - (double)cv[i]);
-			if (!(e <= err_max)) { /* also catches NaN */
-				err_max = e;
-				at = i;
-			}
+		double dmax = 0;
+		for (size_t i = 0; i < cnt; i++)
 			dmax = fmax(dmax, fabs((double)cv[i]));
-		}
 		double scale = p.field != 0 ? p.field_scale : fmax(1.0, dmax);
 		double tol = texture ? 2e-2 * p.noise_amp : 1e-4 * scale;
-		printf("  %-44s grid %2d  max|gpu-cpu| %.3g  (%.2g of %s %.3g)\n", what, n, err_max,
-		       err_max / (texture ? p.noise_amp : scale), texture ? "noise_amp" : "scale",
-		       texture ? p.noise_amp : scale);
-		CHECK(err_max <= tol, "%s grid %d: max |gpu - cpu| = %g at %zu (gpu %g, cpu %g), tol %g", what, n, err_max,
-		      at, (double)gv[at], (double)cv[at], tol);
+		compare_volume(what, &p, n + 3, gv, cv, tol, texture, expect_cut);
 	}
 	terrain_destroy(tr);
 	edits_destroy(ed);
 	free(gv);
 	free(cv);
+}
+
+static void gpu_compare(const char *what, int n, const char *settings, bool texture)
+{
+	gpu_compare_cut(what, n, settings, texture, -1);
 }
 
 static void test_gpu(void)
@@ -402,10 +424,16 @@ static void test_gpu(void)
 	gpu_compare("every term off (warp, floor, rotation, scroll)", 17,
 		    "warp_amp=0;floor_strength=0;rotated_octaves=0;time=2;scroll_speed=0", false);
 	gpu_compare("noise=texture warp_amp=0 floor_strength=0", 17, "noise=texture;warp_amp=0;floor_strength=0", true);
-	gpu_compare("plain fBm, 7 octaves (benchmark field)", 33,
-		    "fractal=fbm;octaves=7;warp_amp=0;floor_strength=0;rotated_octaves=0;closed=false;vol_height=1;"
-		    "vol_y=0;noise_freq=0.125;lacunarity=2.03;hurst=0.9785;noise_amp=3.9",
-		    false);
+#define BENCH_FIELD                                                                                          \
+	"fractal=fbm;octaves=7;warp_amp=0;floor_strength=0;rotated_octaves=0;closed=false;vol_height=1;vol_y=0;" \
+	"noise_freq=0.125;lacunarity=2.03;hurst=0.9785;noise_amp=3.9"
+	/* the far samples' cut at work, and off */
+	gpu_compare_cut("plain fBm, 7 octaves (benchmark field)", 33, BENCH_FIELD, false, 1);
+	gpu_compare_cut("the benchmark field, density_cut=false", 33, BENCH_FIELD ";density_cut=false", false, 0);
+	gpu_compare_cut("the default field (geiss, warp, floor)", 33, "", false, 1);
+	gpu_compare_cut("turbulence, terraces, flat spot, control", 33,
+			"fractal=turbulence;terrace=pre;flat_spot=true;flat_y=-2;control_strength=0.5", false, 1);
+	gpu_compare_cut("geiss, closed, iso 1.5", 33, "closed=true;iso=1.5", false, 1);
 	/* the control map from a file: plains on the left, mountains on the right */
 	{
 		char dir[] = "/tmp/isoterra-control-XXXXXX", cm[64], e[256];

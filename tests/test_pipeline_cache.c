@@ -58,7 +58,9 @@ void check_cache(void)
 {
 	struct params p;
 	params_defaults(&p);
-	set_kv(&p, "grid=16;ao_rays=0;warp_amp=0");
+	/* one program per density pass: the far samples' cut off (its own
+	 * variants: check_cut_cache) */
+	set_kv(&p, "grid=16;ao_rays=0;warp_amp=0;density_cut=false");
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
@@ -138,7 +140,8 @@ static void check_term(const struct term_case *t, const char *hm_file)
 	struct params p;
 	params_defaults(&p);
 	char kv[512];
-	snprintf(kv, sizeof(kv), "grid=16;ao_rays=0;heightmap=%s;heightmap_scale=4%s%s;%s", hm_file, t->ctx[0] ? ";" : "",
+	snprintf(kv, sizeof(kv), "grid=16;ao_rays=0;density_cut=false;heightmap=%s;heightmap_scale=4%s%s;%s", hm_file,
+		 t->ctx[0] ? ";" : "",
 		 t->ctx, t->off);
 	set_kv(&p, kv);
 	struct grid g;
@@ -235,7 +238,7 @@ void check_curves_switch(void)
 {
 	struct params p;
 	params_defaults(&p);
-	set_kv(&p, "grid=16;ao_rays=0");
+	set_kv(&p, "grid=16;ao_rays=0;density_cut=false");
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
@@ -269,4 +272,37 @@ void check_curves_switch(void)
 	}
 	if (pl)
 		fixture_terrain_close(&ft);
+}
+
+/* The far samples' cut (app/extract/field.h `cuts`): its first pass makes
+ * the refine passes' programs, knobs within it compile nothing, and off
+ * and on again find their variants in the cache; the densities keep the
+ * cut's contract against the CPU reference (tests/cut_check.h). */
+void check_cut_cache(void)
+{
+	struct params p;
+	params_defaults(&p);
+	set_kv(&p, "grid=16;ao_rays=0");
+	struct grid g;
+	grid_from_params(&g, &p);
+	char err[512] = "";
+	struct fixture_terrain ft;
+	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "cut cache: %s", err);
+	if (!ft.pl)
+		return;
+	unsigned c;
+	GLuint cut = density_with(ft.pl, ft.ed, &g, &p, "density_cut=true", &c);
+	CHECK(c == 3, "the first cut: the refine variant, the debris filter's near variant and the refine list (%u "
+		      "compiles)", c);
+	p.noise_amp *= 1.5f;
+	p.iso = 0.5f;
+	CHECK(density_with(ft.pl, ft.ed, &g, &p, "noise_amp, iso moved", &c) == cut && c == 0,
+	      "knobs within the cut: no compile (%u)", c);
+	p.density_cut = false;
+	GLuint whole = density_with(ft.pl, ft.ed, &g, &p, "density_cut=false", &c);
+	CHECK(c == 1 && whole != cut, "the cut off: its own variant (%u compiles)", c);
+	p.density_cut = true;
+	CHECK(density_with(ft.pl, ft.ed, &g, &p, "density_cut=true again", &c) == cut && c == 0,
+	      "the cut on again: from the cache (%u compiles)", c);
+	fixture_terrain_close(&ft);
 }

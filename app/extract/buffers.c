@@ -112,7 +112,8 @@ uint32_t extract_sign_words(const struct grid *g)
 }
 
 /* What a run needs and its outputs do not: the densities, the sign bits
- * (raw and filtered) and the HistoPyramid.  0, or -1 with err. */
+ * (raw and filtered, the cut and near bits), the HistoPyramid.  0, or -1
+ * with err. */
 int extract_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 {
 	pl->b_dens = extract_buffer((GLsizeiptr)grid_dens_count(&pl->g) * 4, NULL, GL_DYNAMIC_COPY);
@@ -120,6 +121,11 @@ int extract_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 	pl->b_signs_raw = extract_buffer((GLsizeiptr)pl->sign_words * 4, NULL, GL_DYNAMIC_COPY);
 	/* level 0, the pyramid and the prefix sums (extract_int.h, hp_levels) */
 	pl->b_hp = extract_buffer((GLsizeiptr)pl->hp.nodes * 8, NULL, GL_DYNAMIC_COPY);
+	/* the far samples' cut bits and the near bits, the refine list
+	 * (pipeline.c refine_pass) */
+	pl->b_cut = extract_buffer((GLsizeiptr)pl->sign_words * 8, NULL, GL_DYNAMIC_COPY);
+	pl->b_refine = extract_buffer((GLsizeiptr)(RF_HEAD + (uint64_t)pl->refine_cap + pl->sign_words) * 4, NULL,
+				      GL_DYNAMIC_COPY);
 	if (gpu_check("the field's buffers") < 0) {
 		snprintf(err, errlen, "cannot allocate the pipeline's field buffers (grid %dx%dx%d)", pl->g.nx, pl->g.ny,
 			 pl->g.nz);
@@ -130,7 +136,7 @@ int extract_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 
 void pipeline_release_field(struct pipeline *pl)
 {
-	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_hp };
+	GLuint *bufs[] = { &pl->b_dens, &pl->b_signs, &pl->b_signs_raw, &pl->b_hp, &pl->b_cut, &pl->b_refine };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++) {
 		glDeleteBuffers(1, bufs[i]); /* 0 is ignored */
 		*bufs[i] = 0;

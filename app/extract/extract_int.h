@@ -69,10 +69,14 @@ struct pipeline {
 	unsigned compiles;             /* programs compiled (pipeline_compiles) */
 	GLuint p_density, p_debris, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
+	GLuint p_refine_mark;          /* the refine list (made at the first cut) */
 	GLuint b_dens, b_signs, b_hp, b_tables, b_verts, b_idx, b_status;
 	GLuint b_signs_raw;            /* the density pass's bits; b_signs: less debris */
 	uint32_t owners, words;        /* owner cells, level-0 words */
 	uint32_t sign_words;           /* each sign buffer's capacity (words) */
+	GLuint b_cut;                  /* the far samples' cut bits, then the near bits: 2 sign_words words */
+	GLuint b_refine;               /* the refine list (abi.h RF_*): RF_HEAD + refine_cap + sign_words words */
+	uint32_t refine_cap;           /* its sample entries */
 	struct hp_levels hp;
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */
 	uint64_t verts_alloc;          /* vertices the vertex buffer holds */
@@ -82,6 +86,8 @@ struct pipeline {
 	bool said_no_ao;               /* append compaction's "no AO" said (once) */
 	bool profile;                  /* glFinish + time every pass (benchmarks) */
 	float density_bias;            /* subtracted from the density (LOD) */
+	bool cut_pending;              /* a density slab cut far samples: the refine pass is due */
+	bool filtered;                 /* b_signs holds this run's filtered bits (the refine pass ran the filter) */
 	bool has_target;
 	struct pipeline_target target;
 	double pass_ms[PASS_COUNT];
@@ -99,6 +105,10 @@ GLuint extract_variant_program(struct pipeline *pl, const char *file, const char
 /* The density pass (the field's program) and the vertex pass (the field's
  * with ambient occlusion, else mc_vertices.comp) for these parameters. */
 GLuint extract_density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+/* Whether the field's density pass cuts far samples for p (field.h
+ * `cuts`), and the variant that refines them near the surface. */
+bool extract_field_cuts(const struct pipeline *pl, const struct params *p);
+GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
 GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
 /* Every program of a run: all issued first (parallel compilation), then
  * taken in order into pl->p_*.  0, or -1 with err. */

@@ -16,6 +16,8 @@
  * The engine compiles it with one of
  *     FIELD_PASS_DENSITY   the density pass (main() in common.glsl): the
  *                          field at every corner of the grid and its margin
+ *                          (with DENSITY_CUT or DENSITY_REFINE: `cuts`
+ *                          below)
  *     FIELD_PASS_VERTICES  the vertex pass when it computes ambient
  *                          occlusion (WITH_AO; main() in mc_vertices.comp):
  *                          the long rays of a world block (AO_FAR_OUTSIDE)
@@ -52,6 +54,17 @@ struct field {
 	 * uniforms set in bind.  Returns the length written, or -1 with err
 	 * (buf too small: err may stay empty). */
 	int (*defines)(void *ctx, const struct params *p, char *buf, size_t len, char *err, size_t errlen);
+	/* Optional (NULL: never).  True when the field's density pass may
+	 * leave out the finest detail of samples far from the surface for p:
+	 * the engine then compiles it with DENSITY_CUT, where the field sets
+	 * g_density_cut for such a sample (its sign must be exact, and its
+	 * value within the ambient occlusion's saturation on the rock side:
+	 * at least 1/ao_short_k and 1/ao_long_k above the iso level when the
+	 * exact one is), and after the last slab runs the field's program
+	 * with DENSITY_REFINE, which computes whole every cut sample within
+	 * two samples of a sign change (common.glsl), so the surface's
+	 * vertices and normals see exact values. */
+	bool (*cuts)(void *ctx, const struct params *p);
 	void *ctx;           /* the provider's, passed to bind and defines */
 };
 

@@ -146,6 +146,11 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	}
 	pl->owners = (uint32_t)owners;
 	pl->sign_words = extract_sign_words(g);
+	/* the refine list's sample entries: a 64th of the samples, at least
+	 * 64 (the default field at 128^3 lists 2 222 of 1 031 000; a word
+	 * entry each for the rest, abi.h RF_*: test_density's small grids
+	 * take that path) */
+	pl->refine_cap = (uint32_t)(dens / 64 > 64 ? dens / 64 : 64);
 	pl->words = div_up(owners, 4);
 	hp_plan(&pl->hp, pl->words);
 	if ((uint64_t)pl->hp.nodes * 8 > (uint64_t)pl->max_ssbo) {
@@ -172,11 +177,12 @@ void pipeline_destroy(struct pipeline *pl)
 		if (pl->variants[i].prog)
 			glDeleteProgram(pl->variants[i].prog);
 	GLuint progs[] = { pl->p_debris, pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
-			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish };
+			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish, pl->p_refine_mark };
 	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
-	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_hp, pl->b_tables, pl->b_verts, pl->b_idx, pl->b_status };
+	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_hp, pl->b_cut, pl->b_refine, pl->b_tables, pl->b_verts,
+			  pl->b_idx, pl->b_status };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
@@ -236,8 +242,13 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 	if (!pl->p_density)
 		return -1;
 	double t = clock_ms();
+	pl->filtered = false; /* new densities: the filter is due again */
 	bind(BIND_DENSITY, pl->b_dens);
 	bind(BIND_SIGNS_OUT, pl->b_signs_raw); /* the debris filter reads them */
+	if (extract_field_cuts(pl, p)) { /* the far samples' cut bits */
+		bind(BIND_CUT, pl->b_cut);
+		pl->cut_pending = true;
+	}
 	set_common(pl, pl->p_density, p);
 	if (bind_field(pl, pl->p_density, p, err, errlen) < 0)
 		return -1;
@@ -256,9 +267,86 @@ static int density_slabs(struct pipeline *pl, const struct params *p, int z0, in
 	return gpu_check("density pass");
 }
 
+/* The debris filter (shaders/mc_debris.comp): the density pass's sign
+ * bits (b_signs_raw) less one-sample islands and bubbles, into b_signs,
+ * which classification and the index pass read; with near, also the near
+ * bits for the refine pass (b_cut's second half). */
+static int debris_pass(struct pipeline *pl, bool near, char *err, size_t errlen)
+{
+	GLuint prog = pl->p_debris;
+	if (near) { /* a variant: looked up each time (the cache may have let it go) */
+		prog = extract_variant_program(pl, "mc_debris.comp", "#define DEBRIS_NEAR 1\n", NULL, false, err, errlen);
+		if (!prog)
+			return -1;
+		bind(BIND_CUT, pl->b_cut);
+	}
+	set_common(pl, prog, NULL);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_sign_words"), pl->sign_words);
+	bind(BIND_SIGNS, pl->b_signs_raw);
+	bind(BIND_SIGNS_OUT, pl->b_signs);
+	glUseProgram(prog);
+	int m2 = 1 + 2 * grid_margin(&pl->g);
+	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32);
+	glDispatchCompute((GLuint)div_up(slab_words, WG_SIZE), (GLuint)(pl->g.nz + m2), 1);
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	return 0;
+}
+
+/* After the last slab, when a slab was cut: the debris filter, with the
+ * samples next to a sign change marked (its near bits); refine_mark.comp
+ * lists the cut samples within one step of those (b_refine, abi.h RF_*);
+ * the field's refine variant computes them whole from where each was cut
+ * (common.glsl, DENSITY_REFINE), dispatched from the list's header: no
+ * read-back.  Charged to the density pass. */
+static int refine_pass(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	if (!pl->cut_pending)
+		return 0;
+	pl->cut_pending = false;
+	GLuint prog = extract_refine_program(pl, p, err, errlen);
+	if (!prog)
+		return -1;
+	if (!pl->p_refine_mark && !(pl->p_refine_mark = extract_program(pl, "refine_mark.comp", err, errlen)))
+		return -1;
+	double t = clock_ms();
+	if (debris_pass(pl, true, err, errlen) < 0)
+		return -1;
+	pl->filtered = true;
+	static const uint32_t head[RF_HEAD] = { 0, 1, 1, 0, 0, 0, 0, 0 }; /* no groups, no entries */
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, pl->b_refine);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(head), head);
+	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+	bind(BIND_CUT, pl->b_cut);
+	bind(BIND_REFINE, pl->b_refine);
+	set_common(pl, pl->p_refine_mark, NULL);
+	glProgramUniform1ui(pl->p_refine_mark, gpu_uniform(pl->p_refine_mark, "u_sign_words"), pl->sign_words);
+	glProgramUniform1ui(pl->p_refine_mark, gpu_uniform(pl->p_refine_mark, "u_refine_cap"), pl->refine_cap);
+	glProgramUniform1ui(pl->p_refine_mark, gpu_uniform(pl->p_refine_mark, "u_max_groups"), (GLuint)pl->max_groups);
+	glUseProgram(pl->p_refine_mark);
+	int m2 = 1 + 2 * grid_margin(&pl->g);
+	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32);
+	glDispatchCompute((GLuint)div_up(slab_words, WG_SIZE), (GLuint)(pl->g.nz + m2), 1);
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+	bind(BIND_DENSITY, pl->b_dens);
+	set_common(pl, prog, p);
+	if (bind_field(pl, prog, p, err, errlen) < 0)
+		return -1;
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_density_bias"), pl->density_bias);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_refine_cap"), pl->refine_cap);
+	glUseProgram(prog);
+	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pl->b_refine);
+	glDispatchComputeIndirect(RF_DISPATCH * 4);
+	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+	mark(pl, PASS_DENSITY, &t);
+	return gpu_check("density refine passes");
+}
+
 int pipeline_density(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	return density_slabs(pl, p, 0, pl->g.nz + 1 + 2 * grid_margin(&pl->g), err, errlen);
+	if (density_slabs(pl, p, 0, pl->g.nz + 1 + 2 * grid_margin(&pl->g), err, errlen) < 0)
+		return -1;
+	return refine_pass(pl, p, err, errlen);
 }
 
 /* mc_setup.comp: the totals clamped to the capacities of the output (the
@@ -312,28 +400,14 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 	return 0;
 }
 
-/* The debris filter (shaders/mc_debris.comp): the density pass's sign
- * bits (b_signs_raw) less one-sample islands and bubbles, into b_signs,
- * which classification and the index pass read. */
-static void debris_pass(struct pipeline *pl)
-{
-	set_common(pl, pl->p_debris, NULL);
-	glProgramUniform1ui(pl->p_debris, gpu_uniform(pl->p_debris, "u_sign_words"), pl->sign_words);
-	bind(BIND_SIGNS, pl->b_signs_raw);
-	bind(BIND_SIGNS_OUT, pl->b_signs);
-	glUseProgram(pl->p_debris);
-	int m2 = 1 + 2 * grid_margin(&pl->g);
-	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32);
-	glDispatchCompute((GLuint)div_up(slab_words, WG_SIZE), (GLuint)(pl->g.nz + m2), 1);
-	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
 /* The debris filter, classification and the HistoPyramid (the pipeline's
  * own buffers only). */
 static void pyramid_passes(struct pipeline *pl, const struct params *p)
 {
 	double t = clock_ms();
-	debris_pass(pl);
+	if (!pl->filtered)
+		debris_pass(pl, false, NULL, 0); /* the plain filter's program is made at creation */
+	pl->filtered = false;
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
@@ -388,7 +462,10 @@ int pipeline_run_stage(struct pipeline *pl, const struct params *p, enum pipelin
 	}
 	switch (stage) {
 	case PIPE_DENSITY_LO: return density_slabs(pl, p, 0, zs / 2, err, errlen);
-	case PIPE_DENSITY_HI: return density_slabs(pl, p, zs / 2, zs, err, errlen);
+	case PIPE_DENSITY_HI:
+		if (density_slabs(pl, p, zs / 2, zs, err, errlen) < 0)
+			return -1;
+		return refine_pass(pl, p, err, errlen);
 	case PIPE_PYRAMID:
 		pyramid_passes(pl, p);
 		glUseProgram(0);

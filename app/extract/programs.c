@@ -81,10 +81,31 @@ GLuint extract_variant_program(struct pipeline *pl, const char *file, const char
 	return prog;
 }
 
+bool extract_field_cuts(const struct pipeline *pl, const struct params *p)
+{
+	return pl->field->cuts && pl->field->cuts(pl->field->ctx, p);
+}
+
+/* The density pass's variant: with the far samples' cut where the field
+ * allows it (field.h `cuts`). */
+static const char *density_defines(const struct pipeline *pl, const struct params *p)
+{
+	return extract_field_cuts(pl, p) ? "#define FIELD_PASS_DENSITY 1\n#define DENSITY_CUT 1\n"
+					 : "#define FIELD_PASS_DENSITY 1\n";
+}
+
+#define REFINE_DEFINES "#define FIELD_PASS_DENSITY 1\n#define DENSITY_REFINE 1\n"
+
 /* The density pass: the field's program. */
 GLuint extract_density_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	return extract_variant_program(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, true, err, errlen);
+	return extract_variant_program(pl, pl->field->program, density_defines(pl, p), p, true, err, errlen);
+}
+
+/* The cut samples near the surface computed whole (common.glsl). */
+GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+{
+	return extract_variant_program(pl, pl->field->program, REFINE_DEFINES, p, true, err, errlen);
 }
 
 /* The vertex pass's variant (extract_vertex_program). */
@@ -130,7 +151,9 @@ int extract_create_programs(struct pipeline *pl, const struct params *p, char *e
 	const char *vfile;
 	bool vfield;
 	const char *vdefs = vertex_defines(pl, p, &vfile, &vfield);
-	prefetch_variant(pl, pl->field->program, "#define FIELD_PASS_DENSITY 1\n", p, true);
+	prefetch_variant(pl, pl->field->program, density_defines(pl, p), p, true);
+	if (extract_field_cuts(pl, p))
+		prefetch_variant(pl, pl->field->program, REFINE_DEFINES, p, true);
 	prefetch_variant(pl, vfile, vdefs, p, vfield);
 	if (pl->g.margin_extra > 0) /* a world's block: the coarse pre-pass (pipeline_bound) */
 		prefetch_variant(pl, pl->field->program, "#define FIELD_PASS_BOUND 1\n", p, true);

@@ -30,6 +30,19 @@
 #define BIND_INDICES BIND_OUT    /* output triangles (3 uint each) */
 #define BIND_AUX_IN BIND_HP      /* pass-specific input: the pre-pass's boxes, bake tiles, test input */
 #define BIND_AUX_OUT BIND_OUT    /* pass-specific output: the pre-pass's verdicts, the bake, the parts, tests */
+#define BIND_CUT BIND_HP         /* the density pass's cut bits (1 = a far sample whose finest octaves were left
+				  * out, common.glsl), then the debris filter's near bits: the refine passes read them */
+#define BIND_REFINE BIND_OUT     /* the refine list: refine_mark.comp writes it, the field's refine variant reads it */
+
+/* ---- the refine list (BIND_REFINE): the cut samples near the surface ------
+ * A header, then u_refine_cap sample entries (a sample's bit index in the
+ * sign buffer), then word entries (a sign word whose samples the list had
+ * no room for; its cut bits hold them): shaders/refine_mark.comp writes
+ * it, common.glsl (DENSITY_REFINE) reads it, extract/pipeline.c sizes it. */
+#define RF_DISPATCH 0u /* DispatchIndirectCommand of the refine pass (3 words) */
+#define RF_SAMPLES 3u /* sample entries asked for (may pass the capacity: the rest went into word entries) */
+#define RF_WORDS 4u   /* word entries */
+#define RF_HEAD 8u    /* the header's words */
 
 /* ---- compute work groups -------------------------------------------------- */
 #define WG_SIZE 64         /* invocations of every 1D compute pass's work group (local_size_x); the host

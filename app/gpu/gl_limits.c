@@ -22,10 +22,18 @@ static const struct gl_pass passes[] = {
 	 * pass, and the vertex pass with ambient occlusion (its rays sample
 	 * the field: + curves, noise) */
 	{ "density.comp", "density.comp", NULL, NULL, "#define FIELD_PASS_DENSITY 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
+	/* with the far samples' cut, and the refine variant (app/extract/pipeline.c
+	 * refine_pass) */
+	{ "density.comp (DENSITY_CUT)", "density.comp", NULL, NULL,
+	  "#define FIELD_PASS_DENSITY 1\n#define DENSITY_CUT 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
+	{ "refine_mark.comp", "refine_mark.comp", NULL, NULL, NULL, false, NULL },
+	{ "density.comp (DENSITY_REFINE)", "density.comp", NULL, NULL,
+	  "#define FIELD_PASS_DENSITY 1\n#define DENSITY_REFINE 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
 	/* the streaming world's coarse pre-pass (shaders/block_bound.glsl) */
 	{ "density.comp (FIELD_PASS_BOUND)", "density.comp", NULL, NULL,
 	  "#define FIELD_PASS_BOUND 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
 	{ "mc_debris.comp", "mc_debris.comp", NULL, NULL, NULL, false, NULL },
+	{ "mc_debris.comp (DEBRIS_NEAR)", "mc_debris.comp", NULL, NULL, "#define DEBRIS_NEAR 1\n", false, NULL },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false, NULL },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false, NULL },
 	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false, NULL },

@@ -6,7 +6,9 @@
  * the density's top surface). */
 #include "terrain.h"
 #include "noise.h"
+#include "gpu.h"
 
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,12 +79,46 @@ static int noise_for(struct terrain *t, int seed, char *err, size_t errlen)
 	return 0;
 }
 
+/* The density pass may leave out the finest octaves of far samples
+ * (field.h `cuts`; shaders/fractal.glsl cut_far) for the fractal sums
+ * whose octaves add terms of known bounds, without curves (their carve
+ * is not weighed there) and for the terrain field only. */
+static bool terrain_cuts(void *ctx, const struct params *p)
+{
+	struct terrain *t = ctx;
+	bool sum = p->fractal == FRACTAL_FBM || p->fractal == FRACTAL_GEISS || p->fractal == FRACTAL_TURBULENCE;
+	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
+	return p->density_cut && p->field == FIELD_TERRAIN && sum && p->octaves > 1 && p->noise_amp != 0.0f &&
+	       !curves;
+}
+
+/* fractal.glsl's u_fractal_hstep: the fbm weights' ratio (powf, as
+ * density_ref.c); u_cut_tail: the sum of the octaves' weights, a little
+ * over what the GPU's float products give; u_cut_rock: how far above the
+ * iso level the ambient occlusion's factors are 0 (ao.glsl). */
+static void set_fractal_uniforms(GLuint prog, const struct params *p)
+{
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_fractal_hstep"), powf(p->lacunarity, -p->hurst));
+	double w = 1.0, tail = 0.0;
+	double step = p->fractal == FRACTAL_FBM ? pow(p->lacunarity, -p->hurst) : p->gain;
+	for (int i = 0; i < p->octaves; i++, w *= step)
+		tail += w;
+	double rock = 0.0;
+	if (p->ao_short_k > 0.0f)
+		rock = fmax(rock, 1.0 / p->ao_short_k);
+	if (p->ao_long_k > 0.0f)
+		rock = fmax(rock, 1.0 / p->ao_long_k);
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_cut_tail"), (float)(tail * 1.001 + 1e-6));
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_cut_rock"), (float)rock);
+}
+
 static int terrain_bind(void *ctx, GLuint prog, const struct params *p, char *err, size_t errlen)
 {
 	struct terrain *t = ctx;
 	if (noise_for(t, p->seed, err, errlen) < 0)
 		return -1;
 	noise_gl_bind(&t->ng);
+	set_fractal_uniforms(prog, p);
 	return edits_gl_bind(t->ed, prog, p, err, errlen);
 }
 
@@ -114,6 +150,7 @@ struct terrain *terrain_create(struct edits *ed)
 	t->field.program = "density.comp";
 	t->field.bind = terrain_bind;
 	t->field.defines = terrain_defines;
+	t->field.cuts = terrain_cuts;
 	t->field.ctx = t;
 	edits_set_ground(ed, terrain_ground, t);
 	return t;
