@@ -98,13 +98,12 @@ int g_octave_drop = 0;
 // side of the iso level, and on the rock side also u_cut_rock above it,
 // where ambient occlusion sees no difference (ao.glsl saturates there).
 #define CUT_NOISE_BOUND 1.5
-// The cut is tried before octaves 0 .. CUT_LAST_OCTAVE only.  A sample
-// near the surface that is cut must be computed again whole (the refine
-// pass); later octaves leave so small a margin that they would cut many
-// such samples to save an octave or two (the benchmark field at 128^3:
-// 101 388 samples to refine when every octave may cut, 234 when the first
-// three may, for 1.5 ms more in the density pass, llvmpipe).
-#define CUT_LAST_OCTAVE 2
+// The cut is tried before octaves 0 .. CUT_LAST_OCTAVE (abi.h) only.  A
+// sample near the surface that is cut must be computed again whole (the
+// refine pass); later octaves leave so small a margin that they would cut
+// many such samples to save an octave or two (the benchmark field at
+// 128^3: 101 388 samples to refine when every octave may cut, 66 when the
+// first three may, for 1.5 ms more in the density pass, llvmpipe).
 uniform float u_cut_tail;
 uniform float u_cut_rock;
 float g_cut_base, g_cut_scale;

@@ -282,7 +282,9 @@ void check_cut_cache(void)
 {
 	struct params p;
 	params_defaults(&p);
-	set_kv(&p, "grid=16;ao_rays=0");
+	/* a cube: the default volume is too flat for the cut to pay
+	 * (app/terrain/terrain.c terrain_cuts) */
+	set_kv(&p, "grid=16;ao_rays=0;vol_height=1");
 	struct grid g;
 	grid_from_params(&g, &p);
 	char err[512] = "";
@@ -304,5 +306,14 @@ void check_cut_cache(void)
 	p.density_cut = true;
 	CHECK(density_with(ft.pl, ft.ed, &g, &p, "density_cut=true again", &c) == cut && c == 0,
 	      "the cut on again: from the cache (%u compiles)", c);
+	/* a volume lower than four of the cut's margins: the field leaves the
+	 * cut off there (the same cells, smaller) */
+	struct params low = p;
+	low.vol_size = 32.0f;
+	struct grid lg;
+	grid_from_params(&lg, &low);
+	pipeline_set_grid(ft.pl, &lg, 0.0f);
+	CHECK(density_with(ft.pl, ft.ed, &lg, &low, "vol_size=32", &c) == whole && c == 0,
+	      "a low volume: the program without the cut (%u compiles)", c);
 	fixture_terrain_close(&ft);
 }

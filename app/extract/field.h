@@ -38,6 +38,8 @@
 
 #include "params.h"
 
+struct grid; /* core/grid.h */
+
 struct field {
 	const char *program; /* the program file, as above */
 	/* Binds the field's resources and sets its uniforms on prog (the
@@ -55,7 +57,8 @@ struct field {
 	 * (buf too small: err may stay empty). */
 	int (*defines)(void *ctx, const struct params *p, char *buf, size_t len, char *err, size_t errlen);
 	/* Optional (NULL: never).  True when the field's density pass may
-	 * leave out the finest detail of samples far from the surface for p:
+	 * leave out the finest detail of samples far from the surface for p
+	 * on grid g (the field may judge whether it pays on that grid):
 	 * the engine then compiles it with DENSITY_CUT, where the field sets
 	 * g_density_cut for such a sample (its sign must be exact, and its
 	 * value within the ambient occlusion's saturation on the rock side:
@@ -64,7 +67,7 @@ struct field {
 	 * with DENSITY_REFINE, which computes whole every cut sample within
 	 * two samples of a sign change (common.glsl), so the surface's
 	 * vertices and normals see exact values. */
-	bool (*cuts)(void *ctx, const struct params *p);
+	bool (*cuts)(void *ctx, const struct params *p, const struct grid *g);
 	void *ctx;           /* the provider's, passed to bind and defines */
 };
 

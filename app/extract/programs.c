@@ -83,7 +83,7 @@ GLuint extract_variant_program(struct pipeline *pl, const char *file, const char
 
 bool extract_field_cuts(const struct pipeline *pl, const struct params *p)
 {
-	return pl->field->cuts && pl->field->cuts(pl->field->ctx, p);
+	return pl->field->cuts && pl->field->cuts(pl->field->ctx, p, &pl->g);
 }
 
 /* The density pass's variant: with the far samples' cut where the field

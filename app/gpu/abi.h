@@ -44,6 +44,9 @@
 #define RF_WORDS 4u   /* word entries */
 #define RF_HEAD 8u    /* the header's words */
 
+/* ---- the far samples' cut (shaders/fractal.glsl, terrain/terrain.c) -------- */
+#define CUT_LAST_OCTAVE 2 /* the cut is tried before octaves 0 .. this one only */
+
 /* ---- compute work groups -------------------------------------------------- */
 #define WG_SIZE 64         /* invocations of every 1D compute pass's work group (local_size_x); the host
 			    * divides its dispatch sizes by it */

@@ -7,6 +7,7 @@
 #include "terrain.h"
 #include "noise.h"
 #include "gpu.h"
+#include "core.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -79,37 +80,56 @@ static int noise_for(struct terrain *t, int seed, char *err, size_t errlen)
 	return 0;
 }
 
-/* The density pass may leave out the finest octaves of far samples
- * (field.h `cuts`; shaders/fractal.glsl cut_far) for the fractal sums
- * whose octaves add terms of known bounds, without curves (their carve
- * is not weighed there) and for the terrain field only. */
-static bool terrain_cuts(void *ctx, const struct params *p)
+/* The sum of the first n octaves' weights (fbm (f_i/f_0)^-H, geiss and
+ * turbulence gain^i), from octave `from` on. */
+static double octave_weights(const struct params *p, int from)
 {
-	struct terrain *t = ctx;
-	bool sum = p->fractal == FRACTAL_FBM || p->fractal == FRACTAL_GEISS || p->fractal == FRACTAL_TURBULENCE;
-	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
-	return p->density_cut && p->field == FIELD_TERRAIN && sum && p->octaves > 1 && p->noise_amp != 0.0f &&
-	       !curves;
-}
-
-/* fractal.glsl's u_fractal_hstep: the fbm weights' ratio (powf, as
- * density_ref.c); u_cut_tail: the sum of the octaves' weights, a little
- * over what the GPU's float products give; u_cut_rock: how far above the
- * iso level the ambient occlusion's factors are 0 (ao.glsl). */
-static void set_fractal_uniforms(GLuint prog, const struct params *p)
-{
-	glProgramUniform1f(prog, gpu_uniform(prog, "u_fractal_hstep"), powf(p->lacunarity, -p->hurst));
 	double w = 1.0, tail = 0.0;
 	double step = p->fractal == FRACTAL_FBM ? pow(p->lacunarity, -p->hurst) : p->gain;
 	for (int i = 0; i < p->octaves; i++, w *= step)
-		tail += w;
+		if (i >= from)
+			tail += w;
+	return tail;
+}
+
+/* How far into the rock ambient occlusion's factors are 0 (ao.glsl). */
+static double ao_reach(const struct params *p)
+{
 	double rock = 0.0;
 	if (p->ao_short_k > 0.0f)
 		rock = fmax(rock, 1.0 / p->ao_short_k);
 	if (p->ao_long_k > 0.0f)
 		rock = fmax(rock, 1.0 / p->ao_long_k);
-	glProgramUniform1f(prog, gpu_uniform(prog, "u_cut_tail"), (float)(tail * 1.001 + 1e-6));
-	glProgramUniform1f(prog, gpu_uniform(prog, "u_cut_rock"), (float)rock);
+	return rock;
+}
+
+/* The density pass may leave out the finest octaves of far samples
+ * (field.h `cuts`; shaders/fractal.glsl cut_far) for the fractal sums
+ * whose octaves add terms of known bounds, without curves (their carve
+ * is not weighed there) and for the terrain field only; and where it
+ * pays: a sample is cut before octave CUT_LAST_OCTAVE + 1 (abi.h) at the
+ * latest, when it is farther from the iso level than the octaves left can
+ * move it (and, in rock, than ambient occlusion reaches).  When four of
+ * that margin and the reach exceed the grid's height, too few samples are
+ * that far for the test and the refine passes to pay (the default field at
+ * 128^3: a margin of 11 against 43 units, 4 % slower with the cut; the
+ * benchmark field: 2.9 against 32, 21 % faster, llvmpipe). */
+static bool terrain_cuts(void *ctx, const struct params *p, const struct grid *g)
+{
+	struct terrain *t = ctx;
+	bool sum = p->fractal == FRACTAL_FBM || p->fractal == FRACTAL_GEISS || p->fractal == FRACTAL_TURBULENCE;
+	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
+	if (!p->density_cut || p->field != FIELD_TERRAIN || !sum || p->octaves < 2 || p->noise_amp == 0.0f || curves)
+		return false;
+	double margin = 1.5 * fabs(p->noise_amp) * octave_weights(p, CUT_LAST_OCTAVE);
+	return 4.0 * margin + ao_reach(p) <= (double)g->ny * g->cell;
+}
+
+static void set_fractal_uniforms(GLuint prog, const struct params *p)
+{
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_fractal_hstep"), powf(p->lacunarity, -p->hurst));
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_cut_tail"), (float)(octave_weights(p, 0) * 1.001 + 1e-6));
+	glProgramUniform1f(prog, gpu_uniform(prog, "u_cut_rock"), (float)ao_reach(p));
 }
 
 static int terrain_bind(void *ctx, GLuint prog, const struct params *p, char *err, size_t errlen)
