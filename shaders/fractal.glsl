@@ -134,8 +134,6 @@ bool cut_far(float sum, float tail, int i)
 // one it was cut at (g_refine_tag) are in its stored value, from which
 // cut_setup, called where the density pass called it, recovers their sum;
 // the sum goes on from there.  g_refine_tag -1: from scratch.
-uniform float u_cut_tail; // (set for both variants)
-uniform float u_cut_rock;
 float g_resume_sum;
 
 void cut_setup(float base, float scale)
