@@ -44,31 +44,41 @@ float ao_visibility(vec3 ws, vec3 nrm)
 	vec3 gpos = (ws - u_origin) / u_cell - vec3(u_base); // grid coordinates
 	float vis = 0.0;
 	vec2 cs = vec2(1.0, 0.0);
-	for (int r = 0; r < n; r++) {
+	// The loops test at their end (do-while), their counts checked first: a
+	// loop testing at its top makes llvmpipe run one more, masked, round
+	// after the last (fractal.glsl), here a whole ray.
+	int r = 0;
+	do {
 		vec3 dir = ao_dir(r, n, cs);
 		if (dot(dir, nrm) < -0.2)
 			dir = reflect(dir, nrm); // rays into the rock tell nothing
 		float v = 1.0;
-		for (int s = 1; s <= u_ao_short_steps; s++) {
-			ivec3 c = ivec3(floor(gpos + dir * (float(s) + 0.5) + 0.5));
-			c = clamp(c, lo, hi);
-			v *= clamp(1.0 - (D(c) - u_iso) * u_ao_short_k, 0.0, 1.0);
+		int s = 1;
+		if (u_ao_short_steps >= 1) {
+			do {
+				ivec3 c = ivec3(floor(gpos + dir * (float(s) + 0.5) + 0.5));
+				c = clamp(c, lo, hi);
+				v *= clamp(1.0 - (D(c) - u_iso) * u_ao_short_k, 0.0, 1.0);
+			} while (++s <= u_ao_short_steps);
 		}
-		for (int s = 1; s <= u_ao_long_steps; s++) {
-			float dist = float(s) * u_ao_long_step;
-			vec3 q = gpos + dir * (dist / u_cell);
+		s = 1;
+		if (u_ao_long_steps >= 1) {
+			do {
+				float dist = float(s) * u_ao_long_step;
+				vec3 q = gpos + dir * (dist / u_cell);
 #ifdef AO_FAR_OUTSIDE
-			float d;
-			if (all(greaterThanEqual(q, vec3(lo))) && all(lessThanEqual(q, vec3(hi))))
-				d = D_near(q);
-			else
-				d = density_far(ws + dir * dist);
+				float d;
+				if (all(greaterThanEqual(q, vec3(lo))) && all(lessThanEqual(q, vec3(hi))))
+					d = D_near(q);
+				else
+					d = density_far(ws + dir * dist);
 #else
-			float d = D_near(clamp(q, vec3(lo), vec3(hi)));
+				float d = D_near(clamp(q, vec3(lo), vec3(hi)));
 #endif
-			v *= clamp(1.0 - (d - u_iso) * u_ao_long_k, 0.0, 1.0);
+				v *= clamp(1.0 - (d - u_iso) * u_ao_long_k, 0.0, 1.0);
+			} while (++s <= u_ao_long_steps);
 		}
 		vis += v;
-	}
+	} while (++r < n);
 	return vis / float(n);
 }

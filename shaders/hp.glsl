@@ -24,16 +24,19 @@ uint byte_count(uint b, int comp) { return comp == 0 ? (b & 7u) : uint(bitCount(
 void hp_traverse(uint key, int comp, out uint cell, out uint rank)
 {
 	uint i = 0u;
-	for (int k = u_hp_top; k >= 2; --k) {
-		uint base = u_hp_off[k - 1] + 4u * i;
-		uint j = 0u;
-		for (; j < 3u; ++j) {
-			uint c = hp[base + j][comp];
-			if (key < c)
-				break;
-			key -= c;
-		}
-		i = 4u * i + j;
+	int k = u_hp_top;
+	if (k >= 2) {
+		do { // tested at the end: no masked level after the last (fractal.glsl)
+			uint base = u_hp_off[k - 1] + 4u * i;
+			uint j = 0u;
+			for (; j < 3u; ++j) {
+				uint c = hp[base + j][comp];
+				if (key < c)
+					break;
+				key -= c;
+			}
+			i = 4u * i + j;
+		} while (--k >= 2);
 	}
 	uint w = hp_l0(i);
 	uint j = 0u;
