@@ -88,16 +88,18 @@ int g_octave_drop = 0;
 // a sample's octaves once the ones left cannot change its sign.  The
 // stored value is g_cut_base + g_cut_scale * sum (density.glsl's terms
 // around the noise, cut_setup); an octave adds at most CUT_NOISE_BOUND
-// times its weight (|improved Perlin| < 1.5: each corner's gradient
-// product is at most |dx| + |dy| + |dz|, whose fade-weighted mean per
-// axis is at most 1/2; the texture basis is at most 0.864; turbulence's
-// |n| - E|n| within -0.22 .. 1.28), and u_cut_tail is the sum of all the
+// (abi.h) times its weight.  |improved Perlin| < 1.11: a corner's
+// gradient has two components of +-1, so its product with the offset d
+// is at most the sum of d's two largest |components|; the fade-weighted
+// sum of that over the eight corners peaks at 1.0363 on a 201^3 grid of
+// the cell, and its slope (< 16.5) adds at most 0.071 between the grid's
+// points.  The texture basis is at most 0.864, turbulence's |n| - E|n|
+// within -0.22 .. 0.89.  u_cut_tail is the sum of all the
 // octaves' weights (fbm (f_i/f_0)^-H, geiss and turbulence gain^i, a
 // little over, from the host: app/terrain/terrain.c).  A sample is cut
 // when the value, moved by the most the octaves left can add, stays on its
 // side of the iso level, and on the rock side also u_cut_rock above it,
 // where ambient occlusion sees no difference (ao.glsl saturates there).
-#define CUT_NOISE_BOUND 1.5
 // The cut is tried before octaves 0 .. CUT_LAST_OCTAVE (abi.h) only.  A
 // sample near the surface that is cut must be computed again whole (the
 // refine pass); later octaves leave so small a margin that they would cut

@@ -22,16 +22,16 @@ static inline bool cut_may(const struct params *p)
 	return p->density_cut && p->field == FIELD_TERRAIN && sum && p->octaves > 1 && p->noise_amp != 0.0f;
 }
 
-/* The most the octaves can add: 1.5 (a bound of improved Perlin noise, and
- * of the texture basis and turbulence's terms) times the octaves' weights
- * times noise_amp. */
+/* The most the octaves can add: 1.11 (a bound of improved Perlin noise,
+ * and of the texture basis and turbulence's terms: shaders/fractal.glsl)
+ * times the octaves' weights times noise_amp. */
 static inline double cut_bound(const struct params *p)
 {
 	double w = 1.0, tail = 0.0;
 	double step = p->fractal == FRACTAL_FBM ? pow(p->lacunarity, -p->hurst) : p->gain;
 	for (int i = 0; i < p->octaves; i++, w *= step)
 		tail += w;
-	return 1.5 * tail * fabs(p->noise_amp);
+	return 1.11 * tail * fabs(p->noise_amp);
 }
 
 /* How far into the rock ambient occlusion sees no difference any more. */

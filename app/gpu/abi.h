@@ -45,7 +45,8 @@
 #define RF_HEAD 8u    /* the header's words */
 
 /* ---- the far samples' cut (shaders/fractal.glsl, terrain/terrain.c) -------- */
-#define CUT_LAST_OCTAVE 2 /* the cut is tried before octaves 0 .. this one only */
+#define CUT_LAST_OCTAVE 2    /* the cut is tried before octaves 0 .. this one only */
+#define CUT_NOISE_BOUND 1.11 /* |an octave's noise term| is below this (fractal.glsl) */
 
 /* ---- compute work groups -------------------------------------------------- */
 #define WG_SIZE 64         /* invocations of every 1D compute pass's work group (local_size_x); the host

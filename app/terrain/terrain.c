@@ -109,11 +109,13 @@ static double ao_reach(const struct params *p)
  * is not weighed there) and for the terrain field only; and where it
  * pays: a sample is cut before octave CUT_LAST_OCTAVE + 1 (abi.h) at the
  * latest, when it is farther from the iso level than the octaves left can
- * move it (and, in rock, than ambient occlusion reaches).  When four of
+ * move it (and, in rock, than ambient occlusion reaches).  When five of
  * that margin and the reach exceed the grid's height, too few samples are
- * that far for the test and the refine passes to pay (the default field at
- * 128^3: a margin of 11 against 43 units, 4 % slower with the cut; the
- * benchmark field: 2.9 against 32, 21 % faster, llvmpipe). */
+ * that far for the test and the refine passes to pay (measured on
+ * llvmpipe: the default field at 128^3, 43 units high against a margin of
+ * 8.1, gained nothing from the cut, 47.5 against 47.2 ms; the benchmark
+ * field, 32 high against 2.2, 8 % faster still; with a bound of 1.5 the
+ * default field's margin was 11 and the cut 4 % slower). */
 static bool terrain_cuts(void *ctx, const struct params *p, const struct grid *g)
 {
 	struct terrain *t = ctx;
@@ -121,8 +123,8 @@ static bool terrain_cuts(void *ctx, const struct params *p, const struct grid *g
 	bool curves = t->ed->quads.nquads > 0 && t->ed->hash.pivot;
 	if (!p->density_cut || p->field != FIELD_TERRAIN || !sum || p->octaves < 2 || p->noise_amp == 0.0f || curves)
 		return false;
-	double margin = 1.5 * fabs(p->noise_amp) * octave_weights(p, CUT_LAST_OCTAVE);
-	return 4.0 * margin + ao_reach(p) <= (double)g->ny * g->cell;
+	double margin = CUT_NOISE_BOUND * fabs(p->noise_amp) * octave_weights(p, CUT_LAST_OCTAVE);
+	return 5.0 * margin + ao_reach(p) <= (double)g->ny * g->cell;
 }
 
 static void set_fractal_uniforms(GLuint prog, const struct params *p)
