@@ -147,7 +147,7 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	pl->owners = (uint32_t)owners;
 	pl->sign_words = extract_sign_words(g);
 	/* the refine list's sample entries: a 64th of the samples, at least
-	 * 64 (the default field at 128^3 lists 2 222 of 1 031 000; a word
+	 * 64 (the default field in a 128^3 cube lists 2 333 of 2 248 091; a word
 	 * entry each for the rest, abi.h RF_*: test_density's small grids
 	 * take that path) */
 	pl->refine_cap = (uint32_t)(dens / 64 > 64 ? dens / 64 : 64);
