@@ -214,7 +214,7 @@ void main()
 		uint b;
 		if (k < u_refine_cap) {
 			valid = k < S;
-			b = rf[RF_HEAD + min(k, max(S, 1u) - 1u)];
+			b = rf[RF_HEAD + k]; // within the list's entries (k < u_refine_cap)
 		} else {
 			uint e = (k - u_refine_cap) >> 5u, j = (k - u_refine_cap) & 31u;
 			uint w = e < W ? rf[RF_HEAD + u_refine_cap + e] : 0u;

@@ -27,6 +27,19 @@ static void set_kv(struct params *p, const char *kv)
 	}
 }
 
+/* The defaults with the settings kv, their grid and the terrain's
+ * extraction on it.  0, or -1 (the failure checked, named by what). */
+static int open_terrain(const char *kv, const char *what, struct params *p, struct grid *g, struct fixture_terrain *ft)
+{
+	params_defaults(p);
+	set_kv(p, kv);
+	grid_from_params(g, p);
+	char err[512] = "";
+	int rc = fixture_terrain_open(ft, g, p, err, sizeof(err));
+	CHECK(rc == 0, "%s: pipeline_create: %s", what, err);
+	return rc == 0 && ft->pl ? 0 : -1;
+}
+
 static bool reads(GLuint prog, const char *uniform)
 {
 	return prog && uniform && glGetUniformLocation(prog, uniform) >= 0;
@@ -57,16 +70,11 @@ static GLuint density_with(struct pipeline *pl, struct edits *ed, const struct g
 void check_cache(void)
 {
 	struct params p;
-	params_defaults(&p);
+	struct grid g;
+	struct fixture_terrain ft;
 	/* one program per density pass: the far samples' cut off (its own
 	 * variants: check_cut_cache) */
-	set_kv(&p, "grid=16;ao_rays=0;warp_amp=0;density_cut=false");
-	struct grid g;
-	grid_from_params(&g, &p);
-	char err[512] = "";
-	struct fixture_terrain ft;
-	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "cache: pipeline_create: %s", err);
-	if (!ft.pl)
+	if (open_terrain("grid=16;ao_rays=0;warp_amp=0;density_cut=false", "cache", &p, &g, &ft) < 0)
 		return;
 	struct edits *ed = ft.ed;
 	struct pipeline *pl = ft.pl;
@@ -237,13 +245,11 @@ void check_terms(void)
 void check_curves_switch(void)
 {
 	struct params p;
-	params_defaults(&p);
-	set_kv(&p, "grid=16;ao_rays=0;density_cut=false");
 	struct grid g;
-	grid_from_params(&g, &p);
-	char err[512] = "";
 	struct fixture_terrain ft;
-	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "curves switch: %s", err);
+	if (open_terrain("grid=16;ao_rays=0;density_cut=false", "curves switch", &p, &g, &ft) < 0)
+		return;
+	char err[512] = "";
 	struct edits *ed = ft.ed;
 	struct pipeline *pl = ft.pl;
 	if (pl) {
@@ -281,16 +287,11 @@ void check_curves_switch(void)
 void check_cut_cache(void)
 {
 	struct params p;
-	params_defaults(&p);
+	struct grid g;
+	struct fixture_terrain ft;
 	/* a cube: the default volume is too flat for the cut to pay
 	 * (app/terrain/terrain.c terrain_cuts) */
-	set_kv(&p, "grid=16;ao_rays=0;vol_height=1");
-	struct grid g;
-	grid_from_params(&g, &p);
-	char err[512] = "";
-	struct fixture_terrain ft;
-	CHECK(fixture_terrain_open(&ft, &g, &p, err, sizeof(err)) == 0, "cut cache: %s", err);
-	if (!ft.pl)
+	if (open_terrain("grid=16;ao_rays=0;vol_height=1", "cut cache", &p, &g, &ft) < 0)
 		return;
 	unsigned c;
 	GLuint cut = density_with(ft.pl, ft.ed, &g, &p, "density_cut=true", &c);

@@ -133,11 +133,7 @@ static GLint new_texture(GLuint *tex, int unit, GLenum fmt, int w, int h, GLint 
 	glGetIntegerv(GL_ACTIVE_TEXTURE, &prev);
 	glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
 	glBindTexture(GL_TEXTURE_2D, *tex);
-	glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	gpu_texture_2d_storage(fmt, w, h, filter);
 	glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 	return prev;
 }

@@ -147,6 +147,15 @@ int gpu_fence_read(GLsync *fence, GLuint buf, GLsizeiptr size, void *out, bool w
 	return m ? 1 : -1;
 }
 
+void gpu_texture_2d_storage(GLenum fmt, int w, int h, GLint filter)
+{
+	glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out)
 {
 	if (size <= 0)

@@ -80,6 +80,9 @@ int gpu_init(struct gpu_caps *caps, bool debug, char *err, size_t errlen);
 /* Reads size bytes at off of a buffer object back into out (after the
  * shader-storage and buffer-update barriers).  Tests, export and reports
  * only: never in the frame loop.  0, or -1 (a GL error is logged). */
+/* Immutable storage for the bound GL_TEXTURE_2D: one level of fmt, w x h,
+ * the filter both ways, clamped at the edges. */
+void gpu_texture_2d_storage(GLenum fmt, int w, int h, GLint filter);
 int gpu_read_buffer(GLuint buf, GLintptr off, GLsizeiptr size, void *out);
 /* A fenced read-back, for results a frame asked for frames ago: when
  * *fence has signalled (with wait: flushed, and waited for up to 10 s) it

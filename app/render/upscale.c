@@ -27,11 +27,7 @@ int upscale_init(struct upscale *u, const char *fs, int w, int h, char *err, siz
 	glUseProgram(0);
 	glGenTextures(1, &u->tex);
 	glBindTexture(GL_TEXTURE_2D, u->tex);
-	glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	gpu_texture_2d_storage(GL_RGBA8, w, h, GL_LINEAR);
 	glBindTexture(GL_TEXTURE_2D, 0);
 	glGenFramebuffers(1, &u->fbo);
 	glBindFramebuffer(GL_FRAMEBUFFER, u->fbo);
