@@ -27,7 +27,7 @@ void main()
 			ivec4 eo = mc_edge_owner[mc_tri(cs, int(r) * 3 + k)];
 			vec4 p, nr;
 			edge_vertex(c + eo.xyz, eo.w, p, nr);
-			verts[3u * t + uint(k)] = Vertex(p.xyz, pack_normal_ao(nr.xyz, 1.0));
+			verts[3u * t + uint(k)] = Vertex(p.xyz, pack_vertex_word(nr.xyz, 1.0, 1.0));
 		}
 	}
 }

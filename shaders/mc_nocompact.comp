@@ -25,7 +25,7 @@ void main()
 				ivec4 eo = mc_edge_owner[mc_tri(cs, int(r) * 3 + k)];
 				edge_vertex(c + eo.xyz, eo.w, p, nr);
 			}
-			verts[15u * id + 3u * r + uint(k)] = Vertex(p.xyz, pack_normal_ao(nr.xyz, 1.0));
+			verts[15u * id + 3u * r + uint(k)] = Vertex(p.xyz, pack_vertex_word(nr.xyz, 1.0, 1.0));
 		}
 	}
 }

@@ -9,6 +9,9 @@ layout(local_size_x = WG_SIZE) in;
 #ifdef WITH_AO
 #include "ao.glsl" // reads the field: compiled as part of the field's program (FIELD_PASS_VERTICES)
 #endif
+#ifdef WITH_SUN
+#include "sun.glsl" // the same
+#endif
 #include "vertex.glsl"
 layout(std430, binding = BIND_VERTICES) restrict writeonly buffer Verts { Vertex verts[]; };
 
@@ -37,5 +40,10 @@ void main()
 #else
 	n.w = 1.0;
 #endif
-	verts[v] = Vertex(p.xyz, pack_normal_ao(n.xyz, n.w));
+#ifdef WITH_SUN
+	float sun = sun_visibility(p.xyz, n.xyz);
+#else
+	float sun = 1.0;
+#endif
+	verts[v] = Vertex(p.xyz, pack_vertex_word(n.xyz, n.w, sun));
 }

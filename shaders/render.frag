@@ -1,15 +1,19 @@
 // isoterra — terrain shading (GPU Gems 3 ch.1 §4, seed 001 soils):
 // triplanar projection of the generated surface texture with a bump per
-// projection, a detail normal near the camera, per-vertex ambient occlusion,
-// altitude/strata colour bands over a soil colour table, snow on flat high
-// ground, sun + hemispheric sky light, distance/height fog towards the sky
-// colour, gamma-correct output.  Compiled for the parameters
-// (params_glsl_specialization, app/render/render.c): the shape's and the
-// soil's branches are constants, the marble colour is in only when on, the
-// detail normals only in the variant for meshes near the eye.
+// projection, detail at two finer scales near the camera (normal and
+// albedo), per-vertex ambient occlusion and sun shadows (baked by the
+// extraction: ao.glsl, sun.glsl), altitude/strata colour bands over a soil
+// colour table, rock and grass by slope, snow on flat high ground by slope
+// and height with a noisy edge, sun + hemispheric sky light summed in
+// linear space, aerial perspective (shade.glsl), tone mapping.  Compiled
+// for the parameters (params_glsl_specialization, app/render/render.c):
+// the shape's and the soil's branches are constants, the marble colour and
+// the shadows are in only when on, the detail only in the variant for
+// meshes near the eye.
 in vec3 v_pos;
 in vec3 v_nrm;
 in float v_ao;
+in float v_sun;
 uniform vec3 u_eye;
 uniform float u_fog_density;
 layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
@@ -106,17 +110,27 @@ void main()
 	vec3 n = normalize(n0 - bump);
 	// detail normal, fading out with distance (compiled out of the variant
 	// for meshes that stay beyond DETAIL_RANGE: render.c)
+	float tex = t1.r * w.x + t2.r * w.y + t3.r * w.z;
 #if DETAIL_NORMALS
+	// two finer scales (5.1 and 23 times), fading out with distance: the
+	// grain of the rock and the grass close up, where the base texture's
+	// texels would smear
 	float dist = length(v_pos - u_eye);
 	float near = u_detail * clamp(1.0 - dist / DETAIL_RANGE, 0.0, 1.0);
+	float grain = 0.0;
 	if (near > 0.0) {
 		vec4 d1 = texture(u_surface, c1 * 5.1), d2 = texture(u_surface, c2 * 5.1), d3 = texture(u_surface, c3 * 5.1);
 		vec3 db = vec3(0.0, d1.g - 0.5, d1.b - 0.5) * w.x + vec3(d2.b - 0.5, 0.0, d2.g - 0.5) * w.y +
 			  vec3(d3.g - 0.5, d3.b - 0.5, 0.0) * w.z;
-		n = normalize(n - db * near);
+		float nearer = near * clamp(1.0 - dist / (0.25 * DETAIL_RANGE), 0.0, 1.0);
+		vec4 e1 = texture(u_surface, c1 * 23.0), e2 = texture(u_surface, c2 * 23.0), e3 = texture(u_surface, c3 * 23.0);
+		vec3 eb = vec3(0.0, e1.g - 0.5, e1.b - 0.5) * w.x + vec3(e2.b - 0.5, 0.0, e2.g - 0.5) * w.y +
+			  vec3(e3.g - 0.5, e3.b - 0.5, 0.0) * w.z;
+		n = normalize(n - db * near - eb * (0.6 * nearer));
+		grain = ((d1.r * w.x + d2.r * w.y + d3.r * w.z) - 0.5) * near +
+			((e1.r * w.x + e2.r * w.y + e3.r * w.z) - 0.5) * nearer;
 	}
 #endif
-	float tex = t1.r * w.x + t2.r * w.y + t3.r * w.z;
 	float hgt = t1.a * w.x + t2.a * w.y + t3.a * w.z;
 
 	// "up" and altitude: +y and y, on a planet away from its centre and the
@@ -139,10 +153,20 @@ void main()
 		rock = marble_color(rock, v_pos);
 #endif
 	vec3 grass = mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
+	// grass on gentle slopes, rock on steep ones (the mesh's normal: the
+	// bumps only fray the edge)
 	float flat_ground = smoothstep(0.62, 0.86, up_n + (hgt - 0.5) * 0.3);
 	vec3 albedo = mix(rock, grass, flat_ground);
-	float snow = smoothstep(u_snow_line - 1.0, u_snow_line + 1.0, alt + hgt * 2.0) * smoothstep(0.5, 0.8, up_n);
+	// snow: above the snow line, which wanders by a few units over the
+	// land (the slow variation), on ground flat enough to hold it, the
+	// higher the steeper; its edge frayed by the texture's height
+	float over = alt - u_snow_line + (slow - 0.5) * 1.5 + (hgt - 0.5) * 1.6;
+	float hold = mix(0.82, 0.62, clamp(over * 0.125, 0.0, 1.0));
+	float snow = smoothstep(-0.6, 0.6, over) * smoothstep(hold - 0.06, hold + 0.04, up_n + (hgt - 0.5) * 0.12);
 	albedo = mix(albedo, vec3(0.88, 0.90, 0.93), snow);
+#if DETAIL_NORMALS
+	albedo *= 1.0 + 0.45 * grain;
+#endif
 #if ROAD_MAP
 	albedo = road_paint(albedo, v_pos, tex, hgt);
 #endif
@@ -153,8 +177,13 @@ void main()
 	float occ = mix(1.0, clamp(v_ao, 0.0, 1.0), u_ao_strength);
 	vec3 sky_amb = srgb_to_linear(SKY_HORIZON) * (0.55 + 0.45 * n.y);
 	vec3 ground_amb = vec3(0.09, 0.07, 0.05) * (0.5 - 0.5 * n.y);
-	vec3 light = u_sun * vec3(1.0, 0.95, 0.86) * ndl * mix(1.0, occ, 0.5) + u_ambient * 2.0 * (sky_amb + ground_amb) * occ;
+#if TERM_SHADOWS
+	float lit = mix(1.0, clamp(v_sun, 0.0, 1.0), u_shadows);
+#else
+	float lit = 1.0;
+#endif
+	vec3 light = u_sun * SUN_COLOR * ndl * lit * mix(1.0, occ, 0.5) + u_ambient * 2.0 * (sky_amb + ground_amb) * occ;
 	vec3 col = albedo * light * back;
 	col = apply_fog(col, v_pos, u_eye, u_fog_density);
-	frag = vec4(linear_to_srgb(col), 1.0);
+	frag = vec4(display(col), 1.0);
 }

@@ -1,22 +1,56 @@
 // isoterra — shared by the terrain, water and sky shaders: sun direction,
-// sky colours, fog, gamma.
+// sky colours, aerial perspective (height fog with in-scattering towards
+// the sun), tone mapping, gamma.  Light is summed in linear space and
+// tone-mapped once, at the end of each shader (display()).
 const vec3 SKY_HORIZON = vec3(0.62, 0.74, 0.88); // sRGB; also the clear colour
 const vec3 SKY_ZENITH = vec3(0.30, 0.48, 0.78);
+const vec3 SUN_COLOR = vec3(1.0, 0.95, 0.86);    // linear
+const vec3 SUN_HAZE = vec3(1.0, 0.86, 0.62);     // linear: the air lit towards the sun
+const float EXPOSURE = 0.85;
 
 vec3 srgb_to_linear(vec3 c) { return pow(c, vec3(2.2)); }
 vec3 linear_to_srgb(vec3 c) { return pow(max(c, 0.0), vec3(1.0 / 2.2)); }
+
+// Filmic tone mapping (Narkowicz's fit of the ACES curve): a toe that
+// deepens the shadows, a shoulder that rolls bright snow and the sun's
+// glare off instead of clipping them.
+vec3 tonemap(vec3 x)
+{
+	x *= EXPOSURE;
+	return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+// linear light -> the colour written
+vec3 display(vec3 c) { return linear_to_srgb(tonemap(c)); }
 
 // towards the sun: from light_el / light_az, worked out once a frame on
 // the CPU (app/render/render.c)
 uniform vec3 u_sun_dir;
 vec3 sun_dir() { return u_sun_dir; }
 
-// distance fog, thinner with height, towards the horizon colour
+// The colour of the air along direction rd far away: the horizon's, lit
+// towards the sun (the in-scattering of Quilez's "better fog").  The sky
+// (sky.frag) has it at its horizon, so the fog ends in the sky behind it.
+vec3 haze_color(vec3 rd)
+{
+	float s = max(dot(rd, sun_dir()), 0.0);
+	return mix(srgb_to_linear(SKY_HORIZON), SUN_HAZE, 0.55 * s * s * s * s * s * s * s * s * min(u_sun, 1.5));
+}
+
+// Aerial perspective: the fog's density falls with height as
+// exp(-fog_height * y), integrated along the ray from the eye (thick in the
+// valleys, thin on the peaks, a low view through more air than a high
+// one), towards haze_color.
 vec3 apply_fog(vec3 col, vec3 pos, vec3 eye, float density)
 {
-	float dist = length(pos - eye);
-	float h = max(min(pos.y, eye.y), -50.0);
-	float k = density * u_fog * exp(-u_fog_height * max(h, 0.0));
-	float fog = 1.0 - exp(-dist * k);
-	return mix(col, srgb_to_linear(SKY_HORIZON), clamp(fog, 0.0, 1.0));
+	vec3 ray = pos - eye;
+	float dist = length(ray);
+	float b = u_fog_height, dy = ray.y;
+	float y0 = max(eye.y, -50.0);
+	// the integral of exp(-b y) over the ray, per unit of length: exp(-b y0) * (1 - exp(-b dy)) / (b dy)
+	float bdy = b * dy;
+	float mean = abs(bdy) > 1e-3 ? (1.0 - exp(-bdy)) / bdy : 1.0 - 0.5 * bdy;
+	float k = density * u_fog * exp(-b * y0) * mean;
+	float fog = 1.0 - exp(-dist * min(k, 50.0 / max(dist, 1e-3)));
+	return mix(col, haze_color(ray / max(dist, 1e-6)), clamp(fog, 0.0, 1.0));
 }

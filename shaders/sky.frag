@@ -1,4 +1,6 @@
-// isoterra — sky gradient from the horizon to the zenith, a soft sun.
+// isoterra — the sky: the haze at the horizon (lit towards the sun: the
+// fog's colour far away, shade.glsl), the zenith's blue above it, the sun's
+// disk with a limb and its glare.
 in vec3 v_world;
 uniform vec3 u_eye;
 out vec4 frag;
@@ -7,8 +9,10 @@ out vec4 frag;
 void main()
 {
 	vec3 d = normalize(v_world - u_eye);
-	vec3 col = mix(srgb_to_linear(SKY_HORIZON), srgb_to_linear(SKY_ZENITH), pow(clamp(d.y, 0.0, 1.0), 0.6));
+	vec3 col = mix(haze_color(d), srgb_to_linear(SKY_ZENITH), pow(clamp(d.y, 0.0, 1.0), 0.6));
 	float s = max(dot(d, sun_dir()), 0.0);
-	col += vec3(1.0, 0.9, 0.7) * (pow(s, 400.0) * 4.0 + pow(s, 12.0) * 0.15) * u_sun;
-	frag = vec4(linear_to_srgb(col), 1.0);
+	// the disk (about 1.5 degrees across, a soft limb) and a wide glare
+	float disk = smoothstep(0.99955, 0.99975, s);
+	col += SUN_COLOR * (disk * 12.0 + pow(s, 600.0) * 2.0 + pow(s, 24.0) * 0.12) * u_sun;
+	frag = vec4(display(col), 1.0);
 }

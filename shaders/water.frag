@@ -75,12 +75,12 @@ void main()
 	vec3 v = normalize(u_eye - v_pos);
 	float f = 0.02 + 0.98 * pow(1.0 - max(dot(n, v), 0.0), 5.0);
 	vec3 r = reflect(-v, n);
-	vec3 sky = mix(srgb_to_linear(SKY_HORIZON), srgb_to_linear(SKY_ZENITH), pow(clamp(r.y, 0.0, 1.0), 0.6));
+	vec3 sky = mix(haze_color(r), srgb_to_linear(SKY_ZENITH), pow(clamp(r.y, 0.0, 1.0), 0.6));
 	vec3 deep = srgb_to_linear(vec3(0.05, 0.20, 0.26));
 	vec3 col = mix(deep, sky, f);
 	col += vec3(1.0, 0.9, 0.7) * pow(max(dot(r, sun_dir()), 0.0), 200.0) * u_sun * 2.0;
 	col = apply_fog(col, v_pos, u_eye, u_fog_density);
 	// a planet's sea: deeper (more opaque) than a lake seen from above
 	float a0 = u_water_sphere > 0.0 ? 0.86 : 0.72;
-	frag = vec4(linear_to_srgb(col), mix(a0, 0.95, f));
+	frag = vec4(display(col), mix(a0, 0.95, f));
 }

@@ -267,7 +267,11 @@ static void check_field(const char *what, const struct params *p, const struct g
 	if (gm.ntris == cm_g.ntris && gm.nverts == cm_g.nverts) {
 		CHECK(memcmp(gm.idx, cm_g.idx, (size_t)gm.ntris * 12) == 0, "%s: indices differ", what);
 		CHECK(max_pos_diff(&gm, &cm_g) <= 1e-4 * g->cell, "%s: positions differ by %g", what, max_pos_diff(&gm, &cm_g));
-		CHECK(max_nrm_diff(&gm, &cm_g) <= 1e-3, "%s: normals differ by %g", what, max_nrm_diff(&gm, &cm_g));
+		/* the stored normal is octahedral, 11 bits a coordinate
+		 * (shaders/vertex.glsl): half a step (1/2046) in each, through
+		 * the map's stretch (at most sqrt 6), moves a component by up
+		 * to 1.7e-3 */
+		CHECK(max_nrm_diff(&gm, &cm_g) <= 2.5e-3, "%s: normals differ by %g", what, max_nrm_diff(&gm, &cm_g));
 	}
 	/* the full CPU reference (its own densities, libm's sin and cos):
 	 * exactly the same away from the iso level, within the stated bound

@@ -85,7 +85,7 @@ static int edit_frame(struct sink *base, struct sink_frame *fr, char *err, size_
 		return -1;
 	}
 	if (fr->index == 1)
-		CHECK(rewrite(s, "render.frag", "frag = vec4(linear_to_srgb(col), 1.0);", "frag = vec4(1.0, 0.0, 1.0, 1.0);", NULL),
+		CHECK(rewrite(s, "render.frag", "frag = vec4(display(col), 1.0);", "frag = vec4(1.0, 0.0, 1.0, 1.0);", NULL),
 		      "edit render.frag");
 	if (fr->index == 3)
 		CHECK(rewrite(s, "render.frag", "void main()", "this is not GLSL;\nvoid main()", &s->broken_line), "break render.frag");

@@ -8,6 +8,7 @@ void mesh_free(struct mesh *m)
 {
 	free(m->pos);
 	free(m->nrm);
+	free(m->vis);
 	free(m->idx);
 	memset(m, 0, sizeof(*m));
 }

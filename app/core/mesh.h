@@ -9,6 +9,8 @@
 struct mesh {
 	float *pos;      /* 3 floats per vertex, world space */
 	float *nrm;      /* 3 floats per vertex, unit normal pointing into air */
+	float *vis;      /* 2 floats per vertex, ambient and sun visibility 0 .. 1: a
+	                  * GPU mesh's read-back has them, a CPU mesh NULL */
 	uint32_t nverts;
 	uint32_t *idx;   /* 3 indices per triangle, counter-clockwise seen from air */
 	uint32_t ntris;

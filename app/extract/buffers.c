@@ -223,7 +223,9 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 	if (mesh_alloc(m, nv, nt) < 0)
 		return -1;
 	uint32_t *vb = malloc((size_t)VERTEX_BYTES * (nv ? nv : 1));
-	if (!vb) {
+	m->vis = malloc(sizeof(float) * 2 * (nv ? nv : 1));
+	if (!vb || !m->vis) {
+		free(vb);
 		mesh_free(m);
 		return -1;
 	}
@@ -234,7 +236,8 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)
 		for (uint32_t i = 0; i < 3 * nt; i++)
 			m->idx[i] = i;
 	for (uint32_t i = 0; rc == 0 && i < nv; i++)
-		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)i, m->nrm + 3 * (size_t)i, NULL);
+		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)i, m->nrm + 3 * (size_t)i, m->vis + 2 * (size_t)i,
+			      m->vis + 2 * (size_t)i + 1);
 	free(vb);
 	if (rc < 0)
 		mesh_free(m);

@@ -111,17 +111,26 @@ GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char 
 /* The vertex pass's variant (extract_vertex_program). */
 static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field)
 {
-	*field = p->ao_rays > 0;
+	bool ao = p->ao_rays > 0, sun = p->shadows > 0.0f && p->shadow_steps > 0;
+	*field = ao || sun;
 	*file = *field ? pl->field->program : "mc_vertices.comp";
 	if (!*field)
 		return "";
-	/* AO: a grid with an extra margin is a block of a larger world, whose
-	 * long rays evaluate the field outside it (shaders/ao.glsl) */
-	return pl->g.margin_extra > 0 ? "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n"
-				      : "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n";
+	/* a grid with an extra margin is a block of a larger world, whose long
+	 * AO rays and sun rays evaluate the field outside it (shaders/ao.glsl,
+	 * shaders/sun.glsl); a lone volume's end at its sides */
+	static const char *const defs[2][2][2] = {
+		{ { "", "#define FIELD_PASS_VERTICES 1\n#define WITH_SUN 1\n" },
+		  { "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n",
+		    "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define WITH_SUN 1\n" } },
+		{ { "", "#define FIELD_PASS_VERTICES 1\n#define WITH_SUN 1\n#define AO_FAR_OUTSIDE 1\n" },
+		  { "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define AO_FAR_OUTSIDE 1\n",
+		    "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define WITH_SUN 1\n#define AO_FAR_OUTSIDE 1\n" } },
+	};
+	return defs[pl->g.margin_extra > 0][ao][sun];
 }
 
-/* The vertex pass: with ambient occlusion its rays read the field, so it is
+/* The vertex pass: with ambient occlusion or shadows their rays read the field, so it is
  * the field's program; without, the engine's own (not specialized: it reads
  * no parameter that selects code). */
 GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)

@@ -103,6 +103,9 @@
 #define ST_BYTES (ST_WORDS * 4)
 
 /* ---- vertex format -------------------------------------------------------- */
-#define VERTEX_BYTES 16      /* vec3 position, uint normal (octahedral 12+12 bits) + AO (8 bits): shaders/vertex.glsl */
+#define VERTEX_BYTES 16      /* vec3 position, one word: normal, AO, sun (shaders/vertex.glsl) */
+#define VERTEX_OCT_BITS 11   /* bits per octahedral normal coordinate (bits 0-21) */
+#define VERTEX_OCT_STEPS 2046 /* codes 0 .. 2046 of each: 0.0 is code 1023 exactly */
+/* bits 22-26: ambient visibility, 27-31: sun visibility (0 .. 31 = 0 .. 1) */
 
 #endif

@@ -5,23 +5,28 @@
 
 /* The ladder: each row one step down from the one before, in the order
  * the user notices least: resolution first (upscaled with a filter that
- * keeps edges), then how fast new blocks arrive, then the blocks' AO,
- * then the far blocks' finest octaves, and only then how far one sees. */
+ * keeps edges), then how fast new blocks arrive, then the blocks' AO, then
+ * their sun shadows (half the steps, then none), then the far blocks'
+ * finest octaves, and only then how far one sees.  AO and shadows are
+ * baked into new blocks: what they save is generation time. */
 static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
-	{ 1.00f, 1.00f, 1.00f, 0, 1.00f, 0 },
-	{ 0.85f, 1.00f, 1.00f, 0, 1.00f, 1 },
-	{ 0.75f, 1.00f, 1.00f, 0, 1.00f, 2 },
-	{ 0.66f, 1.00f, 1.00f, 0, 1.00f, 3 },
-	{ 0.58f, 1.00f, 1.00f, 0, 1.00f, 4 },
-	{ 0.50f, 1.00f, 1.00f, 0, 1.00f, 5 },
-	{ 0.50f, 0.50f, 1.00f, 0, 1.00f, 6 },
-	{ 0.50f, 0.25f, 1.00f, 0, 1.00f, 7 },
-	{ 0.50f, 0.25f, 0.50f, 0, 1.00f, 8 },
-	{ 0.50f, 0.25f, 0.00f, 0, 1.00f, 9 },
-	{ 0.50f, 0.25f, 0.00f, 1, 1.00f, 10 },
-	{ 0.50f, 0.25f, 0.00f, 2, 1.00f, 11 },
-	{ 0.50f, 0.25f, 0.00f, 2, 0.75f, 12 },
-	{ 0.50f, 0.25f, 0.00f, 2, 0.55f, 13 },
+	/* scale, budget, AO, shadows, far octaves dropped, view, level */
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0 },
+	{ 0.85f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1 },
+	{ 0.75f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 2 },
+	{ 0.66f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 3 },
+	{ 0.58f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 4 },
+	{ 0.50f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 5 },
+	{ 0.50f, 0.50f, 1.00f, 1.00f, 0, 1.00f, 6 },
+	{ 0.50f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 7 },
+	{ 0.50f, 0.25f, 0.50f, 1.00f, 0, 1.00f, 8 },
+	{ 0.50f, 0.25f, 0.00f, 1.00f, 0, 1.00f, 9 },
+	{ 0.50f, 0.25f, 0.00f, 0.50f, 0, 1.00f, 10 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 0, 1.00f, 11 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 1, 1.00f, 12 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 1.00f, 13 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.75f, 14 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.55f, 15 },
 };
 
 #define OVER 1.00        /* step down above the target ... */
@@ -121,6 +126,7 @@ void governor_apply(const struct governor_quality *q, const struct params *p, st
 	*eff = *p;
 	eff->gen_budget_ms = p->gen_budget_ms * q->gen_budget;
 	eff->ao_rays = (int)lroundf((float)p->ao_rays * q->ao_rays);
+	eff->shadow_steps = (int)lroundf((float)p->shadow_steps * q->shadow_steps);
 	eff->view_distance = p->view_distance * q->view_distance;
 }
 

@@ -1,7 +1,7 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
  * quality, in a fixed order (render scale, then the block generation
- * budget, AO rays, far-LOD octaves, view distance), and gives it back when
- * there is headroom.  It only sees frame times and a clock, so a test
+ * budget, AO rays, sun shadow steps, far-LOD octaves, view distance), and
+ * gives it back when there is headroom.  It only sees frame times and a clock, so a test
  * drives it with a fake clock and a synthetic load.
  *
  * What it holds is the frame time most frames stay under: the smoothed
@@ -26,12 +26,13 @@ struct governor_quality {
 	float render_scale;   /* 0.5 .. 1: the 3D view is drawn this much smaller and upscaled */
 	float gen_budget;     /* 0.25 .. 1: times the configured block generation budget */
 	float ao_rays;        /* 0 .. 1: times the configured AO rays (new blocks) */
+	float shadow_steps;   /* 0 .. 1: times the configured sun shadow steps (new blocks) */
 	int far_octaves_drop; /* 0 .. 2: octaves left out of the coarsest level's blocks */
 	float view_distance;  /* 0.55 .. 1: times the configured view distance */
 	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
 };
 
-#define GOVERNOR_LEVELS 14
+#define GOVERNOR_LEVELS 16
 
 struct governor {
 	double target_ms;

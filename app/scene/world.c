@@ -362,7 +362,7 @@ static int export_append(const struct world *w, const struct block *b, struct me
 	    (tris && gpu_read_buffer(ibo, ioff, (GLsizeiptr)tris * 12, m->idx + 3 * (size_t)nt) < 0))
 		return -1;
 	for (uint32_t i = 0; i < verts; i++)
-		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)(nv + i), m->nrm + 3 * (size_t)(nv + i), NULL);
+		vertex_unpack(vb + 4 * (size_t)i, m->pos + 3 * (size_t)(nv + i), m->nrm + 3 * (size_t)(nv + i), NULL, NULL);
 	for (size_t k = 3 * (size_t)nt; k < 3 * (size_t)(nt + tris); k++) {
 		if (m->idx[k] >= verts)
 			return -1;
