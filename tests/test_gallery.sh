@@ -45,7 +45,10 @@ done
 # scene, the preset's camera; the same view with iso 1000 has no surface)
 "$BIN" --list-presets | awk 'NR > 1 { print $1 }' >"$T/presets.txt"
 while read -r name; do
-	"$BIN" --preset "$name" --size 192x108 --iso 1000 --out "$T/empty.png" 2>"$T/err.txt" || bad "$name: $(cat "$T/err.txt")"
+	# (a coarse grid: at iso 1000 there is no surface at any grid, and the
+	# density pass of 128^3 samples per preset was the check's whole cost)
+	"$BIN" --preset "$name" --size 192x108 --iso 1000 --grid 8 --out "$T/empty.png" 2>"$T/err.txt" ||
+		bad "$name: $(cat "$T/err.txt")"
 	"$IMGCMP" "$T/fresh/$name.png" "$T/empty.png" --max-mean 1000 --max-frac 0.05 >/dev/null 2>&1 &&
 		bad "$name: the picture shows almost no terrain" || ok
 done <"$T/presets.txt"
