@@ -14,7 +14,13 @@
  *       back before the comparison.
  *   imgcmp --to-png IN OUT.png
  *   imgcmp --info IN [X,Y,W,H] prints "WxH mean R G B" of the picture (or
- *                             of that rectangle) */
+ *                             of that rectangle)
+ *   imgcmp --coverage IN EMPTY prints "coverage F horizon H": EMPTY is the
+ *       same view with nothing in it (sky, water); a pixel of IN off by
+ *       more than 24 in a channel is the subject's.  F: the fraction of
+ *       such pixels; H: the horizon, the median over the columns of the
+ *       first such pixel from the top, as a fraction of the height (1: a
+ *       column with none) */
 #include <errno.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -226,7 +232,7 @@ static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
 	                "[--region X,Y,W,H] [--unturn DEG] [--diff OUT.png]\n"
-	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN [X,Y,W,H]\n");
+	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN [X,Y,W,H] | imgcmp --coverage IN EMPTY\n");
 	return 2;
 }
 
@@ -264,6 +270,42 @@ int main(int argc, char **argv)
 					s[c] += a.rgba[4 * ((size_t)y * a.width + x) + c];
 		printf("%dx%d mean %.1f %.1f %.1f\n", r[2], r[3], s[0] / np, s[1] / np, s[2] / np);
 		image_free(&a);
+		return 0;
+	}
+	if (argc == 4 && strcmp(argv[1], "--coverage") == 0) {
+		if (load(&a, argv[2], err, sizeof(err)) < 0 || load(&b, argv[3], err, sizeof(err)) < 0 ||
+		    a.width != b.width || a.height != b.height) {
+			fprintf(stderr, "imgcmp: --coverage: %s\n", err[0] ? err : "the pictures' sizes differ");
+			return 2;
+		}
+		size_t on = 0;
+		int *top = malloc(sizeof(int) * (size_t)a.width);
+		if (!top)
+			return 2;
+		for (int x = 0; x < a.width; x++) {
+			top[x] = a.height;
+			for (int y = 0; y < a.height; y++) {
+				const uint8_t *p = a.rgba + 4 * ((size_t)y * a.width + x), *q = b.rgba + 4 * ((size_t)y * b.width + x);
+				bool diff = abs(p[0] - q[0]) > 24 || abs(p[1] - q[1]) > 24 || abs(p[2] - q[2]) > 24;
+				on += diff;
+				if (diff && top[x] == a.height)
+					top[x] = y;
+			}
+		}
+		/* the median column (a partial selection sort up to the middle) */
+		int m = a.width / 2;
+		for (int i = 0; i <= m; i++)
+			for (int j = i + 1; j < a.width; j++)
+				if (top[j] < top[i]) {
+					int t = top[i];
+					top[i] = top[j];
+					top[j] = t;
+				}
+		printf("coverage %.3f horizon %.3f\n", (double)on / ((double)a.width * a.height),
+		       (double)top[m] / a.height);
+		free(top);
+		image_free(&a);
+		image_free(&b);
 		return 0;
 	}
 	if (argc < 3 || argv[1][0] == '-' || argv[2][0] == '-')

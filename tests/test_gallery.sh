@@ -53,5 +53,31 @@ while read -r name; do
 		bad "$name: the picture shows almost no terrain" || ok
 done <"$T/presets.txt"
 
+# Composed first frames (a kiosk is judged in its first seconds): the
+# no-flag picture and the world's spawn view of the landscape presets have
+# the horizon in the upper third (with sky above it) and terrain on at
+# least 55 % of the frame, measured against the same view with nothing in
+# it (imgcmp --coverage).  Not judged: alpine (its spawn is among arches),
+# caves (no sky by design), landing (it looks down at its pad), planet
+# (the whole sphere against the sky).
+composed() { # PICTURE WHAT [EMPTY-VIEW OPTIONS...]
+	pic=$1 what=$2
+	shift 2
+	"$BIN" --size 192x108 --antialias msaa --iso 1000 "$@" --out "$T/empty.png" 2>"$T/err.txt" ||
+		{ bad "$what: $(cat "$T/err.txt")"; return; }
+	line=$("$IMGCMP" --coverage "$pic" "$T/empty.png")
+	echo "$what: $line"
+	echo "$line" | awk '{ exit !($2 >= 0.55 && $4 >= 0.02 && $4 <= 0.334) }' && ok ||
+		bad "$what: not composed ($line; wanted coverage >= 0.55, horizon 0.02 .. 0.334)"
+}
+composed "$T/fresh/default.png" "the no-flag picture" --grid 8
+for name in default canyon melting alien plains cells turbulence fbm multifractal; do
+	composed "$T/fresh/world-$name.png" "world $name, first frame" --preset "$name" --scene world
+done
+# ... and the autopilot keeps it through its first seconds (frame 90 at 30 fps)
+"$BIN" --scene world --size 192x108 --antialias msaa --count 90 --out "$T/w%02d.png" 2>"$T/err.txt" ||
+	bad "world, 3 s: $(cat "$T/err.txt")"
+composed "$T/w89.png" "world default, 3 s in" --scene world
+
 echo "gallery: $pass passed, $fail failed"
 [ $fail -eq 0 ]

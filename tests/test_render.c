@@ -123,9 +123,10 @@ int main(void)
 		CHECK(sky < a.width * a.height * 85 / 100, "image is almost all sky (%d of %d pixels)", sky, a.width * a.height);
 	}
 	/* the other compaction methods draw the same terrain (they compute no
-	 * ambient occlusion, so compare without it) */
+	 * ambient occlusion and no sun shadows, so compare without them) */
 	struct params p0 = p;
 	p0.ao_rays = 0;
+	p0.shadows = 0.0f;
 	image_free(&a);
 	CHECK(render_to_image(&p0, &a, err, sizeof(err)) == 0, "render without AO: %s", err);
 	for (int m = 1; m <= 2; m++) {

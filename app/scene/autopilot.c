@@ -250,6 +250,44 @@ static void open_heading(const struct autopilot *a, float out[3])
 	}
 }
 
+/* The view's tilt below the heading: over open ground (shape ground, a
+ * heightmap) as far down as the ground below is high, so the centre of the
+ * frame falls on the ground VIEW_AHEAD units ahead and the land fills it,
+ * the horizon in its upper third: high over a valley it looks down into it,
+ * low over a plain it looks out over it (tan 0.15 .. 0.6, 8.5 .. 31 degrees).
+ * Caves look level ahead, a planet and a landing pad have their own
+ * (autopilot_camera). */
+#define VIEW_AHEAD 28.0f
+#define VIEW_DOWN_MIN 0.15f
+#define VIEW_DOWN_MAX 0.6f
+#define VIEW_DOWN_S 1.5 /* the tilt follows the ground this slowly (time constant) */
+static float view_down_target(const struct autopilot *a)
+{
+	if (a->p->shape != SHAPE_GROUND)
+		return VIEW_DOWN_MIN;
+	/* the ground's depth below the camera's height in five columns along
+	 * the heading, 0 .. VIEW_AHEAD ahead: their median (a floating rock
+	 * under one of them does not tip the view) */
+	float up[3], down[3], h[5];
+	local_up(a, a->pos, up);
+	for (int k = 0; k < 3; k++)
+		down[k] = -up[k];
+	for (int i = 0; i < 5; i++) {
+		float at[3];
+		for (int k = 0; k < 3; k++)
+			at[k] = a->pos[k] + a->dir[k] * VIEW_AHEAD * (float)i * 0.25f;
+		h[i] = free_length(a, at, down, 2.0f * VIEW_AHEAD, 32, 0.0f);
+	}
+	for (int i = 0; i < 5; i++) /* sorted: five values */
+		for (int j = i + 1; j < 5; j++)
+			if (h[j] < h[i]) {
+				float t = h[i];
+				h[i] = h[j];
+				h[j] = t;
+			}
+	return fminf(fmaxf(h[2] / VIEW_AHEAD, VIEW_DOWN_MIN), VIEW_DOWN_MAX);
+}
+
 int autopilot_init(struct autopilot *a, const struct params *p, const struct edits *ed)
 {
 	memset(a, 0, sizeof(*a));
@@ -272,6 +310,7 @@ int autopilot_init(struct autopilot *a, const struct params *p, const struct edi
 	a->yaw = atan2f(a->dir[2], a->dir[0]);
 	a->pitch = asinf(fmaxf(-1.0f, fminf(1.0f, a->dir[1])));
 	a->min_clearance_seen = -dens(a, a->pos);
+	a->view_down = view_down_target(a); /* the first frame framed at once */
 	return 0;
 }
 
@@ -435,6 +474,7 @@ static void step_auto(struct autopilot *a)
 	}
 	a->yaw = atan2f(a->dir[2], a->dir[0]);
 	a->pitch = asinf(fmaxf(-1.0f, fminf(1.0f, a->dir[1])));
+	a->view_down += (view_down_target(a) - a->view_down) * (float)(1.0 - exp(-STEP / VIEW_DOWN_S));
 }
 
 static void heading(float yaw, float pitch, float out[3])
@@ -510,7 +550,7 @@ void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, fl
 	/* look along the heading, a little down, from the current position;
 	 * over a planet down to 10 degrees under its horizon (the horizon
 	 * dips by acos(radius / distance from the centre)) */
-	float up[3], down = 0.15f;
+	float up[3], down = a->manual ? VIEW_DOWN_MIN : a->view_down;
 	local_up(a, a->pos, up);
 	if (a->p->shape == SHAPE_PLANET) {
 		float cv[3] = { a->pos[0], a->pos[1] + a->p->planet_radius, a->pos[2] };

@@ -122,6 +122,8 @@ struct autopilot {
 	double anchor_t;
 	unsigned tick;            /* steps since the last plan */
 	bool blocked;             /* the last step could not go straight ahead */
+	float view_down;          /* the view's tilt below the heading (tan), smoothed:
+	                           * over open ground it frames the land ahead */
 	const struct params *p;
 	struct noise_set *ns;
 	const struct edits *ed;   /* the terrain edits it avoids (NULL: none) */
@@ -138,8 +140,8 @@ void autopilot_steer(struct autopilot *a, const float move[3], const float turn[
 /* Back to the autopilot after manual flight (the gamepad's start button):
  * it flies on from where it is, along its heading. */
 void autopilot_resume(struct autopilot *a);
-/* Camera looking along the heading (slightly down; up is the planet's
- * radius in planet mode). */
+/* Camera looking along the heading, down by view_down (up is the
+ * planet's radius in planet mode). */
 void autopilot_camera(const struct autopilot *a, struct camera *c, float fov, float aspect, float far);
 
 #endif
