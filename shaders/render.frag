@@ -157,13 +157,7 @@ void main()
 	// bumps only fray the edge)
 	float flat_ground = smoothstep(0.62, 0.86, up_n + (hgt - 0.5) * 0.3);
 	vec3 albedo = mix(rock, grass, flat_ground);
-	// snow: above the snow line, which wanders by a few units over the
-	// land (the slow variation), on ground flat enough to hold it, the
-	// higher the steeper; its edge frayed by the texture's height
-	float over = alt - u_snow_line + (slow - 0.5) * 1.5 + (hgt - 0.5) * 1.6;
-	float hold = mix(0.82, 0.62, clamp(over * 0.125, 0.0, 1.0));
-	float snow = smoothstep(-0.6, 0.6, over) * smoothstep(hold - 0.06, hold + 0.04, up_n + (hgt - 0.5) * 0.12);
-	albedo = mix(albedo, vec3(0.88, 0.90, 0.93), snow);
+	albedo = mix(albedo, vec3(0.88, 0.90, 0.93), snow_cover(alt, up_n, slow, hgt));
 #if DETAIL_NORMALS
 	albedo *= 1.0 + 0.45 * grain;
 #endif

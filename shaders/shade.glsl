@@ -40,8 +40,9 @@ vec3 haze_color(vec3 rd)
 // Aerial perspective: the fog's density falls with height as
 // exp(-fog_height * y), integrated along the ray from the eye (thick in the
 // valleys, thin on the peaks, a low view through more air than a high
-// one), towards haze_color.
-vec3 apply_fog(vec3 col, vec3 pos, vec3 eye, float density)
+// one): the fraction of the light from pos that the air replaces.
+// tests/test_shading.c integrates the same on the CPU, numerically.
+float fog_amount(vec3 pos, vec3 eye, float density)
 {
 	vec3 ray = pos - eye;
 	float dist = length(ray);
@@ -51,6 +52,27 @@ vec3 apply_fog(vec3 col, vec3 pos, vec3 eye, float density)
 	float bdy = b * dy;
 	float mean = abs(bdy) > 1e-3 ? (1.0 - exp(-bdy)) / bdy : 1.0 - 0.5 * bdy;
 	float k = density * u_fog * exp(-b * y0) * mean;
-	float fog = 1.0 - exp(-dist * min(k, 50.0 / max(dist, 1e-3)));
-	return mix(col, haze_color(ray / max(dist, 1e-6)), clamp(fog, 0.0, 1.0));
+	return clamp(1.0 - exp(-dist * min(k, 50.0 / max(dist, 1e-3))), 0.0, 1.0);
+}
+
+// ... towards haze_color
+vec3 apply_fog(vec3 col, vec3 pos, vec3 eye, float density)
+{
+	vec3 ray = pos - eye;
+	return mix(col, haze_color(ray / max(length(ray), 1e-6)), fog_amount(pos, eye, density));
+}
+
+// Snow cover 0 .. 1 at altitude alt (over the snow line u_snow_line) on
+// ground whose normal's up component is up_n: above the line, which
+// wanders by 1.5 units with the slow variation `slow` (0 .. 1) and is
+// frayed by the texture's height `hgt` (0 .. 1, 1.6 units); on ground flat
+// enough to hold it, the steeper the higher (up_n 0.82 at the line, 0.62
+// 8 units over it).  None where up_n <= 0.5, nor 2.2 units under the
+// line; full cover where up_n >= 0.92 from 2.2 units over it; more snow
+// the higher and the flatter (tests/test_shading.c).
+float snow_cover(float alt, float up_n, float slow, float hgt)
+{
+	float over = alt - u_snow_line + (slow - 0.5) * 1.5 + (hgt - 0.5) * 1.6;
+	float hold = mix(0.82, 0.62, clamp(over * 0.125, 0.0, 1.0));
+	return smoothstep(-0.6, 0.6, over) * smoothstep(hold - 0.06, hold + 0.04, up_n + (hgt - 0.5) * 0.12);
 }

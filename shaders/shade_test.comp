@@ -1,0 +1,26 @@
+// isoterra — the shading's functions on given inputs (tests only:
+// tests/test_shading.c): per item, in: eye, pos (fog), or alt, up_n, slow,
+// hgt (snow); out: the fog amount and the haze colour towards pos, or the
+// snow cover.
+layout(local_size_x = WG_SIZE) in;
+#include "shade.glsl"
+layout(std430, binding = BIND_AUX_IN) restrict readonly buffer TestIn { vec4 test_in[]; };
+layout(std430, binding = BIND_AUX_OUT) restrict writeonly buffer TestOut { vec4 test_out[]; };
+uniform int u_mode; // 0: fog (in: 2 vec4 an item, eye and pos), 1: snow (in: 1 vec4)
+uniform uint u_n;
+uniform float u_density;
+
+void main()
+{
+	uint i = gl_GlobalInvocationID.x;
+	if (i >= u_n)
+		return;
+	if (u_mode == 0) {
+		vec3 eye = test_in[2u * i].xyz, pos = test_in[2u * i + 1u].xyz;
+		vec3 h = haze_color(normalize(pos - eye));
+		test_out[i] = vec4(fog_amount(pos, eye, u_density), h);
+	} else {
+		vec4 a = test_in[i];
+		test_out[i] = vec4(snow_cover(a.x, a.y, a.z, a.w), 0.0, 0.0, 0.0);
+	}
+}
