@@ -74,12 +74,15 @@ halvm_initramfs() {
 # Mesa's shader cache for the guest, kept between runs: software rendering
 # in the guest compiles every shader anew otherwise (a minute or more under
 # TCG).  The guest's CPU (-cpu max) differs from the host's, so it has its
-# own folder.  Mesa's cache mmaps its index, which a 9p mount does not serve
+# own folder: the one every VM test of this kernel shares (test_kms.sh's
+# too: the same Mesa on the same virtual CPU compiles the same programs
+# alike, so a VM test after another finds the extraction's and the
+# renderer's programs compiled).  Mesa's cache mmaps its index, which a 9p mount does not serve
 # well, so the guest copies the folder into its tmpfs at the start
 # (halvm_env's MESA_SHADER_CACHE_DIR) and back at the end (save_cache).
 # Sets HALVM_MESA_CACHE ("" when it cannot be created: no cache).
 halvm_mesa_cache() {
-	HALVM_MESA_CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/hal-vm-mesa-$HALVM_REL}
+	HALVM_MESA_CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/vm-mesa-$HALVM_REL}
 	mkdir -p "$HALVM_MESA_CACHE" 2>/dev/null || HALVM_MESA_CACHE=
 }
 

@@ -90,7 +90,8 @@ RW=$RW
 RH=$RH
 CONF
 # Mesa's shader cache for the guest, kept between runs (the guest's CPU
-# differs from the host's, so it has its own cache)
+# differs from the host's, so it has its own cache; the hal VM tests share
+# it: hal_vm_lib.sh)
 CACHE=${ISOTERRA_VM_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/isoterra/vm-mesa-$REL}
 mkdir -p "$CACHE" 2>/dev/null || CACHE=
 CACHE_ARGS=
