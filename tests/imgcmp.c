@@ -20,7 +20,10 @@
  *       more than 24 in a channel is the subject's.  F: the fraction of
  *       such pixels; H: the horizon, the median over the columns of the
  *       first such pixel from the top, as a fraction of the height (1: a
- *       column with none) */
+ *       column with none)
+ *   imgcmp --sheet OUT.png COLS IN... a contact sheet: the pictures (all of
+ *       one size) halved (2x2 box filter) and tiled COLS to a row, in
+ *       order, 4 pixels of dark grey between and around them */
 #include <errno.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -232,7 +235,8 @@ static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
 	                "[--region X,Y,W,H] [--unturn DEG] [--diff OUT.png]\n"
-	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN [X,Y,W,H] | imgcmp --coverage IN EMPTY\n");
+	                "       imgcmp --to-png IN OUT.png | imgcmp --info IN [X,Y,W,H] | imgcmp --coverage IN EMPTY\n"
+	                "       imgcmp --sheet OUT.png COLS IN...\n");
 	return 2;
 }
 
@@ -271,6 +275,58 @@ int main(int argc, char **argv)
 		printf("%dx%d mean %.1f %.1f %.1f\n", r[2], r[3], s[0] / np, s[1] / np, s[2] / np);
 		image_free(&a);
 		return 0;
+	}
+	if (argc >= 5 && strcmp(argv[1], "--sheet") == 0) {
+		int cols = atoi(argv[3]), n = argc - 4, gap = 4;
+		if (cols < 1) {
+			fprintf(stderr, "imgcmp: --sheet: COLS must be a positive number\n");
+			return 2;
+		}
+		struct image sheet = { 0 };
+		int cw = 0, ch = 0, rows = (n + cols - 1) / cols;
+		for (int i = 0; i < n; i++) {
+			if (load(&a, argv[4 + i], err, sizeof(err)) < 0) {
+				fprintf(stderr, "imgcmp: %s\n", err);
+				image_free(&sheet);
+				return 2;
+			}
+			if (i == 0) {
+				cw = a.width / 2;
+				ch = a.height / 2;
+				sheet.width = gap + cols * (cw + gap);
+				sheet.height = gap + rows * (ch + gap);
+				sheet.rgba = malloc((size_t)sheet.width * sheet.height * 4);
+				if (!sheet.rgba || cw < 1 || ch < 1) {
+					fprintf(stderr, "imgcmp: --sheet: no room for a %dx%d sheet\n", sheet.width, sheet.height);
+					image_free(&a);
+					image_free(&sheet);
+					return 2;
+				}
+				for (size_t k = 0; k < (size_t)sheet.width * sheet.height; k++)
+					memcpy(sheet.rgba + 4 * k, (const uint8_t[]){ 40, 40, 44, 255 }, 4);
+			} else if (a.width / 2 != cw || a.height / 2 != ch) {
+				fprintf(stderr, "imgcmp: --sheet: %s is %dx%d, the first %dx%d\n", argv[4 + i], a.width,
+					a.height, 2 * cw, 2 * ch);
+				image_free(&a);
+				image_free(&sheet);
+				return 2;
+			}
+			int x0 = gap + (i % cols) * (cw + gap), y0 = gap + (i / cols) * (ch + gap);
+			for (int y = 0; y < ch; y++)
+				for (int x = 0; x < cw; x++)
+					for (int c = 0; c < 4; c++) {
+						const uint8_t *q = a.rgba + 4 * ((size_t)(2 * y) * a.width + 2 * x) + c;
+						size_t row = 4 * (size_t)a.width;
+						sheet.rgba[4 * ((size_t)(y0 + y) * sheet.width + x0 + x) + c] =
+							(uint8_t)((q[0] + q[4] + q[row] + q[row + 4] + 2) / 4);
+					}
+			image_free(&a);
+		}
+		int rc = image_write_png(&sheet, argv[2], err, sizeof(err));
+		if (rc < 0)
+			fprintf(stderr, "imgcmp: %s\n", err);
+		image_free(&sheet);
+		return rc < 0 ? 2 : 0;
 	}
 	if (argc == 4 && strcmp(argv[1], "--coverage") == 0) {
 		if (load(&a, argv[2], err, sizeof(err)) < 0 || load(&b, argv[3], err, sizeof(err)) < 0 ||

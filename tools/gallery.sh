@@ -1,18 +1,23 @@
 #!/bin/sh
-# isoterra — the gallery: every preset rendered small, as the volume scene
-# (the preset's own camera) and, for the terrain presets, as the streaming
-# world's first frame (the autopilot's spawn view), into docs/gallery/.
+# isoterra — the gallery: every preset rendered, as the volume scene (the
+# preset's own camera) and, for the terrain presets, as the streaming
+# world's first frame (the autopilot's spawn view), into docs/gallery/, and
+# a contact sheet of them all.
 #
-#   sh tools/gallery.sh [BIN [OUTDIR]]      (defaults: ./build/isoterra, docs/gallery)
+#   sh tools/gallery.sh [BIN [OUTDIR [IMGCMP]]]
+#       (defaults: ./build/isoterra, docs/gallery, ./build/tests/imgcmp)
 #
 # Files: NAME.png (volume) and world-NAME.png (world), GALLERY_SIZE pixels
-# (192x108); README.md shows them as a contact sheet (a table, a preset a
-# row).  The `gallery` test renders them again and compares them with the
-# committed ones, so re-run this after any intended visual change.
+# (640x360), and contact-sheet.png (every picture at half size, a preset's
+# two side by side, two presets a row).  README.md shows them (the
+# no-flag picture on top, a table with a preset a row, the sheet).  The
+# `gallery` test renders them again and compares them with the committed
+# ones, so re-run this after any intended visual change.
 set -eu
 BIN=${1:-./build/isoterra}
 OUT=${2:-docs/gallery}
-SIZE=${GALLERY_SIZE:-192x108}
+IMGCMP=${3:-${IMGCMP:-./build/tests/imgcmp}}
+SIZE=${GALLERY_SIZE:-640x360}
 mkdir -p "$OUT"
 # 4x multisampled whatever the driver (auto gives a software rasterizer
 # the filter after the frame): the documentation's pictures get the best
@@ -31,4 +36,13 @@ while read -r name; do
 	fi
 	echo "$name"
 done <"$OUT/.presets.tmp"
+# the contact sheet, in the presets' order, a preset's volume and world
+# pictures side by side
+sheet=""
+while read -r name; do
+	sheet="$sheet $OUT/$name.png"
+	[ ! -f "$OUT/world-$name.png" ] || sheet="$sheet $OUT/world-$name.png"
+done <"$OUT/.presets.tmp"
 rm -f "$OUT/.presets.tmp"
+# shellcheck disable=SC2086 # a word list of paths without spaces
+"$IMGCMP" --sheet "$OUT/contact-sheet.png" 4 $sheet
