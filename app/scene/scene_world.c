@@ -187,7 +187,7 @@ static int world_report(struct scene *s, const struct params *p, char *line, siz
 		 "bounded), %d drawn, %llu evicted%s%s",
 		 (unsigned long long)st.generated, (unsigned long long)st.empty_found,
 		 (unsigned long long)st.prepass_empty, (unsigned long long)st.prepass_probed, st.drawn,
-		 (unsigned long long)st.evicted, st.overflowed ? ", some blocks over capacity (raise --block-tris)" : "",
+		 (unsigned long long)st.evicted, st.overflowed ? ", some blocks over 200000 triangles (clamped)" : "",
 		 gov);
 	return 0;
 }

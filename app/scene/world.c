@@ -31,7 +31,7 @@
 
 /* Staging slot strides: whole vertices / indices, every offset a multiple
  * of GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT. */
-static void plan_strides(struct world *w)
+void plan_strides(struct world *w)
 {
 	GLint align = 16;
 	glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);

@@ -20,7 +20,8 @@ struct world_stats {
 	uint64_t empty_found;     /* of those, found to have no triangles */
 	uint64_t empty_skipped;   /* requests skipped because known empty */
 	uint64_t evicted;         /* slots taken back from a farther block */
-	uint64_t overflowed;      /* blocks that hit the slot capacity */
+	uint64_t overflowed;      /* blocks over the largest slot capacity (BLOCK_TRIS_MAX) */
+	uint64_t stages_grown;    /* times the staging slots grew for a finer field's blocks */
 	uint64_t invalidated;     /* blocks marked for regeneration by terrain edits */
 	/* the coarse pre-pass (world_gen.c): blocks it bounded, and those it
 	 * proved all air or all rock (never generated, known empty) */

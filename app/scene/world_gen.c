@@ -74,8 +74,20 @@ void collect_results(struct world *w, bool wait)
 		struct block *blk = &w->blocks[r->block];
 		blk->readback = -1;
 		r->block = -1;
-		if (v[ST_OVERFLOW - RB_FIRST])
-			w->st.overflowed++;
+		/* over capacity: the clamped mesh is drawn until the block is
+		 * generated again into staging slots grown to what it needed
+		 * (pool_grow); only a block over BLOCK_TRIS_MAX stays clamped */
+		bool grow = false;
+		if (v[ST_OVERFLOW - RB_FIRST]) {
+			uint32_t need = v[ST_TRIS_NEEDED - RB_FIRST], nv = v[ST_VERTS_NEEDED - RB_FIRST];
+			if (nv / 3 * 4 > need)
+				need = nv / 3 * 4 + 4;
+			grow = m && w->tcap < BLOCK_TRIS_MAX;
+			if (grow && need > w->grow_tris)
+				w->grow_tris = need;
+			if (!grow)
+				w->st.overflowed++;
+		}
 		if (m && v[ST_TRIS_NEEDED - RB_FIRST] == 0 && blk->stale) {
 			/* edited since: the empty result is stale, ask again */
 			blk->state = B_FREE;
@@ -91,6 +103,7 @@ void collect_results(struct world *w, bool wait)
 			free_slot(w, (int)(blk - w->blocks));
 		} else {
 			blk->state = B_READY;
+			blk->stale = blk->stale || grow;
 		}
 	}
 }
@@ -453,6 +466,8 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 		w->credit_ms = fmin(w->credit_ms + p->gen_budget_ms, p->gen_budget_ms);
 	if (!budgeted && finish_staged(w, now) < 0) /* a live block under way, then offline */
 		return -1;
+	if (w->gen_block < 0 && pool_grow(w) < 0)
+		return -1;
 	collect_probes(w, deterministic);
 	if (deterministic && w->probe_on) { /* every wanted block's verdict, now */
 		int sent;
@@ -480,6 +495,14 @@ int generate_wanted(struct world *w, const struct params *p, double now, bool de
 		}
 		if (made >= p->gen_per_frame)
 			break;
+		/* slots to grow: no new block until the staged ones have settled */
+		if (w->grow_tris > w->tcap) {
+			int g = pool_grow(w);
+			if (g < 0)
+				return -1;
+			if (g == 0)
+				break;
+		}
 		bool regen = false, urgent = false;
 		int b = next_wanted(w, p, budgeted, &k, &regen, &urgent);
 		if (b < 0) {

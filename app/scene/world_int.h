@@ -86,6 +86,9 @@ struct want_key {
 	int block;
 };
 
+/* the largest block capacity, triangles (block_tris's range, params.def) */
+#define BLOCK_TRIS_MAX 200000
+
 struct world {
 	struct edits *ed;          /* borrowed: the terrain edits */
 	struct terrain *terrain;   /* the field the blocks are extracted from */
@@ -96,6 +99,8 @@ struct world {
 	GLuint vbo, ibo, status;   /* staging vertices, indices (WORLD_STAGES); status per slot */
 	GLintptr vstride, istride, sstride;
 	uint32_t vcap, tcap;
+	uint32_t grow_tris;  /* a block needed this many triangles (or its vertices
+	                      * as many): the staging slots grow to it when free */
 	int slots;
 	int *slot_block;     /* slot -> block index, -1 free */
 	struct slot_mem *mem;      /* slot -> where its mesh is */
@@ -159,6 +164,12 @@ void pool_target(struct world *w, int slot, int stage, struct pipeline_target *t
  * staging slot into the arena (grown if needed), its draw command pointed
  * there.  0/-1. */
 int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts);
+/* The staging slots' capacity grown to w->grow_tris triangles (and 3/4
+ * as many vertices) and a quarter more, when no block is staged: 1 grown,
+ * 0 not now (a block staged, or nothing to grow), -1 on a GL error. */
+int pool_grow(struct world *w);
+/* Staging slot strides for w->tcap / w->vcap (world.c). */
+void plan_strides(struct world *w);
 /* Gives up slot's mesh (staging slot and arena range). */
 void pool_release(struct world *w, int slot);
 /* The buffers and byte offsets of slot's vertices and indices. */

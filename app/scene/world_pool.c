@@ -62,6 +62,15 @@ static void write_guards(GLuint buf, GLintptr stride, GLintptr used)
 	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
+/* The staging buffers for the current strides, with their canaries. */
+static void make_stages(struct world *w)
+{
+	w->vbo = new_buffer(GL_SHADER_STORAGE_BUFFER, w->vstride * WORLD_STAGES, GL_DYNAMIC_DRAW);
+	w->ibo = new_buffer(GL_SHADER_STORAGE_BUFFER, w->istride * WORLD_STAGES, GL_DYNAMIC_DRAW);
+	write_guards(w->vbo, w->vstride, (GLintptr)w->vcap * VERTEX_BYTES);
+	write_guards(w->ibo, w->istride, (GLintptr)w->tcap * 12);
+}
+
 int pool_create(struct world *w, char *err, size_t errlen)
 {
 	w->mem = calloc((size_t)w->slots, sizeof(*w->mem));
@@ -82,12 +91,9 @@ int pool_create(struct world *w, char *err, size_t errlen)
 	if (w->arena_cap > w->arena_max)
 		w->arena_cap = w->arena_max;
 	w->arena_start = w->arena_cap;
-	w->vbo = new_buffer(GL_SHADER_STORAGE_BUFFER, w->vstride * WORLD_STAGES, GL_DYNAMIC_DRAW);
-	w->ibo = new_buffer(GL_SHADER_STORAGE_BUFFER, w->istride * WORLD_STAGES, GL_DYNAMIC_DRAW);
+	make_stages(w);
 	w->status = new_buffer(GL_SHADER_STORAGE_BUFFER, w->sstride * w->slots, GL_DYNAMIC_DRAW);
 	w->arena = new_buffer(GL_ARRAY_BUFFER, w->arena_cap, GL_DYNAMIC_DRAW);
-	write_guards(w->vbo, w->vstride, (GLintptr)w->vcap * VERTEX_BYTES);
-	write_guards(w->ibo, w->istride, (GLintptr)w->tcap * 12);
 	for (int i = 0; i < READBACKS; i++) {
 		w->rb[i].buf = new_buffer(GL_COPY_WRITE_BUFFER, RB_BYTES, GL_STREAM_READ);
 		w->rb[i].block = -1;
@@ -98,6 +104,32 @@ int pool_create(struct world *w, char *err, size_t errlen)
 		return -1;
 	}
 	return 0;
+}
+
+int pool_grow(struct world *w)
+{
+	if (w->grow_tris <= w->tcap)
+		return 0;
+	for (int i = 0; i < WORLD_STAGES; i++)
+		if (w->stage_slot[i] >= 0)
+			return 0; /* a block is staged: later */
+	uint32_t t = w->grow_tris + w->grow_tris / 4;
+	if (t > BLOCK_TRIS_MAX)
+		t = BLOCK_TRIS_MAX;
+	GLuint old[2] = { w->vbo, w->ibo };
+	uint32_t old_t = w->tcap;
+	w->tcap = t;
+	w->vcap = t / 4 * 3;
+	plan_strides(w);
+	make_stages(w);
+	glDeleteBuffers(2, old);
+	/* the arena may now grow to block_pool blocks of the new worst case */
+	w->arena_max = (GLintptr)w->slots * block_bytes(w->tcap, w->vcap);
+	w->st.stages_grown++;
+	log_info("world: a block needed %u triangles: its slots grow from %u to %u (the field is finer than "
+		 "--block-tris)", w->grow_tris, old_t, w->tcap);
+	w->grow_tris = 0;
+	return gpu_check("block staging growth") < 0 ? -1 : 1;
 }
 
 void pool_destroy(struct world *w)
