@@ -152,7 +152,11 @@ void main()
 	if (u_marble_color > 0.0)
 		rock = marble_color(rock, v_pos);
 #endif
-	vec3 grass = mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
+	// the ground cover of the soil: green grass, dry scrub on arid land,
+	// dark moss and ash on volcanic
+	vec3 grass = u_soil == SOIL_ARID ? mix(vec3(0.62, 0.50, 0.32), vec3(0.72, 0.60, 0.38), tex)
+		   : u_soil == SOIL_VOLCANIC ? mix(vec3(0.16, 0.17, 0.12), vec3(0.28, 0.26, 0.20), tex)
+					     : mix(vec3(0.22, 0.34, 0.12), vec3(0.40, 0.44, 0.20), tex);
 	// grass on gentle slopes, rock on steep ones (the mesh's normal: the
 	// bumps only fray the edge)
 	float flat_ground = smoothstep(0.62, 0.86, up_n + (hgt - 0.5) * 0.3);

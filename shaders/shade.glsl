@@ -29,10 +29,15 @@ uniform vec3 u_sun_dir;
 vec3 sun_dir() { return u_sun_dir; }
 
 // The colour of the air along direction rd far away: the horizon's, lit
-// towards the sun (the in-scattering of Quilez's "better fog").  The sky
-// (sky.frag) has it at its horizon, so the fog ends in the sky behind it.
+// towards the sun (the in-scattering of Quilez's "better fog"); in caves,
+// darkness.  The sky (sky.frag) has it at its horizon, so the fog ends in
+// the sky behind it.
+const vec3 CAVE_DARK = vec3(0.012, 0.010, 0.009); // linear: the air deep in a cave
 vec3 haze_color(vec3 rd)
 {
+	// caves: no sky, the far passages fade into the dark
+	if (u_shape == SHAPE_CAVES)
+		return CAVE_DARK;
 	float s = max(dot(rd, sun_dir()), 0.0);
 	return mix(srgb_to_linear(SKY_HORIZON), SUN_HAZE, 0.55 * s * s * s * s * s * s * s * s * min(u_sun, 1.5));
 }

@@ -1,6 +1,6 @@
 // isoterra — the sky: the haze at the horizon (lit towards the sun: the
 // fog's colour far away, shade.glsl), the zenith's blue above it, the sun's
-// disk with a limb and its glare.
+// disk with a limb and its glare; in caves, the dark.
 in vec3 v_world;
 uniform vec3 u_eye;
 out vec4 frag;
@@ -9,6 +9,10 @@ out vec4 frag;
 void main()
 {
 	vec3 d = normalize(v_world - u_eye);
+	if (u_shape == SHAPE_CAVES) { // no sky under the rock: the dark behind the passages
+		frag = vec4(display(haze_color(d)), 1.0);
+		return;
+	}
 	vec3 col = mix(haze_color(d), srgb_to_linear(SKY_ZENITH), pow(clamp(d.y, 0.0, 1.0), 0.6));
 	float s = max(dot(d, sun_dir()), 0.0);
 	// the disk (about 1.5 degrees across, a soft limb) and a wide glare

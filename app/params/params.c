@@ -335,7 +335,7 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 const struct preset presets[] = {
 	{ "default", "GPU Gems style terrain: warped octaves, hard floor, an open landscape seen from above", "" },
 	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=30;noise_freq=0.03;octaves=8;warp_amp=2;snow_line=6" },
-	{ "canyon", "terraced canyon land with crisp shelves", "terrace=pre;terrace_step=3;terrace_strength=4;warp_amp=2;soil=arid;snow_line=60;cam_dist=1.1;cam_pitch=28" },
+	{ "canyon", "terraced canyon land with crisp shelves and a river", "terrace=pre;terrace_step=3;terrace_strength=4;warp_amp=2;soil=arid;snow_line=60;water_level=-5;cam_dist=1.1;cam_pitch=28" },
 	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=3;terrace_strength=4;warp_amp=6;soil=volcanic;snow_line=60;cam_dist=1.1;cam_pitch=28" },
 	{ "alien", "strong domain warp: arches, hooks and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;snow_line=16;cam_dist=1;cam_pitch=15" },
 	{ "caves", "endless caves (no ground plane), seen from inside a chamber along a tunnel",
@@ -346,7 +346,7 @@ const struct preset presets[] = {
 	  "floor_strength=0;warp_amp=0.5;water_level=-1.1;water_wave=0.3;snow_line=2.2;cam_dist=1.5;cam_pitch=20;"
 	  "fly_height=22" },
 	{ "plains", "height-damped multifractal: smooth lowlands, rough peaks", "fractal=hetero;noise_amp=8" },
-	{ "cells", "Worley F2-F1 cellular terrain", "fractal=worley;noise_amp=14;noise_freq=0.06;octaves=2;gain=0.5;warp_amp=2" },
+	{ "cells", "Worley F2-F1 cellular terrain: plates meeting at creases", "fractal=worley;noise_amp=10;noise_freq=0.05;octaves=1;warp_amp=0" },
 	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },
 	{ "fbm", "fractional Brownian motion", "fractal=fbm;hurst=1.0" },
 	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal;noise_amp=18" },
