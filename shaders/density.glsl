@@ -144,6 +144,15 @@ float marble_term(vec3 ws)
 	return u_marble_amp * sin(2.0 * PI_F * u_marble_freq * (ws.y + u_marble_turb * t));
 }
 
+// Where the noise term is sampled: y scaled by noise_y_scale (1: isotropic;
+// towards 0 a height field).  Mirrored by density_ref.c and the bound
+// (density_bound.glsl: a y scale of at most 1 only lowers the noise's slope,
+// so its Lipschitz bound holds).
+vec3 noise_domain(vec3 ws)
+{
+	return vec3(ws.x, ws.y * u_noise_y_scale, ws.z);
+}
+
 float density(vec3 ws)
 {
 #if TERM_SCROLL_SPEED
@@ -217,7 +226,7 @@ float density(vec3 ws)
 	// the stored value as an affine function of the fractal sum
 	cut_setup((1.0 - flat_k) * (d + extra) + flat_k * flat_to, (1.0 - flat_k) * amp);
 #endif
-	d += amp * fractal(ws);
+	d += amp * fractal(noise_domain(ws));
 #endif
 	d += extra;
 	if (u_flat_spot != 0)

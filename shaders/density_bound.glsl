@@ -79,7 +79,7 @@ vec2 density_bound(vec3 c, vec3 e, int keep)
 	float vmax = u_fractal == FRACTAL_TURBULENCE ? NOISE_BOUND_MAX - NOISE_MEAN_ABS : NOISE_BOUND_MAX;
 	float amp = abs(u_noise_amp), k = 1.0;
 	g_octave_drop = u_octaves - keep;
-	float fk = fractal(ws);
+	float fk = fractal(noise_domain(ws));
 	g_octave_drop = 0;
 #if TERM_CONTROL_STRENGTH
 	// amplitude x k(x), k = 1 - s (1 - control) in [1 - s, 1], control =

@@ -404,6 +404,8 @@ static void test_gpu(void)
 	gpu_compare("all terms (terrace, shelf, flat spot, scroll)", 33,
 		    "terrace=pre;shelf=post;flat_spot=true;flat_y=-2;time=1.5;scroll_speed=2", false);
 	gpu_compare("terrace=post shelf=pre", 17, "terrace=post;shelf=pre", false);
+	gpu_compare("noise_y_scale=0.25 fractal=ridged", 17, "noise_y_scale=0.25;fractal=ridged", false);
+	gpu_compare("noise_y_scale=0", 17, "noise_y_scale=0", false);
 	gpu_compare("control_strength=0.9 (noise)", 17, "control_strength=0.9;control_freq=0.06", false);
 	gpu_compare("control_strength=0.9 (noise) noise=texture", 17, "control_strength=0.9;control_freq=0.06;noise=texture",
 		    true);

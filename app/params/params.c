@@ -334,7 +334,7 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 /* ---- presets ------------------------------------------------------------ */
 const struct preset presets[] = {
 	{ "default", "GPU Gems style terrain: warped octaves, hard floor, an open landscape seen from above", "" },
-	{ "alpine", "ridged multifractal mountains", "fractal=ridged;noise_amp=30;noise_freq=0.03;octaves=8;warp_amp=2;snow_line=6" },
+	{ "alpine", "ridged multifractal mountains: sharp peaks and ridges, snow", "fractal=ridged;noise_amp=20;noise_freq=0.03;octaves=8;warp_amp=2;noise_y_scale=0.15;snow_line=3" },
 	{ "canyon", "terraced canyon land with crisp shelves and a river", "terrace=pre;terrace_step=3;terrace_strength=4;warp_amp=2;soil=arid;snow_line=60;water_level=-5;cam_dist=1.1;cam_pitch=28" },
 	{ "melting", "terraces on warped y: they sag with the terrain", "terrace=post;terrace_step=3;terrace_strength=4;warp_amp=6;soil=volcanic;snow_line=60;cam_dist=1.1;cam_pitch=28" },
 	{ "alien", "strong domain warp: arches, hooks and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;snow_line=16;cam_dist=1;cam_pitch=15" },

@@ -362,7 +362,8 @@ float density_ref(const struct params *p, const struct noise_set *ns, const stru
 	float amp = p->noise_amp;
 	if (p->control_strength != 0.0f)
 		amp *= 1.0f - p->control_strength * (1.0f - control_value(p, ns, ed, orig[0], orig[2]));
-	d += amp * fractal_ref(p, ns, ws);
+	const float wn[3] = { ws[0], ws[1] * p->noise_y_scale, ws[2] }; /* density.glsl noise_domain */
+	d += amp * fractal_ref(p, ns, wn);
 
 	d += sat((p->floor_y - orig[1]) * p->floor_sharpness) * p->floor_strength;
 
