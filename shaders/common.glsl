@@ -310,21 +310,40 @@ int cell_case(ivec3 c)
 		   ((f & 2u) << 5) | ((e & 2u) << 6));
 }
 #else
-// Corner c inside, less one-sample islands and bubbles (the debris filter
-// of shaders/mc_debris.comp, from the densities: the atomic and
-// no-compaction methods, which do not read the sign bits)
-int inside_at(ivec3 c)
+// Corner c inside, less one- and two-sample islands and bubbles (the
+// debris filter of shaders/mc_debris.comp, from the densities: the atomic
+// and no-compaction methods, which do not read the sign bits)
+bool raw_in(ivec3 q)
 {
 	ivec3 lo = ivec3(-u_margin), hi = dens_dims() - u_margin;
+	return all(greaterThanEqual(q, lo)) && all(lessThan(q, hi)) && D(q) > u_iso;
+}
+int inside_at(ivec3 c)
+{
 	int count = 0;
+	ivec3 only = ivec3(0);
 	for (int a = 0; a < 3; a++)
 		for (int s = -1; s <= 1; s += 2) {
-			ivec3 q = c;
-			q[a] += s;
-			if (q[a] >= lo[a] && q[a] < hi[a] && D(q) > u_iso)
+			ivec3 d = ivec3(0);
+			d[a] = s;
+			if (raw_in(c + d)) {
 				count++;
+				only = d;
+			}
 		}
-	return (D(c) > u_iso ? count > 0 : count == 6) ? 1 : 0;
+	if (!(D(c) > u_iso))
+		return count == 6 ? 1 : 0;
+	if (count != 1)
+		return count > 1 ? 1 : 0;
+	// the one neighbour's own neighbours, but c
+	for (int a = 0; a < 3; a++)
+		for (int s = -1; s <= 1; s += 2) {
+			ivec3 d = ivec3(0);
+			d[a] = s;
+			if (d != -only && raw_in(c + only + d))
+				return 1;
+		}
+	return 0;
 }
 
 int cell_case(ivec3 c)

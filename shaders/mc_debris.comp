@@ -1,18 +1,21 @@
 // isoterra — the debris filter, between the density pass and classification:
-// the sign bits of the density grid less one-sample debris.  An inside
-// sample none of whose six neighbours is inside counts as outside (such a
-// one-sample island would float as a speck of eight triangles), and an
-// outside sample all of whose six neighbours are inside counts as inside (a
-// bubble in the rock, never seen); a neighbour beyond the grid's samples
-// counts as outside.  One invocation per sign word (32 samples of a z slab,
-// as the density pass wrote them): the word, its two neighbours along the
-// slab (x), two unaligned runs of 32 bits a row away (y) and the words a
-// slab away (z); word-wide operations, no loop over the samples.  Only
-// classification and the index pass read the bits: an edge that crossed at
-// a flipped sample has both ends on one side now, so the vertex pass (which
-// interpolates the densities of crossing edges) needs no change.  Mirrored
-// in app/extract/mc_ref.c (inside()).  Dispatch: (ceil(words of a slab /
-// WG_SIZE), slabs) groups of WG_SIZE.
+// the sign bits of the density grid less one- and two-sample debris.  An
+// inside sample none of whose six neighbours is inside counts as outside
+// (such a one-sample island would float as a speck of eight triangles), and
+// so do two inside neighbours that have no other inside neighbour (a speck
+// of a dozen); an outside sample all of whose six neighbours are inside
+// counts as inside (a bubble in the rock, never seen); a neighbour beyond
+// the grid's samples counts as outside.  One invocation per sign word (32
+// samples of a z slab, as the density pass wrote them): the word, its two
+// neighbours along the slab (x), two unaligned runs of 32 bits a row away
+// (y) and the words a slab away (z); for a word with a sample that has a
+// single inside neighbour, the eighteen runs two steps away too (that
+// neighbour's own neighbours); word-wide operations, no loop over the
+// samples.  Only classification and the index pass read the bits: an edge
+// that crossed at a flipped sample has both ends on one side now, so the
+// vertex pass (which interpolates the densities of crossing edges) needs no
+// change.  Mirrored in app/extract/mc_ref.c (mc_ref_inside()).  Dispatch:
+// (ceil(words of a slab / WG_SIZE), slabs) groups of WG_SIZE.
 layout(local_size_x = WG_SIZE) in;
 #define PASS_READS_SIGNS 1 // common.glsl's Signs (BIND_SIGNS): here the raw bits
 #include "common.glsl"
@@ -41,6 +44,30 @@ uint bits_below(int first, int limit)
 {
 	int k = limit - first; // bits 0 .. k-1
 	return k <= 0 ? 0u : k >= 32 ? ~0u : (1u << uint(k)) - 1u;
+}
+
+// Samples start .. start + 31 of slab zz (0 outside the slab or the grid)
+uint slab_run(int zz, int start, int n, uint words)
+{
+	if (zz < 0 || zz >= dens_dims().z || start <= -32)
+		return 0u;
+	uint base = uint(zz) * words * 32u;
+	uint v = start >= 0 ? raw_run32(base + uint(start)) : raw_run32(base) << uint(-start);
+	return v & bits_below(start, n) & ~bits_below(start, 0);
+}
+
+// The bits j of a word starting at row position x whose sample has a
+// neighbour at x + dx in its row (dx -2 .. 2)
+uint x_ok(int x, int dx, int dimx)
+{
+	uint m = ~0u;
+	for (int t = 0; t < abs(dx); t++) {
+		int xc = dx < 0 ? t : dimx - 1 - t; // a row position with none at xc + dx
+		int j = xc - x < 0 ? xc - x + dimx : xc - x;
+		for (; j < 32; j += dimx)
+			m &= ~(1u << uint(j));
+	}
+	return m;
 }
 
 void main()
@@ -76,9 +103,32 @@ void main()
 	uint zm = z > 0 ? raw_word(w0 - words + wv) : 0u;
 	uint zp = z + 1 < dim.z ? raw_word(w0 + words + wv) : 0u;
 	uint any6 = xm | xp | ym | yp | zm | zp, all6 = xm & xp & ym & yp & zm & zp;
+	// Two-sample islands: a sample whose only inside neighbour (along d)
+	// has no inside neighbour but it (the runs at d + e, e != -d)
+	uint n1_xm = c & xm & ~(xp | ym | yp | zm | zp), n1_xp = c & xp & ~(xm | ym | yp | zm | zp);
+	uint n1_ym = c & ym & ~(xm | xp | yp | zm | zp), n1_yp = c & yp & ~(xm | xp | ym | zm | zp);
+	uint n1_zm = c & zm & ~(xm | xp | ym | yp | zp), n1_zp = c & zp & ~(xm | xp | ym | yp | zm);
+	uint iso2 = 0u;
+	if ((n1_xm | n1_xp | n1_ym | n1_yp | n1_zm | n1_zp) != 0u) {
+		int r = dim.x;
+		uint okm2 = x_ok(x, -2, r), okm1 = x_ok(x, -1, r), okp1 = x_ok(x, 1, r), okp2 = x_ok(x, 2, r);
+#define RUN(dx, dy, dz, ok) (slab_run(z + (dz), b0 + (dx) + (dy) * r, n, words) & (ok))
+		uint xm2 = RUN(-2, 0, 0, okm2), xp2 = RUN(2, 0, 0, okp2);
+		uint ym2 = RUN(0, -2, 0, ~0u), yp2 = RUN(0, 2, 0, ~0u), zm2 = RUN(0, 0, -2, ~0u), zp2 = RUN(0, 0, 2, ~0u);
+		uint xmym = RUN(-1, -1, 0, okm1), xmyp = RUN(-1, 1, 0, okm1), xpym = RUN(1, -1, 0, okp1),
+		     xpyp = RUN(1, 1, 0, okp1);
+		uint xmzm = RUN(-1, 0, -1, okm1), xmzp = RUN(-1, 0, 1, okm1), xpzm = RUN(1, 0, -1, okp1),
+		     xpzp = RUN(1, 0, 1, okp1);
+		uint ymzm = RUN(0, -1, -1, ~0u), ymzp = RUN(0, -1, 1, ~0u), ypzm = RUN(0, 1, -1, ~0u),
+		     ypzp = RUN(0, 1, 1, ~0u);
+#undef RUN
+		iso2 = (n1_xm & ~(xm2 | xmym | xmyp | xmzm | xmzp)) | (n1_xp & ~(xp2 | xpym | xpyp | xpzm | xpzp)) |
+		       (n1_ym & ~(ym2 | xmym | xpym | ymzm | ymzp)) | (n1_yp & ~(yp2 | xmyp | xpyp | ypzm | ypzp)) |
+		       (n1_zm & ~(zm2 | xmzm | xpzm | ymzm | ypzm)) | (n1_zp & ~(zp2 | xmzp | xpzp | ymzp | ypzp));
+	}
 	uint wi = w0 + wv;
 	if (wi < u_sign_words) {
-		filtered[wi] = ((c & any6) | (~c & all6)) & valid;
+		filtered[wi] = ((c & any6 & ~iso2) | (~c & all6)) & valid;
 #ifdef DEBRIS_NEAR
 		// a neighbour beyond the grid is no sign change (no edge leads there)
 		uint ym_ok = ~bits_below(b0 - dim.x, 0), yp_ok = bits_below(b0 + dim.x, n);

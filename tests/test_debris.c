@@ -1,9 +1,11 @@
-/* isoterra — no floating one-sample debris: the default terrain (and two
- * more seeds) has samples inside the rock none of whose six neighbours is
- * (counted on the GPU's own densities: each would have been a speck of
- * eight triangles, a closed component of its own), and the extracted mesh,
- * read back, has no component of at most eight triangles apart from pieces
- * cut by the box's sides. */
+/* isoterra — no floating one- or two-sample debris: the default terrain
+ * (and two more seeds) has samples inside the rock none of whose six
+ * neighbours is, and pairs of inside samples with no other inside
+ * neighbour (counted on the GPU's own densities: each would have been a
+ * speck of eight or sixteen triangles, a closed component of its own), and
+ * the extracted mesh, read back, has no component of at most eight
+ * triangles apart from pieces cut by the box's sides, and no vertex around
+ * a pair's two samples. */
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
@@ -84,11 +86,59 @@ static int islands(const struct grid *g, const float *dens, float iso)
 	return n;
 }
 
+/* Pairs of adjacent samples strictly inside the box, both inside the rock,
+ * neither with another inside neighbour (raw densities); the lower
+ * sample's world position of the first 16 into at[]. */
+static int pairs(const struct grid *g, const float *dens, float iso, float at[16][3])
+{
+	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+	int n = 0;
+	for (int k = 2; k < g->nz - 1; k++)
+		for (int j = 2; j < g->ny - 1; j++)
+			for (int i = 2; i < g->nx - 1; i++) {
+				if (!(dens[grid_dens_index(g, i, j, k)] > iso))
+					continue;
+				int count = 0, only = -1;
+				for (int d = 0; d < 6; d++)
+					if (dens[grid_dens_index(g, i + nb[d][0], j + nb[d][1], k + nb[d][2])] > iso)
+						count++, only = d;
+				if (count != 1 || (only & 1) == 0)
+					continue; /* each pair once: from its lower sample */
+				int q[3] = { i + nb[only][0], j + nb[only][1], k + nb[only][2] }, other = 0;
+				for (int d = 0; d < 6; d++)
+					if (d != (only ^ 1))
+						other += dens[grid_dens_index(g, q[0] + nb[d][0], q[1] + nb[d][1], q[2] + nb[d][2])] > iso;
+				if (other == 0 && n < 16) {
+					int c[3] = { i, j, k };
+					for (int a = 0; a < 3; a++)
+						at[n][a] = g->origin[a] + (float)c[a] * g->cell;
+				}
+				n += other == 0;
+			}
+	return n;
+}
+
+/* Mesh vertices within a cell (each axis) of the pairs' samples: a pair's
+ * speck has its vertices on the edges around its two samples. */
+static int near_pairs(const struct grid *g, const struct mesh *m, float at[16][3], int n)
+{
+	int near = 0;
+	for (int q = 0; q < n && q < 16; q++)
+		for (uint32_t v = 0; v < m->nverts; v++) {
+			const float *p = m->pos + 3 * v;
+			int in = 1;
+			for (int a = 0; a < 3; a++)
+				in = in && p[a] > at[q][a] - 0.999f * g->cell && p[a] < at[q][a] + 1.999f * g->cell;
+			near += in;
+		}
+	return near;
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
 	static const int seeds[] = { 10, 1, 77 };
-	int before_total = 0;
+	int before_total = 0, pairs_total = 0;
 	for (size_t s = 0; s < sizeof(seeds) / sizeof(seeds[0]); s++) {
 		struct params p;
 		params_defaults(&p);
@@ -106,11 +156,15 @@ int main(void)
 		struct mesh m = { 0 };
 		CHECK(dens && pipeline_read_density(ft.pl, dens) == 0, "seed %d: read density", p.seed);
 		CHECK(pipeline_read_mesh(ft.pl, &m) == 0, "seed %d: read mesh", p.seed);
-		int before = dens ? islands(&g, dens, p.iso) : -1, after = specks(&g, &m, 8);
-		printf("seed %5d: %d one-sample islands in the field (specks of 8 triangles unfiltered), "
-		       "%d components of <= 8 triangles in the mesh (%u triangles)\n",
-		       p.seed, before, after, m.ntris);
+		float at[16][3];
+		int before = dens ? islands(&g, dens, p.iso) : -1, two = dens ? pairs(&g, dens, p.iso, at) : -1;
+		int after = specks(&g, &m, 8), left = near_pairs(&g, &m, at, two);
+		printf("seed %5d: %d one-sample islands and %d two-sample ones in the field; in the mesh (%u triangles) "
+		       "%d components of <= 8 triangles, %d vertices around the pairs\n",
+		       p.seed, before, two, m.ntris, after, left);
+		CHECK(left == 0, "seed %d: the two-sample islands left %d vertices", p.seed, left);
 		before_total += before;
+		pairs_total += two;
 		CHECK(after == 0, "seed %d: %d floating specks left", p.seed, after);
 		mesh_free(&m);
 		free(dens);
@@ -118,6 +172,7 @@ int main(void)
 	}
 	/* the seeds do make debris, so the check above means something */
 	CHECK(before_total >= 3, "only %d one-sample islands in the fields: the seeds test nothing", before_total);
+	CHECK(pairs_total >= 1, "no two-sample island in the fields: the seeds test nothing of the pairs");
 	platform_close(plat);
 	return tc_done("debris");
 }

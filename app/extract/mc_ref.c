@@ -18,22 +18,44 @@ static void gradient(const struct grid *g, const float *dens, int i, int j, int 
 	out[2] = D(g, dens, i, j, k + 1) - D(g, dens, i, j, k - 1);
 }
 
+/* The raw sign of a stored sample (one beyond them: outside). */
+static int raw_inside(const struct grid *g, const float *dens, float iso, int x, int y, int z)
+{
+	int m = grid_margin(g);
+	if (x < -m || y < -m || z < -m || x > g->nx + m || y > g->ny + m || z > g->nz + m)
+		return 0;
+	return D(g, dens, x, y, z) > iso;
+}
+
+static const int nb6[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+
 /* Inside: above iso and so is one of the six neighbours (a one-sample
- * island is dropped: it would float as a speck of eight triangles), or
- * below it with all six above (a bubble in the rock, never seen, filled);
- * a neighbour beyond the stored samples counts as outside.  As the GPU's
- * debris filter (shaders/mc_debris.comp). */
+ * island is dropped: it would float as a speck of eight triangles), unless
+ * that is its only one and has no other (a two-sample island, a speck of a
+ * dozen), or below it with all six above (a bubble in the rock, never seen,
+ * filled); a neighbour beyond the stored samples counts as outside.  As the
+ * GPU's debris filter (shaders/mc_debris.comp). */
 int mc_ref_inside(const struct grid *g, const float *dens, float iso, int x, int y, int z)
 {
-	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
-	int m = grid_margin(g), n[3] = { g->nx, g->ny, g->nz }, count = 0;
+	int count = 0, only = -1;
+	for (int k = 0; k < 6; k++)
+		if (raw_inside(g, dens, iso, x + nb6[k][0], y + nb6[k][1], z + nb6[k][2])) {
+			count++;
+			only = k;
+		}
+	if (!raw_inside(g, dens, iso, x, y, z))
+		return count == 6;
+	if (count != 1)
+		return count > 1;
+	/* the one neighbour's own neighbours, but this sample */
+	int q[3] = { x + nb6[only][0], y + nb6[only][1], z + nb6[only][2] };
 	for (int k = 0; k < 6; k++) {
-		int q[3] = { x + nb[k][0], y + nb[k][1], z + nb[k][2] };
-		if (q[0] < -m || q[1] < -m || q[2] < -m || q[0] > n[0] + m || q[1] > n[1] + m || q[2] > n[2] + m)
-			continue;
-		count += D(g, dens, q[0], q[1], q[2]) > iso;
+		if (k == (only ^ 1))
+			continue; /* back to this sample */
+		if (raw_inside(g, dens, iso, q[0] + nb6[k][0], q[1] + nb6[k][1], q[2] + nb6[k][2]))
+			return 1;
 	}
-	return D(g, dens, x, y, z) > iso ? count > 0 : count == 6;
+	return 0;
 }
 
 static int vmask(const struct grid *g, const float *dens, float iso, int x, int y, int z)
