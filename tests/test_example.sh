@@ -31,7 +31,7 @@ for s in asphalt gravel none; do
   "geometry": { "type": "LineString", "coordinates": [[-60, 0], [60, 0]] } }
 J
 	if "$BIN" --size 320x240 --field heightmap --heightmap "$SRC/docs/examples/hill.png" --heightmap-scale 0.5 \
-		--heightmap-base -12 --heightmap-height 32 --curves road_$s.geojson --curves-crs local --cam-pitch 89 \
+		--heightmap-base -12 --heightmap-height 32 --curves road_$s.geojson --curves-crs local --cam-yaw 35 --cam-pitch 89 \
 		--cam-dist 1.2 --water false --out $s.png 2>err && [ -s $s.png ]; then
 		ok
 	else

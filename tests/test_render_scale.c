@@ -135,7 +135,11 @@ static void detail_variants(struct renderer *r, const struct pipeline_draw *d, c
 {
 	struct params p = *p_in;
 	for (int afar = 0; afar < 2; afar++) {
-		p.cam_dist = afar ? 1.5f : p_in->cam_dist;
+		/* near: the eye close over the terrain (a snow mound within
+		 * DETAIL_RANGE fills half the frame from here) */
+		p.cam_dist = afar ? 1.5f : 0.6f;
+		p.cam_yaw = 35.0f;
+		p.cam_pitch = 17.0f;
 		struct camera c;
 		camera_orbit(&c, &p, g, 0.0f, (float)W / H);
 		/* the eye's distance to the volume's box */

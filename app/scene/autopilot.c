@@ -252,12 +252,13 @@ static void open_heading(const struct autopilot *a, float out[3])
 
 /* The view's tilt below the heading: over open ground (shape ground, a
  * heightmap) as far down as the ground below is high, so the centre of the
- * frame falls on the ground VIEW_AHEAD units ahead and the land fills it,
- * the horizon in its upper third: high over a valley it looks down into it,
- * low over a plain it looks out over it (tan 0.15 .. 0.6, 8.5 .. 31 degrees).
- * Caves look level ahead, a planet and a landing pad have their own
- * (autopilot_camera). */
-#define VIEW_AHEAD 28.0f
+ * frame falls on the ground VIEW_AHEAD fly_heights ahead (28 units at the
+ * default 7; a map's flight, a twentieth of the map up, looks a fifth of
+ * it ahead) and the land fills it, the horizon in its upper third: high
+ * over a valley it looks down into it, low over a plain it looks out over
+ * it (tan 0.15 .. 0.6, 8.5 .. 31 degrees).  Caves look level ahead, a
+ * planet and a landing pad have their own (autopilot_camera). */
+#define VIEW_AHEAD 4.0f
 #define VIEW_DOWN_MIN 0.15f
 #define VIEW_DOWN_MAX 0.6f
 #define VIEW_DOWN_S 1.5 /* the tilt follows the ground this slowly (time constant) */
@@ -268,15 +269,17 @@ static float view_down_target(const struct autopilot *a)
 	/* the ground's depth below the camera's height in five columns along
 	 * the heading, 0 .. VIEW_AHEAD ahead: their median (a floating rock
 	 * under one of them does not tip the view) */
-	float up[3], down[3], h[5];
+	float up[3], down[3], h[5], ahead = VIEW_AHEAD * a->p->fly_height;
 	local_up(a, a->pos, up);
 	for (int k = 0; k < 3; k++)
 		down[k] = -up[k];
 	for (int i = 0; i < 5; i++) {
 		float at[3];
 		for (int k = 0; k < 3; k++)
-			at[k] = a->pos[k] + a->dir[k] * VIEW_AHEAD * (float)i * 0.25f;
-		h[i] = free_length(a, at, down, 2.0f * VIEW_AHEAD, 32, 0.0f);
+			at[k] = a->pos[k] + a->dir[k] * ahead * (float)i * 0.25f;
+		h[i] = free_length(a, at, down, 2.0f * ahead, 32, 0.0f);
+		if (a->p->water) /* the sea is the ground to frame, not its floor */
+			h[i] = fminf(h[i], fmaxf(at[1] - a->p->water_level, 0.0f));
 	}
 	for (int i = 0; i < 5; i++) /* sorted: five values */
 		for (int j = i + 1; j < 5; j++)
@@ -285,7 +288,13 @@ static float view_down_target(const struct autopilot *a)
 				h[i] = h[j];
 				h[j] = t;
 			}
-	return fminf(fmaxf(h[2] / VIEW_AHEAD, VIEW_DOWN_MIN), VIEW_DOWN_MAX);
+	/* ... but never so far down that the end of the view (view_distance
+	 * away, that far below) leaves the frame's upper part: the horizon
+	 * stays 15 % under the frame's top edge or lower (a map's flight, high
+	 * over a large map, would look at the ground only) */
+	float fov = a->p->fov * 3.14159265f / 180.0f;
+	float cap = tanf(atan2f(h[2], a->p->view_distance) + 0.35f * fov);
+	return fminf(fmaxf(fminf(h[2] / ahead, cap), VIEW_DOWN_MIN), VIEW_DOWN_MAX);
 }
 
 int autopilot_init(struct autopilot *a, const struct params *p, const struct edits *ed)
