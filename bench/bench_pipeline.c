@@ -7,14 +7,15 @@
  *  1. every pass apart (density, classify, pyramid = reduce + setup,
  *     vertices, indices; pipeline_profile: glFinish after every pass), with
  *     the flags' ambient occlusion and without it; AO = the vertex pass
- *     with AO minus without;
+ *     with AO and the sun's shadows minus without;
  *  2. whole runs: the density pass alone (and with every sample whole:
- *     --no-density-cut), the whole pipeline with and without AO, with the
+ *     --no-density-cut), the whole pipeline with and without AO and
+ *     shadows, with the
  *     process's CPU time;
  *  3. the peers, when installed (bench/peer.h): libnoise's Perlin module as
  *     the same fBm, VTK's flying edges on the same volume;
- *  4. the compaction methods with identical work (AO off on all three:
- *     only the HistoPyramid path has an AO pass);
+ *  4. the compaction methods with identical work (AO and shadows off on
+ *     all three: only the HistoPyramid path has them);
  *  5. the noise sources (ALU, 16^3 textures) for the density pass;
  *  6. with --sizes, density, whole pipeline and compaction methods at
  *     other grid sizes.
@@ -185,7 +186,7 @@ static void print_field(const struct options *o, const struct params *p)
 	static const char *const names[] = { "field",	  "shape",	    "fractal",	       "noise",	   "octaves",
 					     "noise_freq", "lacunarity",    "hurst",	       "gain",	   "noise_amp",
 					     "ground_slope", "seed",	    "warp_amp",	       "floor_strength", "rotated_octaves",
-					     "closed",	  "ao_rays",	    "iso" };
+					     "closed",	  "ao_rays",	    "shadows",	       "shadow_steps", "iso" };
 	for (size_t i = 0; i < sizeof(names) / sizeof(names[0]); i++) {
 		char v[64];
 		params_format(p, params_find(names[i]), v, sizeof(v));
@@ -199,6 +200,12 @@ static void print_field(const struct options *o, const struct params *p)
 		printf("  fbm octave weights: lacunarity^-hurst = %.5f per octave\n", pow(p->lacunarity, -p->hurst));
 }
 
+/* The vertex pass casts rays (AO, the sun's) for p. */
+static bool lit(const struct params *p)
+{
+	return p->ao_rays > 0 || (p->shadows > 0.0f && p->shadow_steps > 0);
+}
+
 static const char *stat_str(const struct series *s, int what, char *buf, size_t len)
 {
 	if (!s || s->failed || !s->n)
@@ -206,16 +213,16 @@ static const char *stat_str(const struct series *s, int what, char *buf, size_t 
 	return bench_stat_str(series_stat(s, what), 1, buf, len);
 }
 
-/* Per pass, with the flags' AO and without (off may be NULL: AO off in
- * the flags already). */
+/* Per pass, with the flags' AO and sun shadows and without (off may be
+ * NULL: both off in the flags already). */
 static void print_passes(const struct series *on, const struct series *off, int runs)
 {
 	static const char *const names[PASS_COUNT] = { "density", "classify", "pyramid (reduce+setup)", "vertices",
 						       "indices" };
 	char a[64], b[64];
 	printf("\nper pass, HistoPyramid (glFinish after every pass), wall ms median [min-max] of %d runs:\n", runs);
-	printf("  %-24s %-28s %s\n", "pass", on->p.ao_rays ? "AO as given" : "AO off (as given)",
-	       off ? "AO off (--ao-rays 0)" : "");
+	printf("  %-24s %-28s %s\n", "pass", lit(&on->p) ? "AO, shadows as given" : "AO, shadows off (as given)",
+	       off ? "off (--ao-rays 0 --shadows 0)" : "");
 	for (int k = 0; k < PASS_COUNT; k++)
 		printf("  %-24s %-28s %s\n", names[k], stat_str(on, k, a, sizeof(a)), off ? stat_str(off, k, b, sizeof(b)) : "");
 	printf("  %-24s %-28s %s\n", "all but density", stat_str(on, V_AFTER_DENSITY, a, sizeof(a)),
@@ -226,9 +233,10 @@ static void print_passes(const struct series *on, const struct series *off, int 
 	       off ? stat_str(off, V_CPU, b, sizeof(b)) : "");
 	if (off && on->n && off->n) {
 		double ao = series_stat(on, PASS_VERTICES).med - series_stat(off, PASS_VERTICES).med;
-		printf("  AO (%d rays x (%d short + %d long) steps) = vertex pass with AO - without (medians): %.1f ms,"
-		       " %.0f%% of the run\n",
-		       on->p.ao_rays, on->p.ao_short_steps, on->p.ao_long_steps, ao, 100 * ao / series_stat(on, V_WALL).med);
+		printf("  AO (%d rays x (%d short + %d long) steps) and sun (%d steps) = vertex pass with - without "
+		       "(medians): %.1f ms, %.0f%% of the run\n",
+		       on->p.ao_rays, on->p.ao_short_steps, on->p.ao_long_steps, on->p.shadows > 0 ? on->p.shadow_steps : 0,
+		       ao, 100 * ao / series_stat(on, V_WALL).med);
 	}
 }
 
@@ -286,16 +294,17 @@ static void measure_grid(const struct params *p, const struct field *f, const st
 		return;
 	struct params off = *p;
 	off.ao_rays = 0;
-	bool ao = p->ao_rays > 0;
+	off.shadows = 0.0f;
+	bool ao = lit(p);
 	struct params whole = *p;
 	whole.density_cut = false;
 	struct series dens, dens_whole, full, full_off, prof, prof_off;
 	isoterra_series(&dens, "density pass alone", pl, p, S_DENSITY);
 	isoterra_series(&dens_whole, "density pass, no cut", pl, &whole, S_DENSITY);
-	isoterra_series(&full, ao ? "whole pipeline, AO as given" : "whole pipeline (AO off)", pl, p, S_FULL);
-	isoterra_series(&full_off, "whole pipeline, AO off", pl, &off, S_FULL);
-	isoterra_series(&prof, "profiled, AO as given", pl, p, S_PROFILED);
-	isoterra_series(&prof_off, "profiled, AO off", pl, &off, S_PROFILED);
+	isoterra_series(&full, ao ? "whole pipeline, AO+sun as given" : "whole pipeline (AO+sun off)", pl, p, S_FULL);
+	isoterra_series(&full_off, "whole pipeline, AO+sun off", pl, &off, S_FULL);
+	isoterra_series(&prof, "profiled, AO+sun as given", pl, p, S_PROFILED);
+	isoterra_series(&prof_off, "profiled, AO+sun off", pl, &off, S_PROFILED);
 	struct series *s[6 + PEER_SERIES] = { &dens, &full, &prof };
 	int ns = 3;
 	if (p->density_cut)
@@ -345,9 +354,11 @@ static void measure_compaction(const struct params *p, int n, const struct field
 					      "none (15 vertices per cell)" };
 	struct params q = *p;
 	q.ao_rays = 0;
+	q.shadows = 0.0f;
 	q.grid = n;
 	struct grid g;
-	printf("\ncompaction methods, identical work: AO off on all three (only the HistoPyramid path has an AO pass),\n"
+	printf("\ncompaction methods, identical work: AO and shadows off on all three (only the HistoPyramid path has\n"
+	       "them),\n"
 	       "grid %d, whole runs, ms median [min-max], ratios of the medians to HistoPyramid's:\n", n);
 	struct pipeline *pl = open_pipeline(&q, &g, f);
 	if (!pl)
