@@ -269,7 +269,7 @@ static void print_whole(const struct series *dens, const struct series *dens_who
 		       s->triangles / (t * 1e3), s->triangles, s->vertices);
 	}
 	if (nfull == 2 && full[0]->n && full[1]->n)
-		printf("  AO, process CPU: whole run with AO - without (medians): %.1f ms\n",
+		printf("  AO+sun, process CPU: whole run with - without (medians): %.1f ms\n",
 		       series_stat(full[0], V_CPU).med - series_stat(full[1], V_CPU).med);
 }
 

@@ -228,7 +228,7 @@ void peers_report(const struct peers *pe, const struct series *iso_density, cons
 {
 	if (!pe)
 		return;
-	printf("\npeers vs isoterra (isoterra without AO: the peers compute none), ms median [min-max], ratio = isoterra / peer:\n");
+	printf("\npeers vs isoterra (isoterra without AO and shadows: the peers compute neither), ms median [min-max], ratio = isoterra / peer:\n");
 	printf("  %-30s %-26s %9s  %-26s %9s  %6s  %6s\n", "", "peer wall", "peer CPU", "isoterra wall", "iso CPU", "wall",
 	       "CPU");
 	struct bench_stat lw = { 0 }, fw = { 0 };
