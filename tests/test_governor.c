@@ -193,5 +193,9 @@ int main(void)
 		CHECK(c.shadow_steps == 1.0f || c.ao_rays == 0.0f, "step %d: shadows only after AO", i);
 	}
 	CHECK(governor_level(GOVERNOR_LEVELS - 1).render_scale == 0.5f, "scale floor 0.5");
+	/* the parameters that name a level reach the floor and no further */
+	CHECK(params_find("quality")->hi == GOVERNOR_LEVELS - 1, "--quality's range ends at the floor (%g)",
+	      params_find("quality")->hi);
+	CHECK(params_find("low_power_quality")->hi == GOVERNOR_LEVELS - 1, "--low-power-quality's range ends at the floor");
 	return tc_done("governor");
 }
