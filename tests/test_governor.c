@@ -187,12 +187,14 @@ int main(void)
 		struct governor_quality a = governor_level(i - 1), c = governor_level(i);
 		CHECK(c.render_scale <= a.render_scale && c.gen_budget <= a.gen_budget && c.ao_rays <= a.ao_rays &&
 			      c.shadow_steps <= a.shadow_steps && c.far_octaves_drop >= a.far_octaves_drop &&
-			      c.view_distance <= a.view_distance,
+			      c.view_distance <= a.view_distance && c.framing <= a.framing,
 		      "ladder step %d only lowers quality", i);
 		CHECK(c.view_distance == 1.0f || c.render_scale == 0.5f, "step %d: view distance only after scale", i);
 		CHECK(c.shadow_steps == 1.0f || c.ao_rays == 0.0f, "step %d: shadows only after AO", i);
 	}
 	CHECK(governor_level(GOVERNOR_LEVELS - 1).render_scale == 0.5f, "scale floor 0.5");
+	CHECK(governor_level(0).framing == 1.0f && governor_level(1).framing == 0.0f,
+	      "full quality has the composed start, the first step gives it up");
 	/* the parameters that name a level reach the floor and no further */
 	CHECK(params_find("quality")->hi == GOVERNOR_LEVELS - 1, "--quality's range ends at the floor (%g)",
 	      params_find("quality")->hi);

@@ -305,12 +305,15 @@ static float view_down_target(const struct autopilot *a)
 	 * 0.35, 52 ms at up to 0.6; docs/WORLD.md) */
 	float e = (float)((a->t - VIEW_FRAMED_S) / VIEW_EASE_S);
 	e = fminf(fmaxf(e, 0.0f), 1.0f);
-	return framed + (VIEW_DOWN_MIN - framed) * e * e * (3.0f - 2.0f * e);
+	framed += (VIEW_DOWN_MIN - framed) * e * e * (3.0f - 2.0f * e);
+	/* the governor's first step gives the framing up (governor.c) */
+	return VIEW_DOWN_MIN + (framed - VIEW_DOWN_MIN) * fminf(fmaxf(a->framing, 0.0f), 1.0f);
 }
 
 int autopilot_init(struct autopilot *a, const struct params *p, const struct edits *ed)
 {
 	memset(a, 0, sizeof(*a));
+	a->framing = 1.0f;
 	a->p = p;
 	a->ed = ed;
 	a->ns = malloc(sizeof(*a->ns));

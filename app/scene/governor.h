@@ -1,7 +1,8 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
- * quality, in a fixed order (render scale, then the block generation
- * budget, AO rays, sun shadow steps, far-LOD octaves, view distance), and
- * gives it back when there is headroom.  It only sees frame times and a clock, so a test
+ * quality, in a fixed order (the composed start's view with the first
+ * step of render scale, then the block generation budget, AO rays, sun
+ * shadow steps, far-LOD octaves, view distance), and gives it back when
+ * there is headroom.  It only sees frame times and a clock, so a test
  * drives it with a fake clock and a synthetic load.
  *
  * What it holds is the frame time most frames stay under: the smoothed
@@ -29,6 +30,8 @@ struct governor_quality {
 	float shadow_steps;   /* 0 .. 1: times the configured sun shadow steps (new blocks) */
 	int far_octaves_drop; /* 0 .. 2: octaves left out of the coarsest level's blocks */
 	float view_distance;  /* 0.55 .. 1: times the configured view distance */
+	float framing;        /* 1: the autopilot's composed start (its view tilted down onto the
+	                       * land); 0: the cruise's tilt, whose frames draw half the terrain */
 	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
 };
 

@@ -134,6 +134,7 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 		}
 		ws->ap_ready = true;
 	}
+	ws->ap.framing = ws->q.framing; /* the quality held since the last frame */
 	autopilot_advance(&ws->ap, t);
 	autopilot_camera(&ws->ap, &cam, p->fov, scene_frame_aspect(fr), ws->far);
 	camera_window(&cam, fr->view);
@@ -254,5 +255,6 @@ struct scene *scene_world_create(const struct params *p, char *err, size_t errle
 		return NULL;
 	}
 	ws->ap_ready = true;
+	ws->q = governor_level(0);
 	return &ws->base;
 }

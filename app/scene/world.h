@@ -125,6 +125,8 @@ struct autopilot {
 	bool blocked;             /* the last step could not go straight ahead */
 	float view_down;          /* the view's tilt below the heading (tan), smoothed:
 	                           * over open ground it frames the land ahead */
+	float framing;            /* 1: the composed start (the default), 0: the cruise's
+	                           * tilt from the start (the governor's first step) */
 	const struct params *p;
 	struct noise_set *ns;
 	const struct edits *ed;   /* the terrain edits it avoids (NULL: none) */
