@@ -108,13 +108,12 @@ void main()
 	vec2 b1 = (t1.gb - 0.5) * u_bump, b2 = (t2.gb - 0.5) * u_bump, b3 = (t3.gb - 0.5) * u_bump;
 	vec3 bump = vec3(0.0, b1.x, b1.y) * w.x + vec3(b2.y, 0.0, b2.x) * w.y + vec3(b3.x, b3.y, 0.0) * w.z;
 	vec3 n = normalize(n0 - bump);
-	// detail normal, fading out with distance (compiled out of the variant
-	// for meshes that stay beyond DETAIL_RANGE: render.c)
 	float tex = t1.r * w.x + t2.r * w.y + t3.r * w.z;
 #if DETAIL_NORMALS
-	// two finer scales (5.1 and 23 times), fading out with distance: the
-	// grain of the rock and the grass close up, where the base texture's
-	// texels would smear
+	// detail at two finer scales (5.1 and 23 times), fading out with
+	// distance: the grain of the rock and the grass close up, where the
+	// base texture's texels would smear (compiled out of the variant for
+	// meshes that stay beyond DETAIL_RANGE: render.c)
 	float dist = length(v_pos - u_eye);
 	float near = u_detail * clamp(1.0 - dist / DETAIL_RANGE, 0.0, 1.0);
 	float grain = 0.0;
