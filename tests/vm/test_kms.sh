@@ -334,11 +334,17 @@ grep -q "kms: atomic, flips pipelined with out-fences" "$wl" 2>/dev/null && ok "
 for c in 0 1; do
 	headless "$T/ref-tile$c.png" ${W}x$H $NM $WALL --tile $c,0 || continue
 done
+# The guest's llvmpipe compiles for QEMU's CPU, the host's for the host's:
+# the per-vertex sun shadows of the 16^3 grid's large triangles differ at a
+# few vertices near a penumbra, up to 3 % of a tile's pixels by more than
+# 32 (this stop's runs: 2.2-3.0 %, mean 1.3-1.8); a wrong tile differs in
+# most of its pixels (the negative control below keeps 1 %)
+TILE_FRAC=0.05
 if [ -s "$T/wall0.ppm" ] && [ -s "$T/h1-wall1.ppm" ] && [ -s "$T/ref-tile0.png" ]; then
 	compare "head 0 (Virtual-1) shows tile 0,0: screendump vs host render of --tile 0,0" "$T/wall0.ppm" "$T/ref-tile0.png" \
-		--threshold 32 --max-mean 2.0 --max-frac 0.01
+		--threshold 32 --max-mean 2.0 --max-frac $TILE_FRAC
 	compare "head 1 (Virtual-2) shows tile 1,0: screendump vs host render of --tile 1,0" "$T/h1-wall1.ppm" "$T/ref-tile1.png" \
-		--threshold 32 --max-mean 2.0 --max-frac 0.01
+		--threshold 32 --max-mean 2.0 --max-frac $TILE_FRAC
 	# the negative control: the tiles differ, so each match means its tile
 	if "$IMGCMP" "$T/ref-tile0.png" "$T/ref-tile1.png" --threshold 32 --max-mean 2.0 --max-frac 0.01 >"$T/neg2.txt" 2>&1; then
 		bad "the two tiles' renders look alike: the tile checks prove nothing ($(cat "$T/neg2.txt"))"
@@ -364,14 +370,14 @@ else
 fi
 [ -s "$T/wall0-off.ppm" ] && [ -s "$T/ref-tile0.png" ] &&
 	compare "Virtual-2 unplugged: head 0 still shows tile 0,0" "$T/wall0-off.ppm" "$T/ref-tile0.png" \
-		--threshold 32 --max-mean 2.0 --max-frac 0.01
+		--threshold 32 --max-mean 2.0 --max-frac $TILE_FRAC
 grep -q "gbm: Virtual-2 on /dev/dri/card0 connected again: modesetting ${W}x$H@" "$wl" 2>/dev/null &&
 	[ "$(grep -c 'Virtual-2 .*(atomic modesetting)' "$wl")" = 2 ] &&
 	ok "Virtual-2 plugged back: modeset again ($(grep -m1 -o 'Virtual-2 on .* connected again.*' "$wl"))" ||
 	bad "Virtual-2 plugged back: no second modeset: $(grep -E 'Virtual-2|error' "$wl" 2>/dev/null | tail -4)"
 [ -s "$T/h1-wall1-back.ppm" ] && [ -s "$T/ref-tile1.png" ] &&
 	compare "Virtual-2 back: head 1 shows tile 1,0 again" "$T/h1-wall1-back.ppm" "$T/ref-tile1.png" \
-		--threshold 32 --max-mean 2.0 --max-frac 0.01 || bad "no screendump of head 1 after it came back"
+		--threshold 32 --max-mean 2.0 --max-frac $TILE_FRAC || bad "no screendump of head 1 after it came back"
 fl=$(grep -oE 'frames each output.s CRTC confirmed: Virtual-1 [0-9]+, Virtual-2 [0-9]+' "$wl" 2>/dev/null)
 f1=$(echo "$fl" | awk '{print $7}' | tr -d ,)
 f2=$(echo "$fl" | awk '{print $9}')
