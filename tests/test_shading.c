@@ -15,7 +15,7 @@
 #include <math.h>
 #include <string.h>
 
-static GLuint run(GLuint prog, int mode, const float *in, size_t in_vec4, uint32_t n, float density, float *out)
+static bool run(GLuint prog, int mode, const float *in, size_t in_vec4, uint32_t n, float density, float *out)
 {
 	GLuint buf[2];
 	glGenBuffers(2, buf);
