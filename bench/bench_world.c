@@ -18,9 +18,10 @@
  *  6. the frame cap: CPU time per second at --max-fps 30 against uncapped,
  *     the frame intervals of the paced run.
  * usage: bench_world [--quick] [--no-program] [--fill-only] [--wall] [--power] [--fly WxH]
- *                    [--scale S] [--shader-dir DIR] [--platform NAME]
+ *                    [--seconds S] [--only full|governed] [--scale S] [--shader-dir DIR] [--platform NAME]
  * (--fill-only: measure 4 alone, three times; --wall: 5 alone; --power: 6 alone; --fly: only the two
- * fly-throughs of 2, at that size; --scale: the full-quality one drawn at
+ * fly-throughs of 2, at that size, --seconds S long each instead of 150
+ * frames (2 to 3600), --only one of them; --scale: the full-quality one drawn at
  * that render scale, upscaled; --shader-dir: shaders read from DIR) */
 #include "app.h"
 #include "bench.h"
@@ -206,8 +207,9 @@ static void hitches(const struct frame_note *fn, int frames)
 	       w->ms, w->ms / p99, p99, over, n, worst, w->t, cause);
 }
 
-/* p50 of one fly-through (ms), -1 if it could not run */
-static double flythrough(const struct params *p_in, int w, int h, int frames, bool governed)
+/* p50 of one fly-through (ms), -1 if it could not run: `frames` frames,
+ * or, with seconds > 0, as many as that many seconds of flight take */
+static double flythrough(const struct params *p_in, int w, int h, int frames, double seconds, bool governed)
 {
 	char err[512];
 	struct params p = *p_in;
@@ -227,8 +229,9 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	if (!governed && full_scale < 1.0f && renderer_set_scale(r, full_scale, err, sizeof(err)) < 0)
 		fprintf(stderr, "bench: %s\n", err);
 	world_fill(wd, &p, &c, 0.0); /* start from a warm view, as a kiosk does after boot */
-	double *ft = malloc(sizeof(double) * (size_t)frames);
-	struct frame_note *fn = malloc(sizeof(*fn) * (size_t)frames);
+	int cap = seconds > 0 ? 4096 : frames;
+	double *ft = malloc(sizeof(double) * (size_t)cap);
+	struct frame_note *fn = malloc(sizeof(*fn) * (size_t)cap);
 	if (!ft || !fn) {
 		free(ft);
 		free(fn);
@@ -240,9 +243,28 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 	struct world_stats before;
 	world_get_stats(wd, &before);
 	unsigned progs_before = programs_made();
-	for (int f = 0; f < frames; f++) {
+	for (int f = 0; seconds > 0 || f < frames; f++) {
 		double t0 = clock_ms();
 		double t = (t0 - start) / 1e3;
+		if (seconds > 0 && t >= seconds) {
+			frames = f;
+			break;
+		}
+		if (f == cap) { /* a timed flight: the notes grow */
+			double *ft2 = realloc(ft, sizeof(double) * (size_t)cap * 2);
+			if (ft2)
+				ft = ft2;
+			struct frame_note *fn2 = ft2 ? realloc(fn, sizeof(*fn) * (size_t)cap * 2) : NULL;
+			if (!fn2) {
+				fprintf(stderr, "bench: out of memory after %d frames\n", f);
+				free(ft);
+				free(fn);
+				flight_close(&fl);
+				return -1;
+			}
+			fn = fn2;
+			cap *= 2;
+		}
 		autopilot_advance(ap, t);
 		autopilot_camera(ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
 		if (governed) { /* as the world scene does on a display */
@@ -274,6 +296,12 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, bo
 			fprintf(stderr, "frame %d: %.1f ms (update %.1f), %d drawn, %llu generated\n", f, ft[f], tu, s2.drawn,
 				(unsigned long long)s2.generated);
 		}
+	}
+	if (frames < 1) {
+		free(ft);
+		free(fn);
+		flight_close(&fl);
+		return -1;
 	}
 	double cpu_frame = (bench_cpu_ms() - cpu0) / frames;
 	qsort(ft, (size_t)frames, sizeof(double), bench_cmp_double);
@@ -538,6 +566,8 @@ int main(int argc, char **argv)
 	const char *plat_name = "auto";
 	int quick = 0, program = 1, fill_only = 0, fly_w = 0, fly_h = 0;
 	bool wall_only = false, power_only = false;
+	double fly_s = 0.0;  /* --seconds: a timed flight instead of 150 frames */
+	int fly_only = 0;    /* --only: 1 full quality, 2 governed, 0 both */
 	for (int i = 1; i < argc; i++) {
 		if (!strcmp(argv[i], "--quick"))
 			quick = 1;
@@ -559,9 +589,15 @@ int main(int argc, char **argv)
 		else if (!strcmp(argv[i], "--fly") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &fly_w, &fly_h) == 2 &&
 			 fly_w >= 16 && fly_h >= 16 && fly_w <= 8192 && fly_h <= 8192)
 			i++;
-		else {
-			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--wall] [--power] [--fly WxH] [--scale S]\n"
-				"       [--shader-dir DIR] [--platform NAME]\n",
+		else if (!strcmp(argv[i], "--seconds") && i + 1 < argc && sscanf(argv[i + 1], "%lf", &fly_s) == 1 &&
+			 fly_s >= 2.0 && fly_s <= 3600.0)
+			i++;
+		else if (!strcmp(argv[i], "--only") && i + 1 < argc &&
+			 (!strcmp(argv[i + 1], "full") || !strcmp(argv[i + 1], "governed"))) {
+			fly_only = !strcmp(argv[++i], "full") ? 1 : 2;
+		} else {
+			fprintf(stderr, "usage: %s [--quick] [--no-program] [--fill-only] [--wall] [--power] [--fly WxH]\n"
+				"       [--seconds S] [--only full|governed] [--scale S] [--shader-dir DIR] [--platform NAME]\n",
 				argv[0]);
 			return 2;
 		}
@@ -572,10 +608,14 @@ int main(int argc, char **argv)
 	struct params p;
 	params_defaults(&p);
 	p.scene = 1;
-	if (fly_w) { /* only the two fly-throughs at one size (profiling) */
+	if ((fly_s > 0 || fly_only) && !fly_w) {
+		fprintf(stderr, "bench: --seconds and --only go with --fly WxH\n");
+		return 2;
+	}
+	if (fly_w) { /* only the two fly-throughs at one size (profiling, hitches over minutes) */
 		int fr = quick ? 40 : 150;
-		double full = flythrough(&p, fly_w, fly_h, fr, false);
-		double gov = flythrough(&p, fly_w, fly_h, fr, true);
+		double full = fly_only != 2 ? flythrough(&p, fly_w, fly_h, fr, fly_s, false) : -1;
+		double gov = fly_only != 1 ? flythrough(&p, fly_w, fly_h, fr, fly_s, true) : -1;
 		if (full > 0 && gov > 0)
 			printf("  %dx%d: p50 governed / full = %.3f\n", fly_w, fly_h, gov / full);
 		platform_close(plat);
@@ -619,8 +659,8 @@ int main(int argc, char **argv)
 	int sizes[2][2] = { { 640, 480 }, { 1280, 720 } };
 	for (int i = 0; i < 2; i++) {
 		int fr = quick ? 40 : 150;
-		double full = flythrough(&p, sizes[i][0], sizes[i][1], fr, false);
-		double gov = flythrough(&p, sizes[i][0], sizes[i][1], fr, true);
+		double full = flythrough(&p, sizes[i][0], sizes[i][1], fr, 0.0, false);
+		double gov = flythrough(&p, sizes[i][0], sizes[i][1], fr, 0.0, true);
 		if (full > 0 && gov > 0)
 			printf("  %dx%d: p50 governed / full = %.3f\n", sizes[i][0], sizes[i][1], gov / full);
 	}

@@ -59,7 +59,15 @@ struct cut_stats {
  * (1) on the CPU's side of the iso level, (2) by at most cut_bound, (3) on
  * the rock side at least cut_rock above the iso level on both sides, and
  * (4) with no sign change within two six-neighbour steps (the vertices and
- * normals read those).  Others count in err_far. */
+ * normals read those).  Others count in err_far.
+ *
+ * The sign change of (4) is the one the GPU sees: the refine pass lists
+ * the cut samples near the GPU's own sign changes.  A neighbour within tol
+ * of the iso level may lie on the other side on the GPU (within the
+ * tolerance: texture noise on a driver that filters with 8-bit weights),
+ * and then there is no sign change there for the vertex pass to read; so
+ * a neighbour on the other side counts where its side is certain (more
+ * than tol from the iso level) or the GPU puts it there too. */
 static inline void cut_compare(const struct params *p, int nx, int ny, int nz, const float *gv, const float *cv,
 			       double tol, struct cut_stats *st)
 {
@@ -77,7 +85,9 @@ static inline void cut_compare(const struct params *p, int nx, int ny, int nz, c
 					if (abs(dx) + abs(dy) + abs(dz) > 2 || xx < 0 || yy < 0 || zz < 0 || xx >= nx ||
 					    yy >= ny || zz >= nz)
 						continue;
-					near = (cv[((size_t)zz * ny + yy) * nx + xx] > p->iso) != in;
+					size_t k = ((size_t)zz * ny + yy) * nx + xx;
+					bool other = (cv[k] > p->iso) != in;
+					near = other && (fabs((double)cv[k] - p->iso) > tol || (gv[k] > p->iso) != in);
 				}
 		double e = fabs((double)gv[i] - (double)cv[i]);
 		if (near && !(e <= st->err_near))

@@ -50,10 +50,19 @@ static void check_pass(const struct gl_pass *p, struct most *m)
 {
 	char err[1024] = "";
 	bool compute = p->cs != NULL;
+	/* the name first: a driver whose compiler takes long shows which */
+	printf("  %-34s ", p->name);
+	fflush(stdout);
+	struct timespec t0, t1;
+	clock_gettime(CLOCK_MONOTONIC, &t0);
 	GLuint prog = build(p, err, sizeof(err));
+	clock_gettime(CLOCK_MONOTONIC, &t1);
+	double ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) / 1e6;
 	CHECK(prog != 0, "%s: %s", p->name, err);
-	if (!prog)
+	if (!prog) {
+		printf("\n");
 		return;
+	}
 	struct gl_use got;
 	gl_limits_introspect(prog, compute, &got);
 	glDeleteProgram(prog);
@@ -86,11 +95,11 @@ static void check_pass(const struct gl_pass *p, struct most *m)
 	}
 	if (got.max_ubo_binding + 1 > m->ubo_binding)
 		m->ubo_binding = got.max_ubo_binding + 1;
-	printf("  %-34s ssbo %2d/%d/%d  samplers %d/%d/%d  images %d  ubo %d  components %3d/%3d/%3d  local %dx%dx%d  "
-	       "binding %2d  attribs %d\n",
-	       p->name, got.use[0].ssbo, got.use[1].ssbo, got.use[2].ssbo, got.use[0].samplers, got.use[1].samplers,
+	printf("ssbo %2d/%d/%d  samplers %d/%d/%d  images %d  ubo %d  components %3d/%3d/%3d  local %dx%dx%d  "
+	       "binding %2d  attribs %d  built in %.0f ms\n",
+	       got.use[0].ssbo, got.use[1].ssbo, got.use[2].ssbo, got.use[0].samplers, got.use[1].samplers,
 	       got.use[2].samplers, got.use[0].images, got.use[0].ubos, got.use[0].components, got.use[1].components,
-	       got.use[2].components, got.local[0], got.local[1], got.local[2], got.max_binding, got.attribs);
+	       got.use[2].components, got.local[0], got.local[1], got.local[2], got.max_binding, got.attribs, ms);
 }
 
 /* Without curves (HAS_CURVES 0: the default volume and the world) a pass

@@ -30,7 +30,9 @@
 # (CPU_ONLY below) and the suites that need QEMU, Xvfb, Weston or a soak's
 # minutes (vm, display, soak).  Each runs as meson would run it (its
 # command, environment and timeout), with ISOTERRA_PLATFORM=device; a
-# test's checks are its "N passed, M failed" lines.  Exit status: 0 when
+# test's checks are its "N passed, M failed" lines.  The file is written
+# after each test ("complete": false until every part has run), so a run
+# stopped by a time limit keeps what it ran.  Exit status: 0 when
 # every test passed (skips included), 1 when one failed, 2 on bad usage or
 # a build that cannot be used.  The driver's own settings pass through:
 #   LIBGL_ALWAYS_SOFTWARE=1 MESA_LOADER_DRIVER_OVERRIDE=zink sh tools/gpu-suite.sh
@@ -262,6 +264,8 @@ def tests():
             row["gl"] = gl.group(1)
         rows.append(row)
         print(" %s %.1f s, %d passed, %d failed" % (result, secs, passed, failed), flush=True)
+        doc["tests"] = rows
+        save()  # a run stopped later keeps what it ran
     return rows
 
 
@@ -379,12 +383,22 @@ def commit():
         return None
 
 
+def save():
+    """the results so far, written whole (a temporary file, then renamed)"""
+    tmp = out_path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+    os.replace(tmp, out_path)
+
+
 t_start = time.time()
 doc = {"suite": "isoterra tools/gpu-suite.sh", "format": 1,
        "date": time.strftime("%Y-%m-%dT%H:%M:%S%z", time.localtime(t_start)), "commit": commit(),
        "build": build, "options": {k: v for k, v in opt.items() if k != "build"},
        "driver_env": {k: os.environ[k] for k in sorted(os.environ)
                       if k.startswith(("MESA_", "LIBGL_", "GALLIUM_", "__GL", "VK_", "ISOTERRA_"))}}
+doc["complete"] = False  # true once every part has run
 doc["machine"] = machine()
 doc["gl"] = gl_info()
 print("gpu-suite: %s | %s (%s)" % (doc["gl"].get("renderer"), doc["gl"].get("version"), doc["gl"].get("driver")),
@@ -405,11 +419,8 @@ if opt["bench"]:
     doc["program"] = program_runs()
 doc["seconds"] = round(time.time() - t_start, 1)
 doc["machine"]["load_average_end"] = [round(x, 2) for x in os.getloadavg()]
-tmp = out_path + ".tmp"
-with open(tmp, "w", encoding="utf-8") as f:
-    json.dump(doc, f, indent=1)
-    f.write("\n")
-os.replace(tmp, out_path)
+doc["complete"] = True
+save()
 shutil.rmtree(scratch, ignore_errors=True)
 failed = [t["name"] for t in doc["tests"] if t["result"] in ("FAIL", "TIMEOUT")]
 print("gpu-suite: %d tests: %d ok, %d failed, %d skipped; checks %d passed, %d failed -> %s" %
