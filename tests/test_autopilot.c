@@ -116,9 +116,9 @@ static void preset_params(size_t i, struct params *p)
 int main(int argc, char **argv)
 {
 	static const int seeds[] = { 10, 1, 77, 12345 };
-	static const float speeds[] = { 3.0f, 12.0f, 40.0f };
+	static const float speeds[] = { 3.0f, 12.0f, 40.0f }; /* the default (fly_speed) first: --speeds 1 */
 	int flights = 0, bad = 0;
-	size_t nseeds = sizeof(seeds) / sizeof(seeds[0]);
+	size_t nseeds = sizeof(seeds) / sizeof(seeds[0]), nspeeds = sizeof(speeds) / sizeof(speeds[0]);
 	const char *only = NULL; /* one preset only (debugging) */
 	for (int a = 1; a < argc; a++) {
 		if (!strcmp(argv[a], "--seeds") && a + 1 < argc) { /* the first N seeds (sanitizer builds) */
@@ -126,11 +126,16 @@ int main(int argc, char **argv)
 			CHECK(k >= 1 && (size_t)k <= nseeds, "--seeds %s: want 1..%zu", argv[a], nseeds);
 			if (k >= 1 && (size_t)k <= nseeds)
 				nseeds = (size_t)k;
+		} else if (!strcmp(argv[a], "--speeds") && a + 1 < argc) { /* the first N speeds (sanitizer builds) */
+			int k = atoi(argv[++a]);
+			CHECK(k >= 1 && (size_t)k <= nspeeds, "--speeds %s: want 1..%zu", argv[a], nspeeds);
+			if (k >= 1 && (size_t)k <= nspeeds)
+				nspeeds = (size_t)k;
 		} else {
 			only = argv[a];
 		}
 	}
-	struct flight *f = calloc(preset_count * nseeds * sizeof(speeds) / sizeof(speeds[0]), sizeof(*f));
+	struct flight *f = calloc(preset_count * nseeds * nspeeds, sizeof(*f));
 	CHECK(f != NULL, "out of memory");
 	if (!f)
 		return tc_done("autopilot");
@@ -141,7 +146,7 @@ int main(int argc, char **argv)
 		if (only && strcmp(only, presets[pi].name))
 			continue;
 		for (size_t si = 0; si < nseeds; si++)
-			for (size_t vi = 0; vi < sizeof(speeds) / sizeof(speeds[0]); vi++) {
+			for (size_t vi = 0; vi < nspeeds; vi++) {
 				f[n].preset = pi;
 				preset_params(pi, &f[n].p);
 				f[n].p.scene = SCENE_WORLD;
