@@ -293,8 +293,9 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, do
 		if (trace) { /* per-frame trace: time, blocks drawn, generated so far */
 			struct world_stats s2;
 			world_get_stats(wd, &s2);
-			fprintf(stderr, "frame %d: %.1f ms (update %.1f), %d drawn, %llu generated\n", f, ft[f], tu, s2.drawn,
-				(unsigned long long)s2.generated);
+			fprintf(stderr, "frame %d: %.1f ms (update %.1f), %d drawn, %llu generated, level %d, held %.1f ms\n", f,
+				ft[f], tu, s2.drawn, (unsigned long long)s2.generated, q.level,
+				governed ? governor_held_ms(&gov) : 0.0);
 		}
 	}
 	if (frames < 1) {
