@@ -270,6 +270,7 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, do
 		if (governed) { /* as the world scene does on a display */
 			governor_apply(&q, &p, &eff);
 			world_set_far_octaves_drop(wd, q.far_octaves_drop);
+			renderer_set_smoothing(r, q.smoothing > 0.5f);
 			renderer_set_scale(r, q.render_scale, err, sizeof(err));
 		}
 		world_update(wd, &eff, &c, t, false);

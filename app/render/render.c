@@ -44,6 +44,8 @@ struct renderer {
 	int cur;                            /* the variant in use this frame */
 	char key[RENDER_KEY_MAX];
 	bool draw_sky;
+	bool sky_due;     /* the sky of the frame begun, not drawn yet (sky_pass) */
+	bool smooth_off;  /* the governor turned the filter after the frame off */
 	struct camera cam;       /* this frame's, for a variant made mid-frame */
 	const struct params *par; /* this frame's parameters (renderer_begin's) */
 	float clear[3];
@@ -287,19 +289,7 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	glClearDepthf(1.0f);
 	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 	glBindVertexArray(r->vao);
-	if (r->draw_sky) {
-		float inv[16];
-		if (mat4_invert(inv, c->viewproj) == 0) {
-			glDisable(GL_DEPTH_TEST);
-			glDepthMask(GL_FALSE);
-			glUseProgram(r->sky);
-			shading_uniforms(r->sky, p);
-			glUniformMatrix4fv(gpu_uniform(r->sky, "u_inv_viewproj"), 1, GL_FALSE, inv);
-			glUniform3fv(gpu_uniform(r->sky, "u_eye"), 1, c->eye);
-			glDrawArrays(GL_TRIANGLES, 0, 3);
-			glDepthMask(GL_TRUE);
-		}
-	}
+	r->sky_due = r->draw_sky; /* drawn after the terrain: sky_pass */
 	glEnable(GL_DEPTH_TEST);
 	glDepthFunc(GL_LESS);
 	/* Back faces show only where a cut opens the rock: the sides of a
@@ -452,6 +442,36 @@ void renderer_set_clear(struct renderer *r, float red, float green, float blue)
 	r->clear[2] = blue;
 }
 
+/* The sky of the frame begun, once, after the opaque terrain and before
+ * the water (which blends over it): a full-screen triangle at the far
+ * plane, depth-tested against the terrain, so that only the pixels the
+ * terrain left shade it (a software rasterizer tests depth before the
+ * shader: the sky costs the sky's share of the frame, not all of it). */
+static void sky_pass(struct renderer *r)
+{
+	if (!r->sky_due)
+		return;
+	r->sky_due = false;
+	float inv[16];
+	if (mat4_invert(inv, r->cam.viewproj) != 0)
+		return;
+	GLboolean cull = glIsEnabled(GL_CULL_FACE);
+	glDisable(GL_CULL_FACE);
+	glEnable(GL_DEPTH_TEST);
+	glDepthFunc(GL_LEQUAL); /* the cleared depth, 1: where nothing was drawn */
+	glDepthMask(GL_FALSE);
+	glUseProgram(r->sky);
+	shading_uniforms(r->sky, r->par);
+	glUniformMatrix4fv(gpu_uniform(r->sky, "u_inv_viewproj"), 1, GL_FALSE, inv);
+	glUniform3fv(gpu_uniform(r->sky, "u_eye"), 1, r->cam.eye);
+	glDrawArrays(GL_TRIANGLES, 0, 3);
+	glDepthMask(GL_TRUE);
+	glDepthFunc(GL_LESS);
+	if (cull)
+		glEnable(GL_CULL_FACE);
+	glUseProgram(r->tp[r->cur].prog);
+}
+
 /* water.vert's sphere: 96 x 48 quads of two triangles */
 #define WATER_SPHERE_VERTICES (96 * 48 * 6)
 
@@ -461,6 +481,7 @@ static void water_pass(struct renderer *r, const struct camera *c, const struct 
 {
 	/* a planet's sea is a sphere water_level above planet_radius (a flat
 	 * plane would cut through the planet); water.vert makes it */
+	sky_pass(r); /* under the water */
 	bool sphere = p->shape == SHAPE_PLANET;
 	float radius = p->planet_radius + level;
 	if (sphere && radius <= 0.0f)
@@ -522,18 +543,24 @@ void renderer_lakes(struct renderer *r, const struct camera *c, const struct par
 
 int renderer_end(struct renderer *r)
 {
+	sky_pass(r); /* a frame without water */
 	glDisable(GL_CULL_FACE); /* the passes after the frame draw whatever their winding */
 	glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 	int rc = gpu_check("draw");
 	if (rc == 0 && (r->sw != r->w || r->sh != r->h)) {
 		rc = upscale_run(&r->up, r->samples ? r->fbo_ms : r->fbo, r->sw, r->sh);
 		glViewport(0, 0, r->w, r->h);
-	} else if (rc == 0 && r->aa == ANTIALIAS_FXAA) {
+	} else if (rc == 0 && r->aa == ANTIALIAS_FXAA && !r->smooth_off) {
 		rc = upscale_run(&r->fx, r->fbo, r->w, r->h);
 	}
 	glBindVertexArray(0);
 	glUseProgram(0);
 	return rc;
+}
+
+void renderer_set_smoothing(struct renderer *r, bool on)
+{
+	r->smooth_off = !on;
 }
 
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen)

@@ -78,6 +78,10 @@ void renderer_water(struct renderer *r, const struct camera *c, const struct par
  * renderer_end, so overlays and sinks still see the full size.  0, or -1
  * with err (the upscale pass could not be made). */
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen);
+/* The edge smoothing after the frame (--antialias fxaa, auto's choice on a
+ * software rasterizer) on or off from the next frame (the governor's first
+ * step); multisampling is not touched.  On by default. */
+void renderer_set_smoothing(struct renderer *r, bool on);
 /* Paint on the ground: an RGBA16F texture over the XZ rectangle origin ..
  * origin + size, per texel (paint weight, surface ROAD_SURFACE_*, height
  * less y0); a fragment within tol of that height takes the surface's

@@ -4,8 +4,12 @@
 #include <math.h>
 
 /* The ladder: each row one step down from the one before, in the order
- * the user notices least: resolution first (upscaled with a filter that
- * keeps edges), and with its first step the autopilot's composed start
+ * the user notices least: first the edge smoothing after the frame (the
+ * filter a software rasterizer runs instead of multisampling: about a
+ * tenth of a 640x480 world frame on llvmpipe; on a GPU, which
+ * multisamples, the step changes nothing), then resolution (upscaled with
+ * a filter that keeps edges; the upscale replaces the smoothing), and
+ * with its first step the autopilot's composed start
  * (the view tilted down onto the land for a flight's first seconds: land
  * filling the frame is the frame's whole cost on a software rasterizer,
  * so a governor that must step down gives up the framing first), then how
@@ -14,23 +18,24 @@
  * only then how far one sees.  AO and shadows are baked into new blocks:
  * what they save is generation time. */
 static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
-	/* scale, budget, AO, shadows, far octaves dropped, view, framing, level */
-	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0 },
-	{ 0.85f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 1 },
-	{ 0.75f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 2 },
-	{ 0.66f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 3 },
-	{ 0.58f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 4 },
-	{ 0.50f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 5 },
-	{ 0.50f, 0.50f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 6 },
-	{ 0.50f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 7 },
-	{ 0.50f, 0.25f, 0.50f, 1.00f, 0, 1.00f, 0.00f, 8 },
-	{ 0.50f, 0.25f, 0.00f, 1.00f, 0, 1.00f, 0.00f, 9 },
-	{ 0.50f, 0.25f, 0.00f, 0.50f, 0, 1.00f, 0.00f, 10 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 0, 1.00f, 0.00f, 11 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 1, 1.00f, 0.00f, 12 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 1.00f, 0.00f, 13 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.75f, 0.00f, 14 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.55f, 0.00f, 15 },
+	/* scale, budget, AO, shadows, far octaves dropped, view, framing, smoothing, level */
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 1.00f, 0 },
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 1 },
+	{ 0.85f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 2 },
+	{ 0.75f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 3 },
+	{ 0.66f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 4 },
+	{ 0.58f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 5 },
+	{ 0.50f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 6 },
+	{ 0.50f, 0.50f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 7 },
+	{ 0.50f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 8 },
+	{ 0.50f, 0.25f, 0.50f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 9 },
+	{ 0.50f, 0.25f, 0.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 10 },
+	{ 0.50f, 0.25f, 0.00f, 0.50f, 0, 1.00f, 0.00f, 0.00f, 11 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 0, 1.00f, 0.00f, 0.00f, 12 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 1, 1.00f, 0.00f, 0.00f, 13 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 1.00f, 0.00f, 0.00f, 14 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.75f, 0.00f, 0.00f, 15 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.55f, 0.00f, 0.00f, 16 },
 };
 
 #define OVER 1.00        /* step down above the target ... */

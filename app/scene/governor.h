@@ -1,6 +1,7 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
- * quality, in a fixed order (the composed start's view with the first
- * step of render scale, then the block generation budget, AO rays, sun
+ * quality, in a fixed order (the edge smoothing after the frame, the
+ * composed start's view with the first step of render scale, then the
+ * block generation budget, AO rays, sun
  * shadow steps, far-LOD octaves, view distance), and gives it back when
  * there is headroom.  It only sees frame times and a clock, so a test
  * drives it with a fake clock and a synthetic load.
@@ -32,10 +33,12 @@ struct governor_quality {
 	float view_distance;  /* 0.55 .. 1: times the configured view distance */
 	float framing;        /* 1: the autopilot's composed start (its view tilted down onto the
 	                       * land); 0: the cruise's tilt, whose frames draw half the terrain */
+	float smoothing;      /* 1: the edge smoothing after the frame as configured (--antialias:
+	                       * the filter on a software rasterizer); 0: none */
 	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
 };
 
-#define GOVERNOR_LEVELS 16
+#define GOVERNOR_LEVELS 17
 
 struct governor {
 	double target_ms;

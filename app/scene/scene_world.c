@@ -58,6 +58,7 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 		ws->q = governor_level(level);
 		governor_apply(&ws->q, p, eff);
 		world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
+		renderer_set_smoothing(fr->r, ws->q.smoothing > 0.5f);
 		return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
 	}
 	if (!ws->governed) {
@@ -70,6 +71,7 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 		ws->q = governor_level(fr->min_quality);
 	governor_apply(&ws->q, p, eff);
 	world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
+	renderer_set_smoothing(fr->r, ws->q.smoothing > 0.5f);
 	return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
 }
 
