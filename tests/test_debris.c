@@ -87,9 +87,10 @@ static int islands(const struct grid *g, const float *dens, float iso)
 }
 
 /* Pairs of adjacent samples strictly inside the box, both inside the rock,
- * neither with another inside neighbour (raw densities); the lower
- * sample's world position of the first 16 into at[]. */
-static int pairs(const struct grid *g, const float *dens, float iso, float at[16][3])
+ * neither with another inside neighbour (raw densities); the world
+ * positions of the first 16 pairs' two samples into at[] (x, y, z of the
+ * lower, then of the upper). */
+static int pairs(const struct grid *g, const float *dens, float iso, float at[16][6])
 {
 	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
 	int n = 0;
@@ -110,26 +111,38 @@ static int pairs(const struct grid *g, const float *dens, float iso, float at[16
 						other += dens[grid_dens_index(g, q[0] + nb[d][0], q[1] + nb[d][1], q[2] + nb[d][2])] > iso;
 				if (other == 0 && n < 16) {
 					int c[3] = { i, j, k };
-					for (int a = 0; a < 3; a++)
+					for (int a = 0; a < 3; a++) {
 						at[n][a] = g->origin[a] + (float)c[a] * g->cell;
+						at[n][3 + a] = g->origin[a] + (float)q[a] * g->cell;
+					}
 				}
 				n += other == 0;
 			}
 	return n;
 }
 
-/* Mesh vertices within a cell (each axis) of the pairs' samples: a pair's
- * speck has its vertices on the edges around its two samples. */
-static int near_pairs(const struct grid *g, const struct mesh *m, float at[16][3], int n)
+/* Mesh vertices on the grid edges that leave the pairs' samples: a pair's
+ * speck has its vertices there (marching cubes puts each vertex on the
+ * edge whose ends it separates), and no other surface has, so rock on a
+ * diagonal next to a pair (no six-neighbour: the pair stays an island)
+ * does not count. */
+static int near_pairs(const struct grid *g, const struct mesh *m, float at[16][6], int n)
 {
 	int near = 0;
+	float eps = 1e-3f * g->cell;
 	for (int q = 0; q < n && q < 16; q++)
 		for (uint32_t v = 0; v < m->nverts; v++) {
 			const float *p = m->pos + 3 * v;
-			int in = 1;
-			for (int a = 0; a < 3; a++)
-				in = in && p[a] > at[q][a] - 0.999f * g->cell && p[a] < at[q][a] + 1.999f * g->cell;
-			near += in;
+			int on = 0;
+			for (int e = 0; e < 2 && !on; e++) {
+				const float *c = at[q] + 3 * e;
+				for (int a = 0; a < 3 && !on; a++) { /* along axis a, the other two on the sample's lines */
+					int b = (a + 1) % 3, d = (a + 2) % 3;
+					on = fabsf(p[b] - c[b]) < eps && fabsf(p[d] - c[d]) < eps &&
+					     fabsf(p[a] - c[a]) < g->cell - eps;
+				}
+			}
+			near += on;
 		}
 	return near;
 }
@@ -156,7 +169,7 @@ int main(void)
 		struct mesh m = { 0 };
 		CHECK(dens && pipeline_read_density(ft.pl, dens) == 0, "seed %d: read density", p.seed);
 		CHECK(pipeline_read_mesh(ft.pl, &m) == 0, "seed %d: read mesh", p.seed);
-		float at[16][3];
+		float at[16][6];
 		int before = dens ? islands(&g, dens, p.iso) : -1, two = dens ? pairs(&g, dens, p.iso, at) : -1;
 		int after = specks(&g, &m, 8), left = near_pairs(&g, &m, at, two);
 		printf("seed %5d: %d one-sample islands and %d two-sample ones in the field; in the mesh (%u triangles) "
