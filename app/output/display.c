@@ -24,7 +24,7 @@ struct display_sink {
 	 * the platform is closed */
 	unsigned long presented, shown;
 	const char *backend;
-	char status[96]; /* the scene's, from the last frame */
+	char status[192]; /* the scene's, from the last frame */
 };
 
 static double seconds(const struct timespec *a, const struct timespec *b)

@@ -39,7 +39,7 @@ struct sink_frame {
 	                     * board of a wall) */
 	int count;          /* frames the run renders, 0 = until stopped */
 	bool last;          /* the run's last frame */
-	char status[96];    /* the scene's state for the frame rate reports (or "") */
+	char status[192];   /* the scene's state for the frame rate reports (or "") */
 	double update_ms, draw_ms; /* the scene's split, when the loop times it (results) */
 	bool screenshot;    /* the controls asked for a screenshot of this frame */
 	/* power (app/power.h): the battery (percent -1: none), the low-power

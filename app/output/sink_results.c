@@ -29,7 +29,7 @@ struct results_sink {
 	unsigned long frames_report;
 	double *ft, *up, *dr;     /* per frame, ms */
 	size_t n, cap;
-	char status[96];
+	char status[192];
 	int battery_percent;   /* the last frame's (-1: no battery) */
 	char battery_status[16];
 	bool low_power;
