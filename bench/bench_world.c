@@ -252,27 +252,24 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, do
 		}
 		if (f == cap) { /* a timed flight: the notes grow */
 			double *ft2 = realloc(ft, sizeof(double) * (size_t)cap * 2);
-			if (ft2)
-				ft = ft2;
-			struct frame_note *fn2 = ft2 ? realloc(fn, sizeof(*fn) * (size_t)cap * 2) : NULL;
-			if (!fn2) {
+			ft = ft2 ? ft2 : ft;
+			struct frame_note *fn2 = realloc(fn, sizeof(*fn) * (size_t)cap * 2);
+			fn = fn2 ? fn2 : fn;
+			if (!ft2 || !fn2) {
 				fprintf(stderr, "bench: out of memory after %d frames\n", f);
 				free(ft);
 				free(fn);
 				flight_close(&fl);
 				return -1;
 			}
-			fn = fn2;
 			cap *= 2;
 		}
+		if (governed) /* the quality held since the last frame, as the scene gives it */
+			ap->framing = q.framing;
 		autopilot_advance(ap, t);
 		autopilot_camera(ap, &c, p.fov, (float)w / h, p.view_distance * 1.2f);
-		if (governed) { /* as the world scene does on a display */
-			governor_apply(&q, &p, &eff);
-			world_set_far_octaves_drop(wd, q.far_octaves_drop);
-			renderer_set_smoothing(r, q.smoothing > 0.5f);
-			renderer_set_scale(r, q.render_scale, err, sizeof(err));
-		}
+		if (governed && world_hold_quality(wd, r, &q, &p, &eff, err, sizeof(err)) < 0) /* as the scene does */
+			fprintf(stderr, "bench: %s\n", err);
 		world_update(wd, &eff, &c, t, false);
 		double tu = 0;
 		if (trace) { /* the split costs a sync: only when tracing */

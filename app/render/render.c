@@ -446,7 +446,10 @@ void renderer_set_clear(struct renderer *r, float red, float green, float blue)
  * the water (which blends over it): a full-screen triangle at the far
  * plane, depth-tested against the terrain, so that only the pixels the
  * terrain left shade it (a software rasterizer tests depth before the
- * shader: the sky costs the sky's share of the frame, not all of it). */
+ * shader: the sky costs the sky's share of the frame, not all of it).
+ * The triangle winds counter-clockwise, so back-face culling keeps it;
+ * its callers (the water, the frame's end) set their own program and
+ * culling next. */
 static void sky_pass(struct renderer *r)
 {
 	if (!r->sky_due)
@@ -455,8 +458,6 @@ static void sky_pass(struct renderer *r)
 	float inv[16];
 	if (mat4_invert(inv, r->cam.viewproj) != 0)
 		return;
-	GLboolean cull = glIsEnabled(GL_CULL_FACE);
-	glDisable(GL_CULL_FACE);
 	glEnable(GL_DEPTH_TEST);
 	glDepthFunc(GL_LEQUAL); /* the cleared depth, 1: where nothing was drawn */
 	glDepthMask(GL_FALSE);
@@ -467,9 +468,6 @@ static void sky_pass(struct renderer *r)
 	glDrawArrays(GL_TRIANGLES, 0, 3);
 	glDepthMask(GL_TRUE);
 	glDepthFunc(GL_LESS);
-	if (cull)
-		glEnable(GL_CULL_FACE);
-	glUseProgram(r->tp[r->cur].prog);
 }
 
 /* water.vert's sphere: 96 x 48 quads of two triangles */

@@ -56,10 +56,7 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 		if (level == 0 && ws->q.level == 0) /* full quality, as ever (byte for byte) */
 			return 0;
 		ws->q = governor_level(level);
-		governor_apply(&ws->q, p, eff);
-		world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
-		renderer_set_smoothing(fr->r, ws->q.smoothing > 0.5f);
-		return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
+		return world_hold_quality(ws->w, fr->r, &ws->q, p, eff, err, errlen);
 	}
 	if (!ws->governed) {
 		governor_init(&ws->gov, 1000.0 / governor_fps(p, fr));
@@ -69,10 +66,7 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 	ws->gov.target_ms = 1000.0 / governor_fps(p, fr); /* a cap that changed: its budget */
 	if (ws->q.level < fr->min_quality) /* the low-power profile's floor */
 		ws->q = governor_level(fr->min_quality);
-	governor_apply(&ws->q, p, eff);
-	world_set_far_octaves_drop(ws->w, ws->q.far_octaves_drop);
-	renderer_set_smoothing(fr->r, ws->q.smoothing > 0.5f);
-	return renderer_set_scale(fr->r, ws->q.render_scale, err, errlen);
+	return world_hold_quality(ws->w, fr->r, &ws->q, p, eff, err, errlen);
 }
 
 static void world_status(struct scene *s, char *line, size_t len)

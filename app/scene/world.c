@@ -20,6 +20,7 @@
  * a 16-byte copy of its status: empty blocks are remembered, get no slot
  * and are never generated again. */
 #include "world_int.h"
+#include "governor.h"
 #include "extract.h"
 #include "gpu.h"
 #include "core.h"
@@ -293,6 +294,15 @@ int world_invalidate(struct world *w, const struct params *p, const float xz[4])
 void world_set_far_octaves_drop(struct world *w, int drop)
 {
 	w->far_drop = drop > 0 ? drop : 0;
+}
+
+int world_hold_quality(struct world *w, struct renderer *r, const struct governor_quality *q, const struct params *p,
+		       struct params *eff, char *err, size_t errlen)
+{
+	governor_apply(q, p, eff);
+	world_set_far_octaves_drop(w, q->far_octaves_drop);
+	renderer_set_smoothing(r, q->smoothing > 0.5f);
+	return renderer_set_scale(r, q->render_scale, err, errlen);
 }
 
 void world_get_stats(const struct world *w, struct world_stats *st)

@@ -55,6 +55,13 @@ void world_get_stats(const struct world *w, struct world_stats *st);
  * from now on leave out their `drop` finest octaves (at least one stays);
  * the finer levels lie over them, so no seam shows. */
 void world_set_far_octaves_drop(struct world *w, int drop);
+/* A quality of the governor's ladder held by world w drawn by r: the
+ * parameters the frame runs with into eff (governor_apply), the far
+ * octaves left out, the edge smoothing and the render scale.  0, or -1
+ * with err (the upscale pass could not be made). */
+struct governor_quality;
+int world_hold_quality(struct world *w, struct renderer *r, const struct governor_quality *q, const struct params *p,
+		       struct params *eff, char *err, size_t errlen);
 
 /* Terrain edits (curves, heightmap; app/edit/edits.h): marks every known block
  * whose density samples (the block, its sample margin and the reach of its
