@@ -54,7 +54,7 @@ wait_log() { # pattern file seconds
 printf 'size = 32x18\ngrid = 8\nseed = 5\n' >c.conf
 # paced to 30 frames a second (--max-fps): the reference run below draws as
 # many frames as this one did, and uncapped that was thousands (1617 in 3 s
-# here; under the sanitizers most of the test's 155 s in a CI run)
+# here; under the sanitizers most of the test's 155 s in a .ci/run here)
 "$BIN" --config "$T/c.conf" --count 1000000 --fps 30 --max-fps 30 --out - >run.y4m 2>run.log &
 PID=$!
 i=0

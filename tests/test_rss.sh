@@ -14,8 +14,8 @@
 # them empty, printed, then again with them filled, as a kiosk runs after
 # its first start; the second world is held to the ceiling.  A driver's
 # compiler can take far more while it builds: the world's first run on an
-# NVIDIA H200 peaked at 865 MiB (its compiler on up to 16 threads), the
-# second at 66 MiB.  Where the warm floor alone is over F + R (zink on
+# NVIDIA H200 peaked at 845 MiB (its compiler on up to 16 threads), the
+# second at 64 MiB.  Where the warm floor alone is over F + R (zink on
 # lavapipe: 128-135 MiB), the ceiling's model is not that driver's, and the
 # test is skipped with the figures printed.
 FLOOR_MB=109.5
