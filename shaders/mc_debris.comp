@@ -109,10 +109,10 @@ void main()
 	uint n1_ym = c & ym & ~(xm | xp | yp | zm | zp), n1_yp = c & yp & ~(xm | xp | ym | zm | zp);
 	uint n1_zm = c & zm & ~(xm | xp | ym | yp | zp), n1_zp = c & zp & ~(xm | xp | ym | yp | zm);
 	uint iso2 = 0u;
-	if ((n1_xm | n1_xp | n1_ym | n1_yp | n1_zm | n1_zp) != 0u) {
-		int r = dim.x;
-		uint okm2 = x_ok(x, -2, r), okm1 = x_ok(x, -1, r), okp1 = x_ok(x, 1, r), okp2 = x_ok(x, 2, r);
+	int r = dim.x;
 #define RUN(dx, dy, dz, ok) (slab_run(z + (dz), b0 + (dx) + (dy) * r, n, words) & (ok))
+	if ((n1_xm | n1_xp | n1_ym | n1_yp | n1_zm | n1_zp) != 0u) {
+		uint okm2 = x_ok(x, -2, r), okm1 = x_ok(x, -1, r), okp1 = x_ok(x, 1, r), okp2 = x_ok(x, 2, r);
 		uint xm2 = RUN(-2, 0, 0, okm2), xp2 = RUN(2, 0, 0, okp2);
 		uint ym2 = RUN(0, -2, 0, ~0u), yp2 = RUN(0, 2, 0, ~0u), zm2 = RUN(0, 0, -2, ~0u), zp2 = RUN(0, 0, 2, ~0u);
 		uint xmym = RUN(-1, -1, 0, okm1), xmyp = RUN(-1, 1, 0, okm1), xpym = RUN(1, -1, 0, okp1),
@@ -121,14 +121,43 @@ void main()
 		     xpzp = RUN(1, 0, 1, okp1);
 		uint ymzm = RUN(0, -1, -1, ~0u), ymzp = RUN(0, -1, 1, ~0u), ypzm = RUN(0, 1, -1, ~0u),
 		     ypzp = RUN(0, 1, 1, ~0u);
-#undef RUN
 		iso2 = (n1_xm & ~(xm2 | xmym | xmyp | xmzm | xmzp)) | (n1_xp & ~(xp2 | xpym | xpyp | xpzm | xpzp)) |
 		       (n1_ym & ~(ym2 | xmym | xpym | ymzm | ymzp)) | (n1_yp & ~(yp2 | xmyp | xpyp | ypzm | ypzp)) |
 		       (n1_zm & ~(zm2 | xmzm | xpzm | ymzm | ypzm)) | (n1_zp & ~(zp2 | xmzp | xpzp | ymzp | ypzp));
 	}
+	// Larger debris, of up to DEBRIS_SPAN samples along each axis
+	// (common.glsl's debris_island): an inside sample left is a candidate
+	// when along each of the six directions one of the next DEBRIS_SPAN
+	// samples is outside (a run of inside samples that long would join
+	// it); the directions in the order of their cost (x from the words
+	// loaded, z aligned, y unaligned), each only while a candidate is left.
+	// Then each candidate's 7x7x7 box of bits, 49 runs, and its growth.
+	uint drop = iso2, cand = c & any6 & ~iso2 & valid;
+	cand &= ~(xp & RUN(2, 0, 0, x_ok(x, 2, r)) & RUN(3, 0, 0, x_ok(x, 3, r)));
+	cand &= ~(xm & RUN(-2, 0, 0, x_ok(x, -2, r)) & RUN(-3, 0, 0, x_ok(x, -3, r)));
+	if (cand != 0u)
+		cand &= ~(zp & RUN(0, 0, 2, ~0u) & RUN(0, 0, 3, ~0u)) & ~(zm & RUN(0, 0, -2, ~0u) & RUN(0, 0, -3, ~0u));
+	if (cand != 0u)
+		cand &= ~(yp & RUN(0, 2, 0, ~0u) & RUN(0, 3, 0, ~0u)) & ~(ym & RUN(0, -2, 0, ~0u) & RUN(0, -3, 0, ~0u));
+#undef RUN
+	while (cand != 0u) {
+		int j = findLSB(cand);
+		cand &= cand - 1u;
+		ivec2 yx = divmod(b0 + j, r); // the sample's y, x in its slab
+		// its row's samples dx = -3 .. 3 that exist
+		uint xmask = bits_below(yx.y - 3, r) & ~bits_below(yx.y - 3, 0) & 0x7Fu;
+		uint box[49];
+		for (int dz = 0; dz < 7; dz++)
+			for (int dy = 0; dy < 7; dy++) {
+				int yy = yx.x + dy - 3;
+				box[dz * 7 + dy] = yy < 0 || yy >= dim.y ? 0u : slab_run(z + dz - 3, yy * r + yx.y - 3, n, words) & xmask;
+			}
+		if (debris_island(box))
+			drop |= 1u << uint(j);
+	}
 	uint wi = w0 + wv;
 	if (wi < u_sign_words) {
-		filtered[wi] = ((c & any6 & ~iso2) | (~c & all6)) & valid;
+		filtered[wi] = ((c & any6 & ~drop) | (~c & all6)) & valid;
 #ifdef DEBRIS_NEAR
 		// a neighbour beyond the grid is no sign change (no edge leads there)
 		uint ym_ok = ~bits_below(b0 - dim.x, 0), yp_ok = bits_below(b0 + dim.x, n);

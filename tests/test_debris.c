@@ -1,11 +1,13 @@
-/* isoterra — no floating one- or two-sample debris: the default terrain
- * (and two more seeds) has samples inside the rock none of whose six
- * neighbours is, and pairs of inside samples with no other inside
- * neighbour (counted on the GPU's own densities: each would have been a
- * speck of eight or sixteen triangles, a closed component of its own), and
- * the extracted mesh, read back, has no component of at most eight
- * triangles apart from pieces cut by the box's sides, and no vertex around
- * a pair's two samples. */
+/* isoterra — no floating debris of a few samples: the default terrain
+ * (and more seeds) has, in the GPU's own densities, components of inside
+ * samples (6-connected, labelled here on the CPU) that span at most three
+ * samples along each axis: single samples, pairs, clumps of up to 3x3x3,
+ * each of which would float as a closed speck of 8 to about 60 triangles.
+ * The extracted mesh, read back, has no vertex on the grid edges that
+ * leave those components' samples, and no component of at most eight
+ * triangles apart from pieces cut by the box's sides.  And the filter
+ * takes no more: every component that spans four or five samples (as
+ * small, and not debris) still has its vertices, every one of them. */
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
@@ -65,93 +67,147 @@ static int specks(const struct grid *g, const struct mesh *m, uint32_t max_tris)
 	return n;
 }
 
-/* Samples of the cells' corners strictly inside the box that are inside
- * the rock with all six neighbours outside (raw densities). */
-static int islands(const struct grid *g, const float *dens, float iso)
+/* The components of inside samples (raw densities, 6-connected, over every
+ * stored sample), by label: their span along each axis and whether one
+ * lies on or beyond the box's sides (its mesh would be cut). */
+struct comp {
+	int lo[3], hi[3];
+	int size;
+	bool edge;
+};
+
+static int span(const struct comp *c)
 {
-	int n = 0;
-	for (int k = 1; k < g->nz; k++)
-		for (int j = 1; j < g->ny; j++)
-			for (int i = 1; i < g->nx; i++) {
-				if (!(dens[grid_dens_index(g, i, j, k)] > iso))
-					continue;
-				int any = dens[grid_dens_index(g, i - 1, j, k)] > iso ||
-					  dens[grid_dens_index(g, i + 1, j, k)] > iso ||
-					  dens[grid_dens_index(g, i, j - 1, k)] > iso ||
-					  dens[grid_dens_index(g, i, j + 1, k)] > iso ||
-					  dens[grid_dens_index(g, i, j, k - 1)] > iso ||
-					  dens[grid_dens_index(g, i, j, k + 1)] > iso;
-				n += !any;
-			}
-	return n;
+	int s = 0;
+	for (int a = 0; a < 3; a++)
+		s = c->hi[a] - c->lo[a] + 1 > s ? c->hi[a] - c->lo[a] + 1 : s;
+	return s;
 }
 
-/* Pairs of adjacent samples strictly inside the box, both inside the rock,
- * neither with another inside neighbour (raw densities); the world
- * positions of the first 16 pairs' two samples into at[] (x, y, z of the
- * lower, then of the upper). */
-static int pairs(const struct grid *g, const float *dens, float iso, float at[16][6])
+/* Labels each stored sample (-1: outside) into lab; the components into
+ * *out.  Returns their count, or -1. */
+static int label(const struct grid *g, const float *dens, float iso, int32_t *lab, struct comp **out)
+{
+	int m = grid_margin(g), d[3] = { g->nx + 1 + 2 * m, g->ny + 1 + 2 * m, g->nz + 1 + 2 * m };
+	long n = grid_dens_count(g);
+	uint32_t *par = malloc(sizeof(uint32_t) * (size_t)n);
+	if (!par)
+		return -1;
+	for (long i = 0; i < n; i++)
+		par[i] = (uint32_t)i;
+	for (int k = 0; k < d[2]; k++)
+		for (int j = 0; j < d[1]; j++)
+			for (int i = 0; i < d[0]; i++) {
+				long c = i + (long)d[0] * (j + (long)d[1] * k);
+				if (!(dens[c] > iso))
+					continue;
+				long nb[3] = { i + 1 < d[0] ? c + 1 : -1, j + 1 < d[1] ? c + d[0] : -1,
+					       k + 1 < d[2] ? c + (long)d[0] * d[1] : -1 };
+				for (int a = 0; a < 3; a++)
+					if (nb[a] >= 0 && dens[nb[a]] > iso) {
+						uint32_t ra = root(par, (uint32_t)c), rb = root(par, (uint32_t)nb[a]);
+						if (ra != rb)
+							par[rb] = ra;
+					}
+			}
+	int nc = 0;
+	for (long i = 0; i < n; i++)
+		lab[i] = -1;
+	for (long i = 0; i < n; i++)
+		if (dens[i] > iso && par[i] == (uint32_t)i)
+			lab[i] = nc++;
+	struct comp *c = calloc(nc ? (size_t)nc : 1, sizeof(*c));
+	if (!c) {
+		free(par);
+		return -1;
+	}
+	for (int q = 0; q < nc; q++)
+		for (int a = 0; a < 3; a++)
+			c[q].lo[a] = 1 << 30, c[q].hi[a] = -(1 << 30);
+	for (int k = 0; k < d[2]; k++)
+		for (int j = 0; j < d[1]; j++)
+			for (int i = 0; i < d[0]; i++) {
+				long s = i + (long)d[0] * (j + (long)d[1] * k);
+				if (!(dens[s] > iso))
+					continue;
+				int q = lab[s] = lab[root(par, (uint32_t)s)];
+				int at[3] = { i - m, j - m, k - m }, n3[3] = { g->nx, g->ny, g->nz };
+				c[q].size++;
+				for (int a = 0; a < 3; a++) {
+					c[q].lo[a] = at[a] < c[q].lo[a] ? at[a] : c[q].lo[a];
+					c[q].hi[a] = at[a] > c[q].hi[a] ? at[a] : c[q].hi[a];
+					if (at[a] <= 0 || at[a] >= n3[a])
+						c[q].edge = true;
+				}
+			}
+	free(par);
+	*out = c;
+	return nc;
+}
+
+/* The label of the sample at the end of vertex p's grid edge (the edge's
+ * lower end when e == 0, its upper when 1), or -1: marching cubes puts
+ * each vertex on the grid edge whose two samples it separates. */
+static int32_t edge_end(const struct grid *g, const int32_t *lab, const float *p, int e)
+{
+	int at[3], along = -1;
+	for (int a = 0; a < 3; a++) {
+		float u = (p[a] - g->origin[a]) / g->cell;
+		float r = roundf(u);
+		if (fabsf(u - r) < 1e-3f)
+			at[a] = (int)r;
+		else {
+			if (along >= 0)
+				return -1; /* on no grid edge */
+			along = a;
+			at[a] = (int)floorf(u) + e;
+		}
+	}
+	if (along < 0 && e == 1)
+		return -1; /* on a sample: that sample, once */
+	int m = grid_margin(g);
+	for (int a = 0; a < 3; a++)
+		if (at[a] < -m || at[a] > (a == 0 ? g->nx : a == 1 ? g->ny : g->nz) + m)
+			return -1;
+	return lab[grid_dens_index(g, at[0], at[1], at[2])];
+}
+
+static bool raw_in(const struct grid *g, const float *dens, float iso, int i, int j, int k)
+{
+	return dens[grid_dens_index(g, i, j, k)] > iso;
+}
+
+/* The vertices a kept component must have: one on each grid edge from one
+ * of its samples to an outside neighbour, less the neighbours that are
+ * one-sample bubbles (the filter fills those). */
+static int expected_verts(const struct grid *g, const float *dens, float iso, const int32_t *lab, int32_t q,
+			  const struct comp *c)
 {
 	static const int nb[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
 	int n = 0;
-	for (int k = 2; k < g->nz - 1; k++)
-		for (int j = 2; j < g->ny - 1; j++)
-			for (int i = 2; i < g->nx - 1; i++) {
-				if (!(dens[grid_dens_index(g, i, j, k)] > iso))
+	for (int k = c->lo[2]; k <= c->hi[2]; k++)
+		for (int j = c->lo[1]; j <= c->hi[1]; j++)
+			for (int i = c->lo[0]; i <= c->hi[0]; i++) {
+				if (lab[grid_dens_index(g, i, j, k)] != q)
 					continue;
-				int count = 0, only = -1;
-				for (int d = 0; d < 6; d++)
-					if (dens[grid_dens_index(g, i + nb[d][0], j + nb[d][1], k + nb[d][2])] > iso)
-						count++, only = d;
-				if (count != 1 || (only & 1) == 0)
-					continue; /* each pair once: from its lower sample */
-				int q[3] = { i + nb[only][0], j + nb[only][1], k + nb[only][2] }, other = 0;
-				for (int d = 0; d < 6; d++)
-					if (d != (only ^ 1))
-						other += dens[grid_dens_index(g, q[0] + nb[d][0], q[1] + nb[d][1], q[2] + nb[d][2])] > iso;
-				if (other == 0 && n < 16) {
-					int c[3] = { i, j, k };
-					for (int a = 0; a < 3; a++) {
-						at[n][a] = g->origin[a] + (float)c[a] * g->cell;
-						at[n][3 + a] = g->origin[a] + (float)q[a] * g->cell;
-					}
+				for (int d = 0; d < 6; d++) {
+					int a = i + nb[d][0], b = j + nb[d][1], e = k + nb[d][2];
+					if (raw_in(g, dens, iso, a, b, e))
+						continue;
+					int all = 1;
+					for (int f = 0; f < 6 && all; f++)
+						all = raw_in(g, dens, iso, a + nb[f][0], b + nb[f][1], e + nb[f][2]);
+					n += !all;
 				}
-				n += other == 0;
 			}
 	return n;
-}
-
-/* Mesh vertices on the grid edges that leave the pairs' samples: a pair's
- * speck has its vertices there (marching cubes puts each vertex on the
- * edge whose ends it separates), and no other surface has, so rock on a
- * diagonal next to a pair (no six-neighbour: the pair stays an island)
- * does not count. */
-static int near_pairs(const struct grid *g, const struct mesh *m, float at[16][6], int n)
-{
-	int near = 0;
-	float eps = 1e-3f * g->cell;
-	for (int q = 0; q < n && q < 16; q++)
-		for (uint32_t v = 0; v < m->nverts; v++) {
-			const float *p = m->pos + 3 * v;
-			int on = 0;
-			for (int e = 0; e < 2 && !on; e++) {
-				const float *c = at[q] + 3 * e;
-				for (int a = 0; a < 3 && !on; a++) { /* along axis a, the other two on the sample's lines */
-					int b = (a + 1) % 3, d = (a + 2) % 3;
-					on = fabsf(p[b] - c[b]) < eps && fabsf(p[d] - c[d]) < eps &&
-					     fabsf(p[a] - c[a]) < g->cell - eps;
-				}
-			}
-			near += on;
-		}
-	return near;
 }
 
 int main(void)
 {
 	struct platform *plat = fixture_open();
-	static const int seeds[] = { 10, 1, 77 };
-	int before_total = 0, pairs_total = 0;
+	static const int seeds[] = { 10, 1, 77, 7 };
+	int by_size[3] = { 0, 0, 0 }, kept_total = 0;
 	for (size_t s = 0; s < sizeof(seeds) / sizeof(seeds[0]); s++) {
 		struct params p;
 		params_defaults(&p);
@@ -165,27 +221,64 @@ int main(void)
 		if (!ft.pl)
 			continue;
 		CHECK(fixture_run(ft.pl, &p) == 0, "seed %d: pipeline_run", p.seed);
-		float *dens = malloc(sizeof(float) * (size_t)grid_dens_count(&g));
+		long nd = grid_dens_count(&g);
+		float *dens = malloc(sizeof(float) * (size_t)nd);
+		int32_t *lab = malloc(sizeof(int32_t) * (size_t)nd);
 		struct mesh m = { 0 };
-		CHECK(dens && pipeline_read_density(ft.pl, dens) == 0, "seed %d: read density", p.seed);
+		struct comp *c = NULL;
+		CHECK(dens && lab && pipeline_read_density(ft.pl, dens) == 0, "seed %d: read density", p.seed);
 		CHECK(pipeline_read_mesh(ft.pl, &m) == 0, "seed %d: read mesh", p.seed);
-		float at[16][6];
-		int before = dens ? islands(&g, dens, p.iso) : -1, two = dens ? pairs(&g, dens, p.iso, at) : -1;
-		int after = specks(&g, &m, 8), left = near_pairs(&g, &m, at, two);
-		printf("seed %5d: %d one-sample islands and %d two-sample ones in the field; in the mesh (%u triangles) "
-		       "%d components of <= 8 triangles, %d vertices around the pairs\n",
-		       p.seed, before, two, m.ntris, after, left);
-		CHECK(left == 0, "seed %d: the two-sample islands left %d vertices", p.seed, left);
-		before_total += before;
-		pairs_total += two;
+		int nc = dens && lab ? label(&g, dens, p.iso, lab, &c) : -1;
+		CHECK(nc >= 0, "seed %d: labelling: out of memory", p.seed);
+		int *verts = calloc(nc > 0 ? (size_t)nc : 1, sizeof(int));
+		if (nc < 0 || !verts) {
+			free(verts), free(c), free(lab), free(dens), mesh_free(&m);
+			fixture_terrain_close(&ft);
+			continue;
+		}
+		for (uint32_t v = 0; v < m.nverts; v++)
+			for (int e = 0; e < 2; e++) {
+				int32_t q = edge_end(&g, lab, m.pos + 3 * v, e);
+				if (q >= 0)
+					verts[q]++;
+			}
+		int debris[3] = { 0, 0, 0 }, left = 0, kept = 0, kept_bad = 0;
+		for (int q = 0; q < nc; q++) {
+			if (c[q].edge)
+				continue; /* cut by the box: not all of it is in view of the grid */
+			int sp = span(&c[q]);
+			if (sp <= 3) {
+				debris[c[q].size == 1 ? 0 : c[q].size == 2 ? 1 : 2]++;
+				left += verts[q];
+			} else if (sp <= 5) {
+				int want = expected_verts(&g, dens, p.iso, lab, q, &c[q]);
+				kept++;
+				if (verts[q] != want && kept_bad++ < 3)
+					printf("  seed %d: a component of %d samples spanning %d has %d vertices, not %d\n", p.seed,
+					       c[q].size, sp, verts[q], want);
+			}
+		}
+		int after = specks(&g, &m, 8);
+		printf("seed %5d: debris in the field: %d single samples, %d pairs, %d clumps of 3+ (span <= 3); "
+		       "%d vertices on their edges in the mesh (%u triangles); %d components of <= 8 triangles; "
+		       "%d components spanning 4-5 samples, %d missing vertices\n",
+		       p.seed, debris[0], debris[1], debris[2], left, m.ntris, after, kept, kept_bad);
+		CHECK(left == 0, "seed %d: the debris left %d vertices", p.seed, left);
 		CHECK(after == 0, "seed %d: %d floating specks left", p.seed, after);
+		CHECK(kept_bad == 0, "seed %d: %d components spanning 4-5 samples lost vertices", p.seed, kept_bad);
+		for (int k = 0; k < 3; k++)
+			by_size[k] += debris[k];
+		kept_total += kept;
+		free(verts), free(c), free(lab), free(dens);
 		mesh_free(&m);
-		free(dens);
 		fixture_terrain_close(&ft);
 	}
-	/* the seeds do make debris, so the check above means something */
-	CHECK(before_total >= 3, "only %d one-sample islands in the fields: the seeds test nothing", before_total);
-	CHECK(pairs_total >= 1, "no two-sample island in the fields: the seeds test nothing of the pairs");
+	/* the seeds do make debris of each kind, and components just too
+	 * large to be debris, so the checks above mean something */
+	CHECK(by_size[0] >= 3, "only %d one-sample islands in the fields: the seeds test nothing", by_size[0]);
+	CHECK(by_size[1] >= 1, "no two-sample island in the fields: the seeds test nothing of the pairs");
+	CHECK(by_size[2] >= 3, "only %d clumps of 3+ samples in the fields: the seeds test little of them", by_size[2]);
+	CHECK(kept_total >= 1, "no component spanning 4-5 samples in the fields: nothing shows the filter keeps them");
 	platform_close(plat);
 	return tc_done("debris");
 }

@@ -29,33 +29,96 @@ static int raw_inside(const struct grid *g, const float *dens, float iso, int x,
 
 static const int nb6[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
 
-/* Inside: above iso and so is one of the six neighbours (a one-sample
- * island is dropped: it would float as a speck of eight triangles), unless
- * that is its only one and has no other (a two-sample island, a speck of a
- * dozen), or below it with all six above (a bubble in the rock, never seen,
- * filled); a neighbour beyond the stored samples counts as outside.  As the
- * GPU's debris filter (shaders/mc_debris.comp). */
+#define DEBRIS_SPAN 3 /* shaders/common.glsl */
+
+/* Debris (common.glsl's debris_island, which this mirrors): the 6-connected
+ * inside component of the sample at the centre of box (7x7x7 samples, row
+ * (dz + 3) * 7 + dy + 3 holds dx = -3 .. 3 in bits 0 .. 6), grown within
+ * the box, never reaches the box's faces and spans at most DEBRIS_SPAN
+ * samples along each axis. */
+static int debris_island(const uint32_t box[49])
+{
+	uint32_t cur[49] = { 0 };
+	cur[24] = box[24] & 8u;
+	if (!cur[24])
+		return 0; /* an outside centre: no component */
+	int settled = 0;
+	for (int step = 0; step < 28 && !settled; step++) {
+		uint32_t nxt[49];
+		int grew = 0;
+		for (int z = 0; z < 7; z++)
+			for (int y = 0; y < 7; y++) {
+				int i = z * 7 + y;
+				uint32_t v = cur[i] | (cur[i] << 1) | (cur[i] >> 1);
+				if (y > 0)
+					v |= cur[i - 1];
+				if (y < 6)
+					v |= cur[i + 1];
+				if (z > 0)
+					v |= cur[i - 7];
+				if (z < 6)
+					v |= cur[i + 7];
+				v &= box[i];
+				grew |= v != cur[i];
+				nxt[i] = v;
+			}
+		memcpy(cur, nxt, sizeof(cur));
+		settled = !grew;
+		uint32_t face = 0;
+		for (int k = 0; k < 7; k++)
+			face |= cur[k] | cur[42 + k] | cur[k * 7] | cur[k * 7 + 6];
+		for (int i = 0; i < 49; i++)
+			face |= cur[i] & 0x41u;
+		if (face)
+			return 0;
+	}
+	if (!settled)
+		return 0;
+	int xlo = 7, xhi = -1, ylo = 7, yhi = -1, zlo = 7, zhi = -1;
+	for (int z = 0; z < 7; z++)
+		for (int y = 0; y < 7; y++)
+			for (int x = 0; x < 7; x++)
+				if (cur[z * 7 + y] >> x & 1u) {
+					xlo = x < xlo ? x : xlo, xhi = x > xhi ? x : xhi;
+					ylo = y < ylo ? y : ylo, yhi = y > yhi ? y : yhi;
+					zlo = z < zlo ? z : zlo, zhi = z > zhi ? z : zhi;
+				}
+	return xhi - xlo < DEBRIS_SPAN && yhi - ylo < DEBRIS_SPAN && zhi - zlo < DEBRIS_SPAN;
+}
+
+/* Inside: above iso, unless its inside component is debris of a few
+ * samples, which would float as a speck (a single sample of eight
+ * triangles, a pair of sixteen, up to a 3x3x3 clump); or below iso with
+ * all six neighbours inside (a one-sample bubble, never seen).  The debris
+ * filter of shaders/mc_debris.comp, on the raw densities; a sample beyond
+ * the stored ones counts as outside. */
 int mc_ref_inside(const struct grid *g, const float *dens, float iso, int x, int y, int z)
 {
-	int count = 0, only = -1;
+	int count = 0;
 	for (int k = 0; k < 6; k++)
-		if (raw_inside(g, dens, iso, x + nb6[k][0], y + nb6[k][1], z + nb6[k][2])) {
-			count++;
-			only = k;
-		}
+		count += raw_inside(g, dens, iso, x + nb6[k][0], y + nb6[k][1], z + nb6[k][2]);
 	if (!raw_inside(g, dens, iso, x, y, z))
 		return count == 6;
-	if (count != 1)
-		return count > 1;
-	/* the one neighbour's own neighbours, but this sample */
-	int q[3] = { x + nb6[only][0], y + nb6[only][1], z + nb6[only][2] };
+	if (count == 0)
+		return 0;
+	/* debris spans at most DEBRIS_SPAN samples: along each of the six
+	 * directions an outside sample within that many steps */
 	for (int k = 0; k < 6; k++) {
-		if (k == (only ^ 1))
-			continue; /* back to this sample */
-		if (raw_inside(g, dens, iso, q[0] + nb6[k][0], q[1] + nb6[k][1], q[2] + nb6[k][2]))
+		int run = 1;
+		for (int t = 1; t <= DEBRIS_SPAN && run; t++)
+			run = raw_inside(g, dens, iso, x + t * nb6[k][0], y + t * nb6[k][1], z + t * nb6[k][2]);
+		if (run)
 			return 1;
 	}
-	return 0;
+	uint32_t box[49];
+	for (int dz = 0; dz < 7; dz++)
+		for (int dy = 0; dy < 7; dy++) {
+			uint32_t row = 0;
+			for (int dx = 0; dx < 7; dx++)
+				row |= (uint32_t)raw_inside(g, dens, iso, x + dx - 3, y + dy - 3, z + dz - 3) << dx;
+			box[dz * 7 + dy] = row;
+		}
+	return !debris_island(box);
 }
 
 static int vmask(const struct grid *g, const float *dens, float iso, int x, int y, int z)
