@@ -55,22 +55,26 @@ out vec4 frag;
 #include "shade.glsl"
 
 // soil colour tables (sRGB), indexed by a slow variation; interpolated
+// piecewise linearly between the four entries by three mixes, each clamped
+// to its segment (no array indexed by a variable: a CPU driver keeps such
+// an array in memory and gathers from it, pixel by pixel)
 vec3 soil_color(float t)
 {
-	vec3 c[4];
+	vec3 c0, c1, c2, c3;
 	if (u_soil == SOIL_ARID) {
-		c[0] = vec3(0.76, 0.60, 0.42); c[1] = vec3(0.70, 0.47, 0.30);
-		c[2] = vec3(0.84, 0.72, 0.52); c[3] = vec3(0.62, 0.42, 0.28);
+		c0 = vec3(0.76, 0.60, 0.42); c1 = vec3(0.70, 0.47, 0.30);
+		c2 = vec3(0.84, 0.72, 0.52); c3 = vec3(0.62, 0.42, 0.28);
 	} else if (u_soil == SOIL_VOLCANIC) {
-		c[0] = vec3(0.22, 0.20, 0.20); c[1] = vec3(0.36, 0.22, 0.18);
-		c[2] = vec3(0.30, 0.30, 0.32); c[3] = vec3(0.45, 0.28, 0.20);
+		c0 = vec3(0.22, 0.20, 0.20); c1 = vec3(0.36, 0.22, 0.18);
+		c2 = vec3(0.30, 0.30, 0.32); c3 = vec3(0.45, 0.28, 0.20);
 	} else {
-		c[0] = vec3(0.50, 0.42, 0.33); c[1] = vec3(0.60, 0.52, 0.40);
-		c[2] = vec3(0.42, 0.36, 0.30); c[3] = vec3(0.66, 0.58, 0.46);
+		c0 = vec3(0.50, 0.42, 0.33); c1 = vec3(0.60, 0.52, 0.40);
+		c2 = vec3(0.42, 0.36, 0.30); c3 = vec3(0.66, 0.58, 0.46);
 	}
 	float x = clamp(t, 0.0, 0.999) * 3.0;
-	int i = int(x);
-	return mix(c[i], c[i + 1], fract(x));
+	vec3 c = mix(c0, c1, clamp(x, 0.0, 1.0));
+	c = mix(c, c2, clamp(x - 1.0, 0.0, 1.0));
+	return mix(c, c3, clamp(x - 2.0, 0.0, 1.0));
 }
 
 #if TERM_MARBLE_COLOR
