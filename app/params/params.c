@@ -352,7 +352,7 @@ const struct preset presets[] = {
 	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal;noise_amp=18" },
 	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=-4;flat_inner=16;flat_outer=26;cam_pitch=50" },
 	{ "diorama", "the default terrain as a closed block with cut walls, orbited from outside",
-	  "closed=true;vol_size=32;vol_height=0.75;vol_y=-1;cam_dist=1.9;cam_pitch=26" },
+	  "closed=true;vol_size=32;vol_height=1;cam_dist=1.85;cam_pitch=24" },
 	{ "torus", "test field: torus", "field=torus;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
 	{ "bumps", "test field: sin(5x)cos(5z)/5", "field=bumps;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
 	{ "ripple", "test field: sin(10(x^2+z^2))/10", "field=ripple;vol_y=0;vol_size=2.4;vol_height=1;field_scale=1;closed=true;cam_dist=1.9;cam_pitch=26" },
