@@ -1,26 +1,35 @@
-// isoterra — the debris filter, between the density pass and classification:
-// the sign bits of the density grid less one- and two-sample debris.  An
-// inside sample none of whose six neighbours is inside counts as outside
-// (such a one-sample island would float as a speck of eight triangles), and
-// so do two inside neighbours that have no other inside neighbour (a speck
-// of a dozen); an outside sample all of whose six neighbours are inside
-// counts as inside (a bubble in the rock, never seen); a neighbour beyond
-// the grid's samples counts as outside.  One invocation per sign word (32
-// samples of a z slab, as the density pass wrote them): the word, its two
-// neighbours along the slab (x), two unaligned runs of 32 bits a row away
-// (y) and the words a slab away (z); for a word with a sample that has a
-// single inside neighbour, the eighteen runs two steps away too (that
-// neighbour's own neighbours); word-wide operations, no loop over the
-// samples.  Only classification and the index pass read the bits: an edge
-// that crossed at a flipped sample has both ends on one side now, so the
-// vertex pass (which interpolates the densities of crossing edges) needs no
-// change.  Mirrored in app/extract/mc_ref.c (mc_ref_inside()).  Dispatch:
-// (ceil(words of a slab / WG_SIZE), slabs) groups of WG_SIZE.
+// isoterra — the debris filter's first pass, between the density pass and
+// classification: the sign bits of the density grid less debris, a
+// component of inside samples that spans at most three samples along each
+// axis (it would float as a speck).  Here: an inside sample none of whose
+// six neighbours is inside counts as outside (a speck of eight triangles),
+// and so do two inside neighbours that have no other inside neighbour (a
+// speck of a dozen); an outside sample all of whose six neighbours are
+// inside counts as inside (a bubble in the rock, never seen); a neighbour
+// beyond the grid's samples counts as outside.  The samples that may
+// belong to larger debris are listed for the second pass
+// (mc_debris_flood.comp), which grows their components.  One invocation
+// per sign word (32 samples of a z slab, as the density pass wrote them):
+// the word, its two neighbours along the slab (x), two unaligned runs of
+// 32 bits a row away (y) and the words a slab away (z); for a word with a
+// sample that has a single inside neighbour, the eighteen runs two steps
+// away too (that neighbour's own neighbours); for a word with candidates,
+// the runs three steps away that rule them out; word-wide operations, no
+// loop over the samples.  Only classification and the index pass read the
+// bits: an edge that crossed at a flipped sample has both ends on one side
+// now, so the vertex pass (which interpolates the densities of crossing
+// edges) needs no change.  Mirrored in app/extract/mc_ref.c
+// (mc_ref_inside()).  Dispatch: (ceil(words of a slab / WG_SIZE), slabs)
+// groups of WG_SIZE.
 layout(local_size_x = WG_SIZE) in;
 #define PASS_READS_SIGNS 1 // common.glsl's Signs (BIND_SIGNS): here the raw bits
 #include "common.glsl"
 layout(std430, binding = BIND_SIGNS_OUT) restrict writeonly buffer Filtered { uint filtered[]; };
+// the words with larger debris candidates, for mc_debris_flood.comp (abi.h DL_*)
+layout(std430, binding = BIND_DEBRIS) restrict buffer Candidates { uint dl[]; };
 uniform uint u_sign_words; // both buffers' capacity in words
+uniform uint u_max_groups; // the flood pass's dispatch's largest x
+#include "debris_bits.glsl"
 #ifdef DEBRIS_NEAR
 // After a density pass that cut far samples (common.glsl): the raw samples
 // with a six-neighbour of the other sign (one beyond the grid does not
@@ -28,47 +37,6 @@ uniform uint u_sign_words; // both buffers' capacity in words
 // in the same buffer.
 layout(std430, binding = BIND_CUT) restrict writeonly buffer Near { uint near_out[]; };
 #endif
-
-uint raw_word(uint w) { return w < u_sign_words ? signs[w] : 0u; }
-
-// 32 raw bits from bit b on (any alignment), bit 0 = sample b
-uint raw_run32(uint b)
-{
-	uint w = b >> 5u, s = b & 31u;
-	uint v = raw_word(w) >> s;
-	return s == 0u ? v : v | (raw_word(w + 1u) << (32u - s));
-}
-
-// the bits j of a word for which 0 <= first + j < limit (first may be negative)
-uint bits_below(int first, int limit)
-{
-	int k = limit - first; // bits 0 .. k-1
-	return k <= 0 ? 0u : k >= 32 ? ~0u : (1u << uint(k)) - 1u;
-}
-
-// Samples start .. start + 31 of slab zz (0 outside the slab or the grid)
-uint slab_run(int zz, int start, int n, uint words)
-{
-	if (zz < 0 || zz >= dens_dims().z || start <= -32)
-		return 0u;
-	uint base = uint(zz) * words * 32u;
-	uint v = start >= 0 ? raw_run32(base + uint(start)) : raw_run32(base) << uint(-start);
-	return v & bits_below(start, n) & ~bits_below(start, 0);
-}
-
-// The bits j of a word starting at row position x whose sample has a
-// neighbour at x + dx in its row (dx -2 .. 2)
-uint x_ok(int x, int dx, int dimx)
-{
-	uint m = ~0u;
-	for (int t = 0; t < abs(dx); t++) {
-		int xc = dx < 0 ? t : dimx - 1 - t; // a row position with none at xc + dx
-		int j = xc - x < 0 ? xc - x + dimx : xc - x;
-		for (; j < 32; j += dimx)
-			m &= ~(1u << uint(j));
-	}
-	return m;
-}
 
 void main()
 {
@@ -91,8 +59,13 @@ void main()
 	uint xm_ok = ~0u, xp_ok = ~0u; // the bits whose neighbour exists
 	for (int j = x == 0 ? 0 : dim.x - x; j < 32; j += dim.x)
 		xm_ok &= ~(1u << uint(j)); // x == 0: no sample at x - 1
-	for (int j = dim.x - 1 - x; j < 32; j += dim.x)
-		xp_ok &= ~(1u << uint(j)); // x == dim.x - 1: none at x + 1
+	uint last_next = 0u; // the next word's bits 0 and 1 at a row's last sample
+	for (int j = dim.x - 1 - x; j < 34; j += dim.x) {
+		if (j < 32)
+			xp_ok &= ~(1u << uint(j)); // x == dim.x - 1: none at x + 1
+		else
+			last_next |= 1u << uint(j - 32);
+	}
 	xm &= xm_ok;
 	xp &= xp_ok;
 	// y: a row (dim.x samples) before and after, inside the slab
@@ -125,39 +98,43 @@ void main()
 		       (n1_ym & ~(ym2 | xmym | xpym | ymzm | ymzp)) | (n1_yp & ~(yp2 | xmyp | xpyp | ypzm | ypzp)) |
 		       (n1_zm & ~(zm2 | xmzm | xpzm | ymzm | ypzm)) | (n1_zp & ~(zp2 | xmzp | xpzp | ymzp | ypzp));
 	}
-	// Larger debris, of up to DEBRIS_SPAN samples along each axis
-	// (common.glsl's debris_island): an inside sample left is a candidate
-	// when along each of the six directions one of the next DEBRIS_SPAN
-	// samples is outside (a run of inside samples that long would join
-	// it); the directions in the order of their cost (x from the words
-	// loaded, z aligned, y unaligned), each only while a candidate is left.
-	// Then each candidate's 7x7x7 box of bits, 49 runs, and its growth.
-	uint drop = iso2, cand = c & any6 & ~iso2 & valid;
-	cand &= ~(xp & RUN(2, 0, 0, x_ok(x, 2, r)) & RUN(3, 0, 0, x_ok(x, 3, r)));
-	cand &= ~(xm & RUN(-2, 0, 0, x_ok(x, -2, r)) & RUN(-3, 0, 0, x_ok(x, -3, r)));
+	// Larger debris, of up to three samples along each axis (the next
+	// pass, mc_debris_flood.comp, grows their components): an inside
+	// sample left is a candidate when along each of the six directions one
+	// of the next three samples is outside (a run of inside samples that
+	// long would join it to a span of four).  The directions in the order
+	// of their cost, each only while a candidate is left: x from the words
+	// at hand (in rock that rules out every sample), y below (on the ground
+	// that does), then y above and z.  The word's candidates are listed.
+	uint cand = c & any6 & ~iso2 & valid;
+	if (cand != 0u) {
+		// the bits with no sample 2 or 3 along, from the rows' ends: a
+		// row's last sample at bit j (~xp_ok), or at bit 32 or 33 (the
+		// next word's first two); its first at j (~xm_ok), or at -1 or -2
+		uint last = ~xp_ok, first = ~xm_ok;
+		uint l32 = last_next & 1u, l33 = last_next >> 1, f1 = x == 1 ? 1u : 0u, f2 = x == 2 ? 1u : 0u;
+		uint no2p = last | (last >> 1) | (l32 << 31), no3p = no2p | (last >> 2) | (l32 << 30) | (l33 << 31);
+		uint no2m = first | (first << 1) | f1, no3m = no2m | (first << 2) | (f1 << 1) | f2;
+		uint xp2 = ((c >> 2) | (next << 30)) & ~no2p, xp3 = ((c >> 3) | (next << 29)) & ~no3p;
+		uint xm2 = ((c << 2) | (prev >> 30)) & ~no2m, xm3 = ((c << 3) | (prev >> 29)) & ~no3m;
+		cand &= ~(xp & xp2 & xp3) & ~(xm & xm2 & xm3);
+	}
+	if (cand != 0u)
+		cand &= ~(ym & RUN(0, -2, 0, ~0u) & RUN(0, -3, 0, ~0u));
+	if (cand != 0u)
+		cand &= ~(yp & RUN(0, 2, 0, ~0u) & RUN(0, 3, 0, ~0u));
 	if (cand != 0u)
 		cand &= ~(zp & RUN(0, 0, 2, ~0u) & RUN(0, 0, 3, ~0u)) & ~(zm & RUN(0, 0, -2, ~0u) & RUN(0, 0, -3, ~0u));
-	if (cand != 0u)
-		cand &= ~(yp & RUN(0, 2, 0, ~0u) & RUN(0, 3, 0, ~0u)) & ~(ym & RUN(0, -2, 0, ~0u) & RUN(0, -3, 0, ~0u));
 #undef RUN
-	while (cand != 0u) {
-		int j = findLSB(cand);
-		cand &= cand - 1u;
-		ivec2 yx = divmod(b0 + j, r); // the sample's y, x in its slab
-		// its row's samples dx = -3 .. 3 that exist
-		uint xmask = bits_below(yx.y - 3, r) & ~bits_below(yx.y - 3, 0) & 0x7Fu;
-		uint box[49];
-		for (int dz = 0; dz < 7; dz++)
-			for (int dy = 0; dy < 7; dy++) {
-				int yy = yx.x + dy - 3;
-				box[dz * 7 + dy] = yy < 0 || yy >= dim.y ? 0u : slab_run(z + dz - 3, yy * r + yx.y - 3, n, words) & xmask;
-			}
-		if (debris_island(box))
-			drop |= 1u << uint(j);
+	if (cand != 0u && w0 + wv < u_sign_words) { // an entry a word: room for every word
+		uint e = atomicAdd(dl[DL_COUNT], 1u);
+		dl[DL_HEAD + 2u * e] = w0 + wv;
+		dl[DL_HEAD + 2u * e + 1u] = cand;
+		atomicMax(dl[DL_DISPATCH], min(e / uint(WG_SIZE) + 1u, u_max_groups));
 	}
 	uint wi = w0 + wv;
 	if (wi < u_sign_words) {
-		filtered[wi] = ((c & any6 & ~drop) | (~c & all6)) & valid;
+		filtered[wi] = ((c & any6 & ~iso2) | (~c & all6)) & valid;
 #ifdef DEBRIS_NEAR
 		// a neighbour beyond the grid is no sign change (no edge leads there)
 		uint ym_ok = ~bits_below(b0 - dim.x, 0), yp_ok = bits_below(b0 + dim.x, n);

@@ -70,12 +70,14 @@ struct pipeline {
 	GLuint p_density, p_debris, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint p_refine_mark;          /* the refine list (made at the first cut) */
+	GLuint p_debris_flood;         /* the debris filter's second pass (mc_debris_flood.comp) */
 	GLuint b_dens, b_signs, b_hp, b_tables, b_verts, b_idx, b_status;
 	GLuint b_signs_raw;            /* the density pass's bits; b_signs: less debris */
 	uint32_t owners, words;        /* owner cells, level-0 words */
 	uint32_t sign_words;           /* each sign buffer's capacity (words) */
 	GLuint b_cut;                  /* the far samples' cut bits, then the near bits: 2 sign_words words */
 	GLuint b_refine;               /* the refine list (abi.h RF_*): RF_HEAD + refine_cap + sign_words words */
+	GLuint b_debris;               /* the debris filter's candidates (abi.h DL_*): DL_HEAD + 2 sign_words words */
 	uint32_t refine_cap;           /* its sample entries */
 	struct hp_levels hp;
 	uint32_t tri_cap, vert_cap;    /* HP (indexed) capacities */

@@ -176,12 +176,12 @@ void pipeline_destroy(struct pipeline *pl)
 	for (int i = 0; i < PROGRAM_VARIANTS; i++)
 		if (pl->variants[i].prog)
 			glDeleteProgram(pl->variants[i].prog);
-	GLuint progs[] = { pl->p_debris, pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
+	GLuint progs[] = { pl->p_debris, pl->p_debris_flood, pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish, pl->p_refine_mark };
 	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
-	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_hp, pl->b_cut, pl->b_refine, pl->b_tables, pl->b_verts,
+	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_hp, pl->b_cut, pl->b_refine, pl->b_debris, pl->b_tables, pl->b_verts,
 			  pl->b_idx, pl->b_status };
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
@@ -282,12 +282,26 @@ static int debris_pass(struct pipeline *pl, bool near, char *err, size_t errlen)
 	}
 	set_common(pl, prog, NULL);
 	glProgramUniform1ui(prog, gpu_uniform(prog, "u_sign_words"), pl->sign_words);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_max_groups"), (GLuint)pl->max_groups);
+	/* the candidate list's header: no entry, a dispatch of none */
+	static const GLuint header[DL_HEAD] = { 0, 1, 1, 0 };
+	glBindBuffer(GL_COPY_WRITE_BUFFER, pl->b_debris);
+	glBufferSubData(GL_COPY_WRITE_BUFFER, 0, sizeof(header), header);
 	bind(BIND_SIGNS, pl->b_signs_raw);
 	bind(BIND_SIGNS_OUT, pl->b_signs);
+	bind(BIND_DEBRIS, pl->b_debris);
 	glUseProgram(prog);
 	int m2 = 1 + 2 * grid_margin(&pl->g);
 	uint64_t slab_words = div_up((uint64_t)(pl->g.nx + m2) * (pl->g.ny + m2), SIGN_SLAB_ALIGN) * (SIGN_SLAB_ALIGN / 32);
 	glDispatchCompute((GLuint)div_up(slab_words, WG_SIZE), (GLuint)(pl->g.nz + m2), 1);
+	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+	/* the listed candidates' components, from the list's header */
+	set_common(pl, pl->p_debris_flood, NULL);
+	glProgramUniform1ui(pl->p_debris_flood, gpu_uniform(pl->p_debris_flood, "u_sign_words"), pl->sign_words);
+	glUseProgram(pl->p_debris_flood);
+	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pl->b_debris);
+	glDispatchComputeIndirect((GLintptr)(DL_DISPATCH * 4));
+	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	return 0;
 }

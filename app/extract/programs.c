@@ -155,7 +155,7 @@ static void prefetch_variant(struct pipeline *pl, const char *file, const char *
  * with empty caches), then each is taken in order. */
 int extract_create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
-	static const char *const own[] = { "mc_debris.comp", "mc_classify.comp", "hp_reduce.comp",
+	static const char *const own[] = { "mc_debris.comp", "mc_debris_flood.comp", "mc_classify.comp", "hp_reduce.comp",
 					   "hp_downsweep.comp", "mc_setup.comp", "mc_indices.comp" };
 	const char *vfile;
 	bool vfield;
@@ -170,6 +170,7 @@ int extract_create_programs(struct pipeline *pl, const struct params *p, char *e
 		gpu_prefetch_compute(own[i], NULL);
 	if (!(pl->p_density = extract_density_program(pl, p, err, errlen)) ||
 	    !(pl->p_debris = extract_program(pl, "mc_debris.comp", err, errlen)) ||
+	    !(pl->p_debris_flood = extract_program(pl, "mc_debris_flood.comp", err, errlen)) ||
 	    !(pl->p_classify = extract_program(pl, "mc_classify.comp", err, errlen)) ||
 	    !(pl->p_reduce = extract_program(pl, "hp_reduce.comp", err, errlen)) ||
 	    !(pl->p_downsweep = extract_program(pl, "hp_downsweep.comp", err, errlen)) ||

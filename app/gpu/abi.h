@@ -33,6 +33,18 @@
 #define BIND_CUT BIND_HP         /* the density pass's cut bits (1 = a far sample whose finest octaves were left
 				  * out, common.glsl), then the debris filter's near bits: the refine passes read them */
 #define BIND_REFINE BIND_OUT     /* the refine list: refine_mark.comp writes it, the field's refine variant reads it */
+#define BIND_DEBRIS BIND_STATUS  /* the debris filter's candidate list: mc_debris.comp writes it, mc_debris_flood.comp
+				  * reads it (neither reads the status block) */
+
+/* ---- the debris filter's candidate list (BIND_DEBRIS) ----------------------
+ * A header, then an entry of two words for each sign word with candidates
+ * (samples that may belong to debris spanning three samples or more): its
+ * index and its candidate bits.  A word is listed once: room for all of
+ * them (extract/buffers.c sizes it).  mc_debris.comp writes it,
+ * mc_debris_flood.comp reads it. */
+#define DL_DISPATCH 0u /* DispatchIndirectCommand of the flood pass (3 words) */
+#define DL_COUNT 3u    /* entries */
+#define DL_HEAD 4u     /* the header's words */
 
 /* ---- the refine list (BIND_REFINE): the cut samples near the surface ------
  * A header, then u_refine_cap sample entries (a sample's bit index in the

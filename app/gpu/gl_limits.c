@@ -34,6 +34,7 @@ static const struct gl_pass passes[] = {
 	  "#define FIELD_PASS_BOUND 1\n#define HAS_CONTROL_MAP 1\n", false, NULL },
 	{ "mc_debris.comp", "mc_debris.comp", NULL, NULL, NULL, false, NULL },
 	{ "mc_debris.comp (DEBRIS_NEAR)", "mc_debris.comp", NULL, NULL, "#define DEBRIS_NEAR 1\n", false, NULL },
+	{ "mc_debris_flood.comp", "mc_debris_flood.comp", NULL, NULL, NULL, false, NULL },
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false, NULL },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false, NULL },
 	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false, NULL },
