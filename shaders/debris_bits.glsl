@@ -1,6 +1,6 @@
 // isoterra — the raw sign bits as the debris filter reads them
 // (shaders/mc_debris.comp, mc_debris_flood.comp): words, unaligned runs,
-// a z slab's runs, the bits whose row has a sample dx steps along.  The
+// a z slab's runs.  The
 // including pass declares u_sign_words and binds the raw bits as Signs
 // (common.glsl, PASS_READS_SIGNS).
 uint raw_word(uint w) { return w < u_sign_words ? signs[w] : 0u; }
@@ -28,18 +28,4 @@ uint slab_run(int zz, int start, int n, uint words)
 	uint base = uint(zz) * words * 32u;
 	uint v = start >= 0 ? raw_run32(base + uint(start)) : raw_run32(base) << uint(-start);
 	return v & bits_below(start, n) & ~bits_below(start, 0);
-}
-
-// The bits j of a word starting at row position x whose sample has a
-// neighbour at x + dx in its row (dx -2 .. 2)
-uint x_ok(int x, int dx, int dimx)
-{
-	uint m = ~0u;
-	for (int t = 0; t < abs(dx); t++) {
-		int xc = dx < 0 ? t : dimx - 1 - t; // a row position with none at xc + dx
-		int j = xc - x < 0 ? xc - x + dimx : xc - x;
-		for (; j < 32; j += dimx)
-			m &= ~(1u << uint(j));
-	}
-	return m;
 }

@@ -68,6 +68,13 @@ void main()
 	}
 	xm &= xm_ok;
 	xp &= xp_ok;
+	// the bits with no sample 2 or 3 along the row: a row's last sample at
+	// bit j (~xp_ok) or at the next word's bits 0, 1; its first at bit j
+	// (~xm_ok) or at bit -1, -2
+	uint last = ~xp_ok, first = ~xm_ok, l32 = last_next & 1u, l33 = last_next >> 1;
+	uint f1 = x == 1 ? 1u : 0u, f2 = x == 2 ? 1u : 0u;
+	uint no2p = last | (last >> 1) | (l32 << 31), no3p = no2p | (last >> 2) | (l32 << 30) | (l33 << 31);
+	uint no2m = first | (first << 1) | f1, no3m = no2m | (first << 2) | (f1 << 1) | f2;
 	// y: a row (dim.x samples) before and after, inside the slab
 	uint ym = b0 >= dim.x ? raw_run32(w0 * 32u + uint(b0 - dim.x))
 	                      : (dim.x - b0 < 32 ? raw_run32(w0 * 32u) << uint(dim.x - b0) : 0u);
@@ -85,7 +92,7 @@ void main()
 	int r = dim.x;
 #define RUN(dx, dy, dz, ok) (slab_run(z + (dz), b0 + (dx) + (dy) * r, n, words) & (ok))
 	if ((n1_xm | n1_xp | n1_ym | n1_yp | n1_zm | n1_zp) != 0u) {
-		uint okm2 = x_ok(x, -2, r), okm1 = x_ok(x, -1, r), okp1 = x_ok(x, 1, r), okp2 = x_ok(x, 2, r);
+		uint okm2 = ~no2m, okm1 = xm_ok, okp1 = xp_ok, okp2 = ~no2p;
 		uint xm2 = RUN(-2, 0, 0, okm2), xp2 = RUN(2, 0, 0, okp2);
 		uint ym2 = RUN(0, -2, 0, ~0u), yp2 = RUN(0, 2, 0, ~0u), zm2 = RUN(0, 0, -2, ~0u), zp2 = RUN(0, 0, 2, ~0u);
 		uint xmym = RUN(-1, -1, 0, okm1), xmyp = RUN(-1, 1, 0, okm1), xpym = RUN(1, -1, 0, okp1),
@@ -108,13 +115,6 @@ void main()
 	// that does), then y above and z.  The word's candidates are listed.
 	uint cand = c & any6 & ~iso2 & valid;
 	if (cand != 0u) {
-		// the bits with no sample 2 or 3 along, from the rows' ends: a
-		// row's last sample at bit j (~xp_ok), or at bit 32 or 33 (the
-		// next word's first two); its first at j (~xm_ok), or at -1 or -2
-		uint last = ~xp_ok, first = ~xm_ok;
-		uint l32 = last_next & 1u, l33 = last_next >> 1, f1 = x == 1 ? 1u : 0u, f2 = x == 2 ? 1u : 0u;
-		uint no2p = last | (last >> 1) | (l32 << 31), no3p = no2p | (last >> 2) | (l32 << 30) | (l33 << 31);
-		uint no2m = first | (first << 1) | f1, no3m = no2m | (first << 2) | (f1 << 1) | f2;
 		uint xp2 = ((c >> 2) | (next << 30)) & ~no2p, xp3 = ((c >> 3) | (next << 29)) & ~no3p;
 		uint xm2 = ((c << 2) | (prev >> 30)) & ~no2m, xm3 = ((c << 3) | (prev >> 29)) & ~no3m;
 		cand &= ~(xp & xp2 & xp3) & ~(xm & xm2 & xm3);

@@ -4,9 +4,10 @@
 // each axis.  For each candidate the 7x7x7 box of raw bits around it (49
 // runs) and the growth of its component within the box (debris_island);
 // debris leaves the filtered bits.  A listed word is one entry, so an
-// invocation owns its word of the filtered bits.  Rare work (a few hundred
-// candidates in a 128^3 grid of terrain), kept out of the first pass: its
-// box and growth there, even never run, cost llvmpipe 5 ms a 128^3 grid.
+// invocation owns its word of the filtered bits.  Rare work (200
+// candidates in the same-field benchmark's 128^3 grid), kept out of the
+// first pass: its box and growth there, even never run, cost llvmpipe
+// 5 ms a 128^3 grid.
 // Dispatched from the list's header (no read-back); the entries past the
 // dispatch's invocations are taken in strides.
 layout(local_size_x = WG_SIZE) in;
