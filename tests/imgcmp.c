@@ -21,10 +21,15 @@
  *       such pixels; H: the horizon, the median over the columns of the
  *       first such pixel from the top, as a fraction of the height (1: a
  *       column with none)
+ *       and "round R": how far the subject's outline is from a circle,
+ *       the spread (standard deviation) of its distance from the
+ *       subject's centroid over 360 directions, as a fraction of its mean
+ *       (0: a disk; a square gives 0.105; 1: no subject)
  *   imgcmp --sheet OUT.png COLS IN... a contact sheet: the pictures (all of
  *       one size) halved (2x2 box filter) and tiled COLS to a row, in
  *       order, 4 pixels of dark grey between and around them */
 #include <errno.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -335,6 +340,7 @@ int main(int argc, char **argv)
 			return 2;
 		}
 		size_t on = 0;
+		double sx = 0.0, sy = 0.0;
 		int *top = malloc(sizeof(int) * (size_t)a.width);
 		if (!top)
 			return 2;
@@ -344,9 +350,37 @@ int main(int argc, char **argv)
 				const uint8_t *p = a.rgba + 4 * ((size_t)y * a.width + x), *q = b.rgba + 4 * ((size_t)y * b.width + x);
 				bool diff = abs(p[0] - q[0]) > 24 || abs(p[1] - q[1]) > 24 || abs(p[2] - q[2]) > 24;
 				on += diff;
+				if (diff) {
+					sx += x;
+					sy += y;
+				}
 				if (diff && top[x] == a.height)
 					top[x] = y;
 			}
+		}
+		/* the outline's distance from the subject's centroid in 360
+		 * directions (the farthest subject pixel along each ray): its
+		 * spread, as a fraction of its mean */
+		double round = 1.0;
+		if (on > 0) {
+			double cx = sx / (double)on, cy = sy / (double)on, s1 = 0.0, s2 = 0.0;
+			double far = (double)a.width + (double)a.height;
+			for (int k = 0; k < 360; k++) {
+				double dx = cos(k * 3.14159265358979 / 180.0), dy = sin(k * 3.14159265358979 / 180.0), r = 0.0;
+				for (double t = 0.0; t < far; t += 0.5) {
+					int x = (int)(cx + t * dx + 0.5), y = (int)(cy + t * dy + 0.5);
+					if (x < 0 || y < 0 || x >= a.width || y >= a.height)
+						break;
+					const uint8_t *p = a.rgba + 4 * ((size_t)y * a.width + x),
+						      *q = b.rgba + 4 * ((size_t)y * b.width + x);
+					if (abs(p[0] - q[0]) > 24 || abs(p[1] - q[1]) > 24 || abs(p[2] - q[2]) > 24)
+						r = t;
+				}
+				s1 += r;
+				s2 += r * r;
+			}
+			double mean = s1 / 360.0, var = s2 / 360.0 - mean * mean;
+			round = mean > 0.0 ? sqrt(var > 0.0 ? var : 0.0) / mean : 1.0;
 		}
 		/* the median column (a partial selection sort up to the middle) */
 		int m = a.width / 2;
@@ -357,8 +391,8 @@ int main(int argc, char **argv)
 					top[i] = top[j];
 					top[j] = t;
 				}
-		printf("coverage %.3f horizon %.3f\n", (double)on / ((double)a.width * a.height),
-		       (double)top[m] / a.height);
+		printf("coverage %.3f horizon %.3f round %.3f\n", (double)on / ((double)a.width * a.height),
+		       (double)top[m] / a.height, round);
 		free(top);
 		image_free(&a);
 		image_free(&b);
