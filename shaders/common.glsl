@@ -238,9 +238,16 @@ void main()
 #endif // DENSITY_REFINE
 #elif defined(FIELD_PASS_BOUND)
 #include "block_bound.glsl"
-#else // every other pass reads the densities, or their sign bits
+#else // every other pass reads the densities, or their sign bits (or both)
+#if defined(PASS_READS_SIGNS) || defined(PASS_CASE_FROM_SIGNS)
+// PASS_CASE_FROM_SIGNS: the comparison methods (mc_atomic.comp,
+// mc_nocompact.comp) read the debris filter's sign bits for the cells'
+// cases beside the densities for the vertices, at a point of their own
 #ifdef PASS_READS_SIGNS
 layout(std430, binding = BIND_SIGNS) restrict readonly buffer Signs { uint signs[]; };
+#else
+layout(std430, binding = BIND_CASE_SIGNS) restrict readonly buffer Signs { uint signs[]; };
+#endif
 // len (1..32) sign bits from bit b on, bit 0 = sample b
 uint sign_run(uint b, uint len)
 {
@@ -257,7 +264,8 @@ uint sign_bit_index(ivec3 c)
 	c += u_margin;
 	return uint(c.z) * sign_slab_bits() + uint(c.x + d.x * c.y);
 }
-#else
+#endif // PASS_READS_SIGNS || PASS_CASE_FROM_SIGNS
+#ifndef PASS_READS_SIGNS
 layout(std430, binding = BIND_DENSITY) restrict readonly buffer Dens { float dens[]; };
 // density at corner c (each component -1 .. n+1)
 float D(ivec3 c)
@@ -273,7 +281,7 @@ vec3 grad_at(ivec3 c)
 		    D(c + ivec3(0, 0, 1)) - D(c - ivec3(0, 0, 1)));
 }
 
-#endif // PASS_READS_SIGNS
+#endif // !PASS_READS_SIGNS
 
 // Marching Cubes tables (mc_tables.c), packed into a uniform block
 // (extract/pipeline.c upload_tables): per case two words, its 15 edge ids
@@ -299,7 +307,7 @@ int mc_tri(int cs, int k)
 	return int(((k < 8 ? w.x : w.y) >> (4u * uint(k & 7))) & 15u);
 }
 
-#ifdef PASS_READS_SIGNS
+#if defined(PASS_READS_SIGNS) || defined(PASS_CASE_FROM_SIGNS)
 // The case byte of cell c from its corners' sign bits (corner order of
 // mc_tables.c: 000 010 110 100 001 011 111 101, xyz).
 int cell_case(ivec3 c)
@@ -308,56 +316,6 @@ int cell_case(ivec3 c)
 	uint e = sign_run(sign_bit_index(c + ivec3(0, 0, 1)), 2u), f = sign_run(sign_bit_index(c + ivec3(0, 1, 1)), 2u);
 	return int((a & 1u) | ((b & 1u) << 1) | ((b & 2u) << 1) | ((a & 2u) << 2) | ((e & 1u) << 4) | ((f & 1u) << 5) |
 		   ((f & 2u) << 5) | ((e & 2u) << 6));
-}
-#elif defined(PASS_CASE_FROM_DENSITY) // mc_atomic.comp, mc_nocompact.comp (they include debris_island.glsl first)
-// Corner c inside, less debris of a few samples (debris_island) and
-// one-sample bubbles: the debris filter of shaders/mc_debris.comp, from the
-// densities (the atomic and no-compaction methods, which do not read the
-// sign bits)
-bool raw_in(ivec3 q)
-{
-	ivec3 lo = ivec3(-u_margin), hi = dens_dims() - u_margin;
-	return all(greaterThanEqual(q, lo)) && all(lessThan(q, hi)) && D(q) > u_iso;
-}
-int inside_at(ivec3 c)
-{
-	int count = 0;
-	for (int a = 0; a < 3; a++)
-		for (int s = -1; s <= 1; s += 2) {
-			ivec3 d = ivec3(0);
-			d[a] = s;
-			count += raw_in(c + d) ? 1 : 0;
-		}
-	if (!(D(c) > u_iso))
-		return count == 6 ? 1 : 0;
-	if (count == 0)
-		return 0;
-	// debris spans at most DEBRIS_SPAN samples: along each of the six
-	// directions an outside sample within that many steps
-	for (int a = 0; a < 3; a++)
-		for (int s = -1; s <= 1; s += 2) {
-			ivec3 d = ivec3(0);
-			d[a] = s;
-			if (raw_in(c + d) && raw_in(c + 2 * d) && raw_in(c + 3 * d))
-				return 1;
-		}
-	uint box[49];
-	for (int z = 0; z < 7; z++)
-		for (int y = 0; y < 7; y++) {
-			uint row = 0u;
-			for (int x = 0; x < 7; x++)
-				row |= raw_in(c + ivec3(x - 3, y - 3, z - 3)) ? 1u << uint(x) : 0u;
-			box[z * 7 + y] = row;
-		}
-	return debris_island(box) ? 0 : 1;
-}
-
-int cell_case(ivec3 c)
-{
-	int cs = 0;
-	for (int n = 0; n < 8; n++)
-		cs |= inside_at(c + mc_corner[n].xyz) << n;
-	return cs;
 }
 #endif
 #ifndef PASS_READS_SIGNS

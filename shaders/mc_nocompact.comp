@@ -1,8 +1,7 @@
 // isoterra — comparison method: no compaction.  Every cell writes its 15
 // vertex slots (5 triangles); unused slots become degenerate triangles.
 layout(local_size_x = WG_SIZE) in;
-#define PASS_CASE_FROM_DENSITY 1 // common.glsl's cell_case from the densities, less debris
-#include "debris_island.glsl"
+#define PASS_CASE_FROM_SIGNS 1 // the cases from the debris filter's sign bits, the vertices from the densities
 #include "common.glsl"
 #include "mc_status.glsl"
 #include "vertex.glsl"

@@ -537,6 +537,13 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	uint64_t need = nocompact ? 15 * ncells : 3 * (uint64_t)pl->tri_cap;
 	if (extract_vertex_room(pl, need, err, errlen) < 0)
 		return -1;
+	/* the cells' cases from the debris filter's sign bits, as the
+	 * HistoPyramid's classification reads them: the same mesh, the same
+	 * filter's work */
+	if (!pl->filtered)
+		debris_pass(pl, false, NULL, 0);
+	pl->filtered = false;
+	bind(BIND_CASE_SIGNS, pl->b_signs);
 	bind(BIND_DENSITY, pl->b_dens);
 	bind(BIND_VERTICES, pl->b_verts);
 	bind(BIND_STATUS, pl->b_status);

@@ -33,6 +33,8 @@
 #define BIND_CUT BIND_HP         /* the density pass's cut bits (1 = a far sample whose finest octaves were left
 				  * out, common.glsl), then the debris filter's near bits: the refine passes read them */
 #define BIND_REFINE BIND_OUT     /* the refine list: refine_mark.comp writes it, the field's refine variant reads it */
+#define BIND_CASE_SIGNS BIND_HP  /* the comparison methods (atomic append, no compaction): the filtered sign bits
+				  * for the cells' cases, beside the densities (they build no pyramid) */
 #define BIND_DEBRIS BIND_STATUS  /* the debris filter's candidate list: mc_debris.comp writes it, mc_debris_flood.comp
 				  * reads it (neither reads the status block) */
 
