@@ -24,6 +24,7 @@ struct kiosk {
 	int cur;                  /* the show on screen, -1 before the first */
 	long cycle;               /* completed passes through the playlist */
 	double show_end;          /* run time (s) the current show ends */
+	double show_start;        /* ... and began: its flight starts there */
 	bool started;
 	/* the crossfade from the last frame of the show before (kept by the renderer) */
 	double fade_start, fade_s;
@@ -111,6 +112,7 @@ static void start_show(struct kiosk *k, struct params *p, int i, double t)
 		return;
 	}
 	apply_terrain(p, &q);
+	k->show_start = k->show_end - s->seconds;
 	log_info("playlist: show %d of %d, %s %s for %g s, cycle %ld, seed %d", i + 1, k->nshows,
 		 s->file ? "config" : "preset", s->name, s->seconds, k->cycle + 1, q.seed);
 }
@@ -253,6 +255,11 @@ struct kiosk *kiosk_create(struct params *p, int argc, char **argv, char *err, s
 void kiosk_destroy(struct kiosk *k)
 {
 	free(k);
+}
+
+double kiosk_show_start(const struct kiosk *k)
+{
+	return k && k->nshows ? k->show_start : 0.0;
 }
 
 void kiosk_frame_begin(struct kiosk *k, struct params *p, struct renderer *r, double t)

@@ -30,6 +30,9 @@ void kiosk_destroy(struct kiosk *k); /* NULL is fine */
  * next show (the frame drawn last kept for the crossfade).  t: the run's
  * clock in seconds (wall clock on a display, index / fps headless). */
 void kiosk_frame_begin(struct kiosk *k, struct params *p, struct renderer *r, double t);
+/* When the current show began (the run's clock, s): each show's flight
+ * starts from its own spawn.  0 with no playlist (NULL k too). */
+double kiosk_show_start(const struct kiosk *k);
 /* After the scene drew the frame: the crossfade from the last show over
  * it.  0, or -1 with err.  NULL k: 0. */
 int kiosk_frame_end(struct kiosk *k, struct renderer *r, char *err, size_t errlen);

@@ -186,6 +186,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			upright_size(lp->r, lp->w, lp->h, &pw, &ph);
 			struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = pw,
 						  .h = ph, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
+						  .flight_start = kiosk_show_start(lp->kiosk),
 						  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
 						  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
 			controls_flight(lp->ctl, sf.move, sf.turn);

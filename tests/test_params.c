@@ -200,6 +200,21 @@ static void test_glsl(void)
 	CHECK(params_same_terrain(&a, &b), "grid is not terrain");
 	b.iso = 0.25f;
 	CHECK(!params_same_terrain(&a, &b), "iso is terrain");
+	/* the world's blocks: the draw's own parameters change no block */
+	params_defaults(&b);
+	b.ambient = 0.7f;
+	b.fog = 0.9f;
+	b.snow_line = -3.0f;
+	b.water_level = 4.0f;
+	CHECK(params_same_blocks(&a, &b) && !params_same_terrain(&a, &b), "light, fog, snow, water: the same blocks");
+	b.noise_amp = 7.0f;
+	CHECK(!params_same_blocks(&a, &b), "noise_amp: other blocks");
+	params_defaults(&b);
+	b.light_az = a.light_az + 30.0f; /* baked into the vertices' shadows */
+	CHECK(!params_same_blocks(&a, &b), "the sun's direction: other blocks");
+	params_defaults(&b);
+	b.ao_rays = 2;
+	CHECK(!params_same_blocks(&a, &b), "AO rays: other blocks");
 }
 
 static void test_presets_config(void)

@@ -91,6 +91,12 @@ int params_glsl_decls(char *buf, size_t len);
 int params_glsl_specialization(const struct params *p, char *buf, size_t len);
 /* True when two parameter sets give the same terrain (all P_SHADER equal). */
 bool params_same_terrain(const struct params *a, const struct params *b);
+/* True when two parameter sets give the same world blocks: the P_SHADER
+ * entries equal but those only the draw reads (the light's ambient and sun
+ * strength, the surface's colours, snow, fog, water, the AO's strength: no
+ * compute pass reads them; a sun direction is baked into the vertices'
+ * shadows and counts). */
+bool params_same_blocks(const struct params *a, const struct params *b);
 
 /* Presets: named key=value lists applied over the defaults. */
 struct preset {

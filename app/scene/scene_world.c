@@ -17,6 +17,8 @@ struct world_scene {
 	struct world *w;
 	struct autopilot ap;
 	bool ap_ready;
+	double flight_start; /* the frame's flight_start the flight began at */
+	struct params blocks_p; /* what the world's blocks were made for (params_same_blocks) */
 	float t0;  /* p->time: the world does not scroll, the camera moves */
 	float far; /* the camera's far plane */
 	bool governed;             /* the frame-time governor runs (live frames) */
@@ -122,7 +124,12 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	else if (ws->ap.manual) /* the autopilot again (the pad's start button) */
 		autopilot_resume(&ws->ap);
 	struct camera cam;
-	if (t + 0.5 / 60.0 < ws->ap.t) { /* the realtime clock's period began again: so does the flight */
+	/* a playlist's new show flies from its own spawn (its composed start)
+	 * over its own terrain, not on from where the last show's flight was
+	 * (where the new terrain may wall it in); the realtime clock's period
+	 * began again: so does the flight */
+	if (fr->flight_start != ws->flight_start || t - fr->flight_start + 0.5 / 60.0 < ws->ap.t) {
+		ws->flight_start = fr->flight_start;
 		autopilot_free(&ws->ap);
 		ws->ap_ready = false;
 		if (autopilot_init(&ws->ap, p, ws->ed) < 0) {
@@ -132,14 +139,27 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 		ws->ap_ready = true;
 	}
 	ws->ap.framing = ws->q.framing; /* the quality held since the last frame */
-	autopilot_advance(&ws->ap, t);
+	autopilot_advance(&ws->ap, t > ws->flight_start ? t - ws->flight_start : 0.0); /* (a pause held back the clock, not the show's) */
 	autopilot_camera(&ws->ap, &cam, p->fov, scene_frame_aspect(fr), ws->far);
 	camera_window(&cam, fr->view);
 	err[0] = 0;
 	struct params eff;
 	if (governed_params(ws, p, fr, &eff, err, errlen) < 0)
 		return -1;
-	int urc = fr->index == 0 ? world_fill(ws->w, &eff, &cam, t) : world_update(ws->w, &eff, &cam, t, !fr->live);
+	/* the terrain changed (a playlist's show, a knob, a reload): every
+	 * block is made again: live, each drawn as it was until its new mesh
+	 * replaces it, under the generation budget; offline, all of the view's
+	 * before this frame is drawn, as on the first frame.  Judged on the
+	 * parameters, not the governed ones: the governor's AO and shadows are
+	 * for new blocks only. */
+	bool refill = false;
+	if (!params_same_blocks(&ws->blocks_p, p)) {
+		ws->blocks_p = *p;
+		static const float everywhere[4] = { -1e30f, -1e30f, 1e30f, 1e30f };
+		log_info("world: the terrain changed: %d blocks made again", world_invalidate(ws->w, &eff, everywhere));
+		refill = !fr->live;
+	}
+	int urc = fr->index == 0 || refill ? world_fill(ws->w, &eff, &cam, t) : world_update(ws->w, &eff, &cam, t, !fr->live);
 	if (urc < 0)
 		return -1;
 	double td = clock_ms();
@@ -252,6 +272,7 @@ struct scene *scene_world_create(const struct params *p, char *err, size_t errle
 		return NULL;
 	}
 	ws->ap_ready = true;
+	ws->blocks_p = *p;
 	ws->q = governor_level(0);
 	return &ws->base;
 }
