@@ -17,7 +17,8 @@ struct world_scene {
 	struct world *w;
 	struct autopilot ap;
 	bool ap_ready;
-	double flight_start; /* the frame's flight_start the flight began at */
+	double show_start;   /* the last frame's flight_start (a playlist's show's start) */
+	double flight_t0;    /* the clock_time the flight began at */
 	struct params blocks_p; /* what the world's blocks were made for (params_same_blocks) */
 	float t0;  /* p->time: the world does not scroll, the camera moves */
 	float far; /* the camera's far plane */
@@ -128,8 +129,13 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	 * over its own terrain, not on from where the last show's flight was
 	 * (where the new terrain may wall it in); the realtime clock's period
 	 * began again: so does the flight */
-	if (fr->flight_start != ws->flight_start || t - fr->flight_start + 0.5 / 60.0 < ws->ap.t) {
-		ws->flight_start = fr->flight_start;
+	bool new_show = fr->flight_start != ws->show_start;
+	if (new_show || t - ws->flight_t0 + 0.5 / 60.0 < ws->ap.t) {
+		/* from the show's start (0 without a playlist: every board of a
+		 * wall the same flight), or from now when a pause held the clock
+		 * back behind the show's (clock_time <= the show's time) */
+		ws->show_start = fr->flight_start;
+		ws->flight_t0 = fr->flight_start <= t ? fr->flight_start : t;
 		autopilot_free(&ws->ap);
 		ws->ap_ready = false;
 		if (autopilot_init(&ws->ap, p, ws->ed) < 0) {
@@ -139,7 +145,7 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 		ws->ap_ready = true;
 	}
 	ws->ap.framing = ws->q.framing; /* the quality held since the last frame */
-	autopilot_advance(&ws->ap, t > ws->flight_start ? t - ws->flight_start : 0.0); /* (a pause held back the clock, not the show's) */
+	autopilot_advance(&ws->ap, t - ws->flight_t0);
 	autopilot_camera(&ws->ap, &cam, p->fov, scene_frame_aspect(fr), ws->far);
 	camera_window(&cam, fr->view);
 	err[0] = 0;
