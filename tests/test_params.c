@@ -1,4 +1,5 @@
 /* isoterra — parameter table, config files, presets and the command line. */
+#include <dirent.h>
 #include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
@@ -356,6 +357,120 @@ static void test_cli(void)
 	CHECK(quiet_parse("--list-presets") == CLI_EXIT_OK, "--list-presets");
 }
 
+/* The draw's own parameters (params_same_blocks) are read by no pass that
+ * makes a block: their uniforms appear only in the draw's shaders (the
+ * terrain's, the sky's and the water's fragment and vertex shaders, and
+ * shade.glsl, which only those and its own test include).  Checked against
+ * the sources (ISOTERRA_SRC). */
+static char *slurp(const char *path)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return NULL;
+	char *buf = NULL;
+	size_t n = 0, cap = 0, got;
+	char chunk[4096];
+	while ((got = fread(chunk, 1, sizeof(chunk), f)) > 0) {
+		if (n + got + 1 > cap) {
+			cap = (n + got + 1) * 2;
+			char *nb = realloc(buf, cap);
+			if (!nb) {
+				free(buf);
+				fclose(f);
+				return NULL;
+			}
+			buf = nb;
+		}
+		memcpy(buf + n, chunk, got);
+		n += got;
+	}
+	fclose(f);
+	if (buf)
+		buf[n] = 0;
+	return buf;
+}
+
+static bool word_in(const char *text, const char *word)
+{
+	size_t n = strlen(word);
+	for (const char *q = strstr(text, word); q; q = strstr(q + 1, word)) {
+		char before = q == text ? ' ' : q[-1], after = q[n];
+		bool id_b = before == '_' || (before >= 'a' && before <= 'z') || (before >= 'A' && before <= 'Z') ||
+			    (before >= '0' && before <= '9');
+		bool id_a = after == '_' || (after >= 'a' && after <= 'z') || (after >= 'A' && after <= 'Z') ||
+			    (after >= '0' && after <= '9');
+		if (!id_b && !id_a)
+			return true;
+	}
+	return false;
+}
+
+static void test_draw_only_sources(void)
+{
+	const char *src = getenv("ISOTERRA_SRC");
+	if (!src) {
+		printf("SKIP draw-only parameters against the shaders: ISOTERRA_SRC is not set (meson test sets it)\n");
+		return;
+	}
+	static const char *const draw_files[] = { "render.frag", "render.vert", "shade.glsl", "sky.frag", "sky.vert",
+						  "water.frag", "water.vert" };
+	char dir[1024];
+	snprintf(dir, sizeof(dir), "%s/shaders", src);
+	DIR *d = opendir(dir);
+	CHECK(d != NULL, "%s: cannot open", dir);
+	if (!d)
+		return;
+	int files = 0, draw_params = 0;
+	struct params a;
+	params_defaults(&a);
+	for (struct dirent *e; (e = readdir(d));) {
+		size_t n = strlen(e->d_name);
+		if (n < 6 || (strcmp(e->d_name + n - 5, ".comp") && strcmp(e->d_name + n - 5, ".glsl") &&
+			      strcmp(e->d_name + n - 5, ".frag") && strcmp(e->d_name + n - 5, ".vert")))
+			continue;
+		bool draw = false;
+		for (size_t k = 0; k < sizeof(draw_files) / sizeof(draw_files[0]); k++)
+			draw = draw || !strcmp(e->d_name, draw_files[k]);
+		char path[1300];
+		snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
+		char *text = slurp(path);
+		CHECK(text != NULL, "%s: cannot read", path);
+		if (!text)
+			continue;
+		files++;
+		/* shade.glsl: the draw's and its own test's only */
+		if (strstr(text, "#include \"shade.glsl\""))
+			CHECK(draw || !strcmp(e->d_name, "shade_test.comp"), "%s includes shade.glsl (the draw's)", e->d_name);
+		if (!draw) {
+			draw_params = 0;
+			for (size_t i = 0; i < param_count; i++) {
+				const struct param_info *pi = &param_table[i];
+				if (!(pi->flags & P_SHADER) || pi->type == PT_STRING)
+					continue;
+				struct params b = a;
+				double v = params_get_number(&a, pi);
+				params_set_number(&b, pi, v + 1.0); /* within its range: up, else down */
+				if (params_get_number(&b, pi) == v)
+					params_set_number(&b, pi, v - 1.0);
+				if (params_get_number(&b, pi) == v)
+					params_set_number(&b, pi, v * 0.5);
+				CHECK(params_get_number(&b, pi) != v, "%s: cannot be changed for the check", pi->name);
+				if (!params_same_blocks(&a, &b))
+					continue;
+				draw_params++;
+				char u[80];
+				snprintf(u, sizeof(u), "u_%s", pi->name);
+				CHECK(!word_in(text, u) || !strcmp(e->d_name, "shade_test.comp"),
+				      "%s reads %s, which params_same_blocks counts as the draw's own", e->d_name, u);
+			}
+		}
+		free(text);
+	}
+	closedir(d);
+	CHECK(files > 20, "only %d shader files in %s", files, dir);
+	CHECK(draw_params >= 10, "only %d draw-only parameters", draw_params);
+}
+
 int main(void)
 {
 	if (!mkdtemp(tmpdir)) {
@@ -366,6 +481,7 @@ int main(void)
 	test_set();
 	test_round_trip();
 	test_glsl();
+	test_draw_only_sources();
 	test_presets_config();
 	test_cli();
 	char cmd[300];
