@@ -146,12 +146,26 @@ static inline float nlerp(float t, float a, float b)
 	return a + t * (b - a);
 }
 
-/* Perlin's 16 gradients (12 cube-edge directions, 4 of them twice), h in 0..15 */
+/* v with its sign flipped when neg (0 or 1): -v exactly, without a branch */
+static inline float nflip(float v, uint32_t neg)
+{
+	uint32_t b;
+	memcpy(&b, &v, sizeof(b));
+	b ^= neg << 31;
+	memcpy(&v, &b, sizeof(v));
+	return v;
+}
+
+/* Perlin's 16 gradients (12 cube-edge directions, 4 of them twice), h in 0..15:
+ * u = x or y, v = y, x or z (h 12 and 14: x), their signs from h's two low
+ * bits; selects and sign flips, no branch (h is random: branches on it
+ * mispredict half the time; the CPU's autopilot and references call this
+ * eight times a sample and octave) */
 static inline float ngrad(uint32_t h, float x, float y, float z)
 {
 	float u = h < 8u ? x : y;
-	float v = h < 4u ? y : (h == 12u || h == 14u ? x : z);
-	return ((h & 1u) == 0u ? u : -u) + ((h & 2u) == 0u ? v : -v);
+	float v = h < 4u ? y : ((h | 2u) == 14u ? x : z);
+	return nflip(u, h & 1u) + nflip(v, (h >> 1) & 1u);
 }
 
 /* lowbias32 is a bijection, so is this (0x5851f42d: any odd salt; it keeps
@@ -167,7 +181,8 @@ uint32_t noise_perlin_key(int seed)
  * corners get, since every float beyond 2^23 is a lattice point (f = 0). */
 static inline int32_t lattice(float P)
 {
-	return (int32_t)fminf(fmaxf(P, -0x1p30f), 0x1p30f);
+	/* fminf(fmaxf(P, -2^30), 2^30) without libm's calls: NaN gives -2^30 too */
+	return P >= 0x1p30f ? (int32_t)0x40000000 : P >= -0x1p30f ? (int32_t)P : -(int32_t)0x40000000;
 }
 
 unsigned noise_perlin_gradient(const struct noise_set *ns, int32_t X, int32_t Y, int32_t Z)
