@@ -91,6 +91,7 @@ struct controls {
 	struct knobs knobs;
 	struct params base;    /* the start-up values (reset, preset cycling) */
 	int preset;            /* index of the last preset applied, -1 none */
+	unsigned presets_applied; /* presses of the preset button that applied one */
 	bool paused;
 	bool shot;             /* a screenshot asked for (controls_take_screenshot) */
 	FILE *knob_log;
@@ -235,6 +236,7 @@ static void apply_preset(struct controls *c, struct params *p)
 		if ((pi->flags & P_SHADER) && pi->type != PT_STRING && strcmp(pi->name, "time"))
 			params_set_number(p, pi, params_get_number(&q, pi));
 	}
+	c->presets_applied++;
 	log_info("knob: preset %s", presets[c->preset].name);
 	knob_log(c, "preset %s", presets[c->preset].name);
 	show(c, p, "preset", presets[c->preset].name, -1);
@@ -326,6 +328,11 @@ int controls_poll(struct controls *c, struct params *p)
 	if (in.actions[HAL_SCREENSHOT])
 		c->shot = true;
 	return in.actions[HAL_QUIT] != 0;
+}
+
+unsigned controls_presets_applied(const struct controls *c)
+{
+	return c ? c->presets_applied : 0;
 }
 
 bool controls_paused(const struct controls *c)

@@ -57,6 +57,9 @@ int controls_poll(struct controls *c, struct params *p);
 void controls_flight(struct controls *c, float move[3], float turn[2]);
 /* Paused by a button or key (the frame loop's clocks stop). */
 bool controls_paused(const struct controls *c);
+/* How many presets the preset button has applied (0 for NULL): the loop
+ * starts the world's flight again from the new preset's spawn. */
+unsigned controls_presets_applied(const struct controls *c);
 
 /* An animation clock that stops while paused: pause_clock_time(pc, t,
  * paused) is t while running, frozen while paused, the time paused taken

@@ -137,6 +137,8 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 	long long last_tick = LLONG_MIN;
 	double deadline = 0.0;
 	bool shown_paused = false;
+	unsigned presets_seen = 0;  /* the preset button's presses seen ... */
+	double preset_flight = 0.0; /* ... and the clock when the last one was */
 	lp->frames = 0;
 	err[0] = 0;
 	for (int f = 0; p->count == 0 || f < p->count; f++) {
@@ -176,9 +178,18 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			clock_time = ct - (double)((float)ct - pause_clock_time(&wall_clock, (float)ct, paused));
 			show_time = ct;
 		}
+		if (controls_presets_applied(lp->ctl) != presets_seen) { /* its flight from its own spawn */
+			presets_seen = controls_presets_applied(lp->ctl);
+			preset_flight = clock_time;
+		}
 		bool last = p->count > 0 && f == p->count - 1;
 		if (!idle) {
 			kiosk_frame_begin(lp->kiosk, p, lp->r, show_time);
+			/* the flight starts again with a show (as it begins, above)
+			 * or a preset from the controls */
+			double flight_start = kiosk_show_start(lp->kiosk);
+			if (preset_flight > flight_start)
+				flight_start = preset_flight;
 			struct wall_view view;
 			if (frame_view(lp, &view, err, errlen) < 0)
 				return -1;
@@ -186,7 +197,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 			upright_size(lp->r, lp->w, lp->h, &pw, &ph);
 			struct scene_frame sf = { .index = f, .last = last, .live = lp->live, .r = lp->r, .w = pw,
 						  .h = ph, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
-						  .flight_start = kiosk_show_start(lp->kiosk),
+						  .flight_start = flight_start,
 						  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
 						  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
 			controls_flight(lp->ctl, sf.move, sf.turn);

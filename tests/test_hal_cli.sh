@@ -55,8 +55,17 @@ if command -v script >/dev/null; then
 		print('%dx%d' % struct.unpack('>II', d[16:24]) if d[:8] == b'\x89PNG\r\n\x1a\n' else 'not a PNG')" 2>/dev/null)
 	[ $rc -eq 0 ] && [ "$size" = 64x48 ] && grep -q "screenshot: shot-0.png" shot.log && [ ! -e shot-1.png ] && ok ||
 		bad "screenshot key: rc $rc, shot-0.png '$size': $(tr -d '\r' <shot.log | grep -v '^\[' | tail -3)"
+	# the next-preset key in the world scene: the world is made again for
+	# the new terrain (every block; before, only blocks the flight reached
+	# later had it) and its flight starts again from the preset's spawn
+	(sleep 3; printf 'n'; sleep 4; printf 'q') | timeout -k 5 120 script -qec "'$BIN' --keyboard tty --scene world \
+		--preset canyon --size 64x48 --count 1000000 --out o.png" /dev/null >pre.log 2>&1
+	rc=$?
+	[ $rc -eq 0 ] && grep -q "knob: preset default" pre.log &&
+		grep -qE "world: the terrain changed: [1-9][0-9]* blocks made again" pre.log && ok ||
+		bad "next-preset key in the world: rc $rc: $(tr -d '\r' <pre.log | grep -v '^\[' | tail -3)"
 else
-	echo "SKIP screenshot key: no script(1)"
+	echo "SKIP screenshot and preset keys: no script(1)"
 fi
 echo "hal_cli: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -11,8 +11,10 @@
 # SHOWREEL_PRESETS (default canyon alien turbulence plains fbm).  The file is
 # written whole or not at all (the program writes a temporary file and
 # renames it).  2.49 GB at the defaults (1280x720 4:2:0, 1800 frames);
-# about 8 minutes on a 2-core machine with llvmpipe (914 s of CPU), 217 MB
-# resident at the peak.
+# about 7 minutes on a 2-core machine with llvmpipe (7:06 wall, 788 s of
+# CPU, 2026-11-28), 219 MiB resident at the peak.  Each show is its preset's
+# own flight from its spawn over its own terrain (the world is made again
+# at each change).
 set -eu
 BIN=${1:-./build/isoterra}
 OUT=${2:-showreel.y4m}
