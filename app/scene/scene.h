@@ -24,8 +24,9 @@ struct scene_frame {
 	double clock_time;       /* live: seconds since the first frame, else
 	                          * index / fps; the time paused taken out */
 	double flight_start;     /* the clock_time the autopilot's flight began:
-	                          * 0, or a playlist's show's start (each show
-	                          * flies from its own spawn over its terrain) */
+	                          * 0, a playlist's show's start or the preset
+	                          * key's press (each flies from its own spawn
+	                          * over its own terrain) */
 	float move[3], turn[2];  /* the manual camera's held flight keys (-1..1):
 	                          * forward, right, up; yaw right, pitch up */
 	struct renderer *r;      /* draw into it */

@@ -17,7 +17,7 @@ struct world_scene {
 	struct world *w;
 	struct autopilot ap;
 	bool ap_ready;
-	double show_start;   /* the last frame's flight_start (a playlist's show's start) */
+	double show_start;   /* the last frame's flight_start (a show's start, a preset's press) */
 	double flight_t0;    /* the clock_time the flight began at */
 	struct params blocks_p; /* what the world's blocks were made for (params_same_blocks) */
 	float t0;  /* p->time: the world does not scroll, the camera moves */
@@ -125,10 +125,10 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 	else if (ws->ap.manual) /* the autopilot again (the pad's start button) */
 		autopilot_resume(&ws->ap);
 	struct camera cam;
-	/* a playlist's new show flies from its own spawn (its composed start)
-	 * over its own terrain, not on from where the last show's flight was
-	 * (where the new terrain may wall it in); the realtime clock's period
-	 * began again: so does the flight */
+	/* a new flight (a playlist's show, the preset key) from its own spawn
+	 * (its composed start) over its own terrain, not on from where the
+	 * last one was (where the new terrain may wall it in); the realtime
+	 * clock's period began again: so does the flight */
 	bool new_show = fr->flight_start != ws->show_start;
 	if (new_show || t - ws->flight_t0 + 0.5 / 60.0 < ws->ap.t) {
 		/* from the show's start (0 without a playlist: every board of a
