@@ -1,8 +1,7 @@
 // isoterra — the raw sign bits as the debris filter reads them
 // (shaders/mc_debris.comp, mc_debris_flood.comp): words, unaligned runs,
-// a z slab's runs.  The
-// including pass declares u_sign_words and binds the raw bits as Signs
-// (common.glsl, PASS_READS_SIGNS).
+// a z slab's runs.  The including pass declares u_sign_words and binds the
+// raw bits as Signs (common.glsl, PASS_READS_SIGNS).
 uint raw_word(uint w) { return w < u_sign_words ? signs[w] : 0u; }
 
 // 32 raw bits from bit b on (any alignment), bit 0 = sample b

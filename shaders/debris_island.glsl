@@ -1,6 +1,6 @@
 // isoterra — debris of a few samples: the debris filter's second pass
-// (shaders/mc_debris_flood.comp) and common.glsl's inside_at ask it;
-// app/extract/mc_ref.c mirrors it.  box holds the inside bits of a 7x7x7
+// (shaders/mc_debris_flood.comp) asks it; app/extract/mc_ref.c mirrors it
+// (the CPU reference, which tests/test_debris.c checks by labelling).  box holds the inside bits of a 7x7x7
 // box around a sample, row (dz + 3) * 7 + dy + 3 the samples dx = -3 .. 3
 // in bits 0 .. 6 (a sample beyond the grid outside).
 // The sample's 6-connected inside component, grown within the box, is

@@ -48,12 +48,13 @@ void main()
 		return;
 	int z = int(gl_WorkGroupID.y);
 	uint w0 = uint(z) * words; // the slab's first word
-	int b0 = int(wv) * 32;     // this word's first sample in the slab
-	uint c = raw_word(w0 + wv);
+	uint wi = w0 + wv;         // this word
+	int b0 = int(wv) * 32;     // its first sample in the slab
+	uint c = raw_word(wi);
 	uint valid = bits_below(b0, n);
 	// x: the samples before and after along the slab, not across a row's end
-	uint prev = wv > 0u ? raw_word(w0 + wv - 1u) : 0u;
-	uint next = wv + 1u < words ? raw_word(w0 + wv + 1u) : 0u;
+	uint prev = wv > 0u ? raw_word(wi - 1u) : 0u;
+	uint next = wv + 1u < words ? raw_word(wi + 1u) : 0u;
 	uint xm = (c << 1) | (prev >> 31), xp = (c >> 1) | (next << 31);
 	int x = divmod(b0, dim.x).y;
 	uint xm_ok = ~0u, xp_ok = ~0u; // the bits whose neighbour exists
@@ -80,8 +81,8 @@ void main()
 	                      : (dim.x - b0 < 32 ? raw_run32(w0 * 32u) << uint(dim.x - b0) : 0u);
 	uint yp = raw_run32(w0 * 32u + uint(b0 + dim.x)) & bits_below(b0 + dim.x, n);
 	// z: the same word a slab before and after, inside the grid
-	uint zm = z > 0 ? raw_word(w0 - words + wv) : 0u;
-	uint zp = z + 1 < dim.z ? raw_word(w0 + words + wv) : 0u;
+	uint zm = z > 0 ? raw_word(wi - words) : 0u;
+	uint zp = z + 1 < dim.z ? raw_word(wi + words) : 0u;
 	uint any6 = xm | xp | ym | yp | zm | zp, all6 = xm & xp & ym & yp & zm & zp;
 	// Two-sample islands: a sample whose only inside neighbour (along d)
 	// has no inside neighbour but it (the runs at d + e, e != -d)
@@ -126,13 +127,12 @@ void main()
 	if (cand != 0u)
 		cand &= ~(zp & RUN(0, 0, 2, ~0u) & RUN(0, 0, 3, ~0u)) & ~(zm & RUN(0, 0, -2, ~0u) & RUN(0, 0, -3, ~0u));
 #undef RUN
-	if (cand != 0u && w0 + wv < u_sign_words) { // an entry a word: room for every word
+	if (cand != 0u && wi < u_sign_words) { // an entry a word: room for every word
 		uint e = atomicAdd(dl[DL_COUNT], 1u);
-		dl[DL_HEAD + 2u * e] = w0 + wv;
+		dl[DL_HEAD + 2u * e] = wi;
 		dl[DL_HEAD + 2u * e + 1u] = cand;
 		atomicMax(dl[DL_DISPATCH], min(e / uint(WG_SIZE) + 1u, u_max_groups));
 	}
-	uint wi = w0 + wv;
 	if (wi < u_sign_words) {
 		filtered[wi] = ((c & any6 & ~iso2) | (~c & all6)) & valid;
 #ifdef DEBRIS_NEAR

@@ -24,7 +24,8 @@
  *       and "round R": how far the subject's outline is from a circle,
  *       the spread (standard deviation) of its distance from the
  *       subject's centroid over 360 directions, as a fraction of its mean
- *       (0: a disk; a square gives 0.105; 1: no subject)
+ *       (a disk of radius 100 pixels gives 0.003, a square 0.105; 1: no
+ *       subject)
  *   imgcmp --sheet OUT.png COLS IN... a contact sheet: the pictures (all of
  *       one size) halved (2x2 box filter) and tiled COLS to a row, in
  *       order, 4 pixels of dark grey between and around them */
@@ -236,6 +237,14 @@ static int crop(struct image *img, int x, int y, int w, int h)
 	return 0;
 }
 
+/* --coverage: pixel x, y is the subject's (off by more than 24 in a channel
+ * from the empty view) */
+static bool subject_at(const struct image *a, const struct image *b, int x, int y)
+{
+	const uint8_t *p = a->rgba + 4 * ((size_t)y * a->width + x), *q = b->rgba + 4 * ((size_t)y * b->width + x);
+	return abs(p[0] - q[0]) > 24 || abs(p[1] - q[1]) > 24 || abs(p[2] - q[2]) > 24;
+}
+
 static int usage(void)
 {
 	fprintf(stderr, "usage: imgcmp A B [--threshold T] [--max-mean M] [--max-frac F] [--min-psnr DB] [--at X,Y] "
@@ -347,8 +356,7 @@ int main(int argc, char **argv)
 		for (int x = 0; x < a.width; x++) {
 			top[x] = a.height;
 			for (int y = 0; y < a.height; y++) {
-				const uint8_t *p = a.rgba + 4 * ((size_t)y * a.width + x), *q = b.rgba + 4 * ((size_t)y * b.width + x);
-				bool diff = abs(p[0] - q[0]) > 24 || abs(p[1] - q[1]) > 24 || abs(p[2] - q[2]) > 24;
+				bool diff = subject_at(&a, &b, x, y);
 				on += diff;
 				if (diff) {
 					sx += x;
@@ -371,9 +379,7 @@ int main(int argc, char **argv)
 					int x = (int)(cx + t * dx + 0.5), y = (int)(cy + t * dy + 0.5);
 					if (x < 0 || y < 0 || x >= a.width || y >= a.height)
 						break;
-					const uint8_t *p = a.rgba + 4 * ((size_t)y * a.width + x),
-						      *q = b.rgba + 4 * ((size_t)y * b.width + x);
-					if (abs(p[0] - q[0]) > 24 || abs(p[1] - q[1]) > 24 || abs(p[2] - q[2]) > 24)
+					if (subject_at(&a, &b, x, y))
 						r = t;
 				}
 				s1 += r;

@@ -306,6 +306,16 @@ static int debris_pass(struct pipeline *pl, bool near, char *err, size_t errlen)
 	return 0;
 }
 
+/* The filtered sign bits (b_signs) for what reads the cells' cases: the
+ * plain filter, unless the refine pass's filter already made them from
+ * these densities (its program is made at creation: no error to report). */
+static void filtered_signs(struct pipeline *pl)
+{
+	if (!pl->filtered)
+		debris_pass(pl, false, NULL, 0);
+	pl->filtered = false;
+}
+
 /* After the last slab, when a slab was cut: the debris filter, with the
  * samples next to a sign change marked (its near bits); refine_mark.comp
  * lists the cut samples within one step of those (b_refine, abi.h RF_*);
@@ -419,9 +429,7 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 static void pyramid_passes(struct pipeline *pl, const struct params *p)
 {
 	double t = clock_ms();
-	if (!pl->filtered)
-		debris_pass(pl, false, NULL, 0); /* the plain filter's program is made at creation */
-	pl->filtered = false;
+	filtered_signs(pl);
 	set_common(pl, pl->p_classify, p);
 	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words"), pl->words);
 	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
@@ -540,9 +548,7 @@ static int run_append(struct pipeline *pl, const struct params *p, bool nocompac
 	/* the cells' cases from the debris filter's sign bits, as the
 	 * HistoPyramid's classification reads them: the same mesh, the same
 	 * filter's work */
-	if (!pl->filtered)
-		debris_pass(pl, false, NULL, 0);
-	pl->filtered = false;
+	filtered_signs(pl);
 	bind(BIND_CASE_SIGNS, pl->b_signs);
 	bind(BIND_DENSITY, pl->b_dens);
 	bind(BIND_VERTICES, pl->b_verts);

@@ -333,19 +333,9 @@ bool params_same_terrain(const struct params *a, const struct params *b)
 
 bool params_same_blocks(const struct params *a, const struct params *b)
 {
-	/* read by render.frag, shade.glsl, sky.frag, water.* only */
-	static const char *const draw_only[] = { "ambient", "sun", "tex_scale", "bump", "detail", "strata", "soil",
-						 "snow_line", "marble_color", "water", "water_level", "water_octaves",
-						 "water_freq", "water_wave", "water_lacunarity", "water_gain", "fog",
-						 "fog_height", "ao_strength" };
 	for (size_t i = 0; i < param_count; i++) {
 		const struct param_info *pi = &param_table[i];
-		if (!(pi->flags & P_SHADER) || params_get_number(a, pi) == params_get_number(b, pi))
-			continue;
-		bool draw = false;
-		for (size_t k = 0; k < ARRAY_SIZE(draw_only) && !draw; k++)
-			draw = !strcmp(pi->name, draw_only[k]);
-		if (!draw)
+		if ((pi->flags & (P_SHADER | P_DRAW)) == P_SHADER && params_get_number(a, pi) != params_get_number(b, pi))
 			return false;
 	}
 	return true;

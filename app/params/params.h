@@ -27,6 +27,10 @@ enum param_flags {
 	                        * term's code is compiled only under TERM_<NAME>;
 	                        * the value stays a uniform while the term is on
 	                        * (a knob moving within "on" never recompiles) */
+	P_DRAW = 1 << 5,       /* P_SHADER read by the draw's shaders only (the
+	                        * terrain's, sky's, water's): no compute pass
+	                        * reads it, so a change makes no world block
+	                        * again (params_same_blocks) */
 };
 
 #define PARAM_STR_MAX 256
@@ -92,10 +96,9 @@ int params_glsl_specialization(const struct params *p, char *buf, size_t len);
 /* True when two parameter sets give the same terrain (all P_SHADER equal). */
 bool params_same_terrain(const struct params *a, const struct params *b);
 /* True when two parameter sets give the same world blocks: the P_SHADER
- * entries equal but those only the draw reads (the light's ambient and sun
- * strength, the surface's colours, snow, fog, water, the AO's strength: no
- * compute pass reads them; a sun direction is baked into the vertices'
- * shadows and counts). */
+ * entries equal but the P_DRAW ones (the light's ambient and sun strength,
+ * the surface's colours, snow, fog, water, the AO's strength; a sun
+ * direction is baked into the vertices' shadows and counts). */
 bool params_same_blocks(const struct params *a, const struct params *b);
 
 /* Presets: named key=value lists applied over the defaults. */
