@@ -137,6 +137,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 	long long last_tick = LLONG_MIN;
 	double deadline = 0.0;
 	bool shown_paused = false;
+	double last_work_ms = -1.0; /* the frame before's work (scene_frame) */
 	unsigned presets_seen = 0;  /* the preset button's presses seen ... */
 	double preset_flight = 0.0; /* ... and the clock when the last one was */
 	lp->frames = 0;
@@ -149,6 +150,7 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		 * again (the display sees signals, window events and the
 		 * watchdog's ping there) */
 		bool idle = lp->live && shown_paused && controls_paused(lp->ctl) && paused_wait(lp, f);
+		double work_t0 = clock_ms(), capped_ms = 0.0;
 		/* the frame cap in force: max_fps, lowered by the low-power profile */
 		bool low = power_update(lp->power, p, clock_ms() / 1e3);
 		double cap = p->max_fps;
@@ -199,7 +201,8 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 						  .h = ph, .view = &view, .frame_time = frame_time, .clock_time = clock_time,
 						  .flight_start = flight_start,
 						  .refresh_hz = lp->refresh_hz, .cap_fps = cap,
-						  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL };
+						  .min_quality = low ? p->low_power_quality : 0, .timing = lp->timing ? &tm : NULL,
+						  .last_work_ms = last_work_ms };
 			controls_flight(lp->ctl, sf.move, sf.turn);
 			if (lp->scene->ops->frame(lp->scene, p, &sf, err, errlen) < 0 ||
 			    kiosk_frame_end(lp->kiosk, lp->r, err, errlen) < 0 ||
@@ -218,9 +221,15 @@ int frame_loop_run(struct frame_loop *lp, char *err, size_t errlen)
 		}
 		if (lp->scene->ops->status)
 			lp->scene->ops->status(lp->scene, fr.status, sizeof(fr.status));
-		if (cap > 0) /* frames handed to the display (the sinks) at the cap's pace */
+		if (cap > 0) { /* frames handed to the display (the sinks) at the cap's pace */
+			double t = clock_ms();
 			pace(cap, &deadline);
+			capped_ms = clock_ms() - t;
+		}
 		int q = sinks_frame(lp->sinks, &fr, err, errlen);
+		/* the frame's work: its time less the cap's sleep and the
+		 * display's waits (an idle frame's is not a frame time) */
+		last_work_ms = idle ? -1.0 : clock_ms() - work_t0 - capped_ms - fr.wait_ms;
 		lp->r = fr.r; /* a display's resize */
 		lp->w = fr.w;
 		lp->h = fr.h;

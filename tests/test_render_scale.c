@@ -11,7 +11,9 @@
  * Also the terrain's two variants (render.c): a mesh said to stay beyond
  * DETAIL_RANGE is drawn without the detail normals.  Seen from afar (all
  * of the volume beyond that range) both variants give the same frame; from
- * near, they differ (the near variant has the detail).  And the depth
+ * near, they differ (the near variant has the detail), and the governor's
+ * step that turns the detail off draws a near mesh as the far variant does.
+ * And the depth
  * pre-pass (render.h): the volume's frame with it is the frame without it,
  * pixel for pixel. */
 #include <math.h>
@@ -169,6 +171,20 @@ static void detail_variants(struct renderer *r, const struct pipeline_draw *d, c
 				CHECK(dd < DETAIL_RANGE, "the near view is within the detail range (%.1f)", dd);
 				CHECK(moved >= W * H / 20, "from near the two variants differ: the detail is in one only (%d pixels)",
 				      moved);
+				/* the governor's detail step: a near mesh drawn with the
+				 * far variant, then the detail back */
+				struct image off = { 0 }, on = { 0 };
+				renderer_set_detail(r, false);
+				CHECK(mesh_frame(r, d, &p, g, 0.0f, &off) == 0, "near mesh, detail off");
+				renderer_set_detail(r, true);
+				CHECK(mesh_frame(r, d, &p, g, 0.0f, &on) == 0, "near mesh, detail on again");
+				if (off.rgba && on.rgba) {
+					CHECK(!memcmp(off.rgba, b.rgba, (size_t)W * H * 4),
+					      "detail off: a near mesh is drawn as a far one, pixel for pixel");
+					CHECK(!memcmp(on.rgba, a.rgba, (size_t)W * H * 4), "detail on again: the near frame back");
+				}
+				free(off.rgba);
+				free(on.rgba);
 			}
 		}
 		free(a.rgba);

@@ -14,6 +14,16 @@ static inline double clock_ms(void)
 	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
 }
 
+/* This thread's CPU time in milliseconds (what it waited for, asleep or
+ * blocked, not counted). */
+static inline double clock_thread_cpu_ms(void)
+{
+	struct timespec ts;
+	if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0)
+		return 0.0;
+	return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
 /* The CLOCK_REALTIME tick now: whole periods of 1/fps since the Unix
  * epoch (every board of a wall agrees on it to their clocks' sync). */
 static inline long long clock_realtime_tick(double fps)

@@ -72,10 +72,21 @@ static int display_frame(struct sink *s, struct sink_frame *fr, char *err, size_
 		err[0] = 0; /* reported */
 		return -1;
 	}
+	/* the frame finished first (its work: the GPU's, or a software
+	 * rasterizer's threads'), so that what the present then takes beyond
+	 * this thread's CPU time is time spent blocked: waiting for a vertical
+	 * blank, a page flip's event, a compositor's frame callback, an X
+	 * server's copy of a software frame (the server's work, not this
+	 * process's) */
+	glFinish();
+	double t0 = clock_ms(), c0 = clock_thread_cpu_ms();
 	if (platform_present(plat) < 0) {
 		snprintf(err, errlen, "presenting the frame failed");
 		return -1;
 	}
+	double waited = (clock_ms() - t0) - (clock_thread_cpu_ms() - c0);
+	if (waited > 0.0)
+		fr->wait_ms += waited;
 	d->frames++;
 	snprintf(d->status, sizeof(d->status), "%s", fr->status);
 	int rc = platform_dispatch(plat);

@@ -48,6 +48,10 @@ struct sink_frame {
 	char battery_status[16];
 	bool low_power;
 	double cap_fps;
+	/* out: what the sinks spent waiting for the display, not working
+	 * (a vertical blank, a page flip), ms: the frame's work is its time
+	 * less this (the governor, app/run.c) */
+	double wait_ms;
 };
 
 /* The end of the run. */

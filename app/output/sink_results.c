@@ -196,6 +196,12 @@ static void write_json(struct results_sink *rs, FILE *f, const struct sink_end *
 	fprintf(f, "  \"blocks_probed\": %llu, \"blocks_skipped\": %llu,\n", c.blocks_probed, c.blocks_skipped);
 	fputs("  \"governor\": ", f);
 	json_str(f, rs->status);
+	/* what the governor held on average (quality, beside the times) */
+	if (c.governed)
+		fprintf(f, ",\n  \"held\": {\"render_scale\": %.3f, \"view_distance\": %.3f, \"level_at_end\": %d}",
+			c.held_scale, c.held_view, c.held_level);
+	else
+		fputs(",\n  \"held\": null", f);
 	fputs(",\n  \"power\": {\"battery_percent\": ", f);
 	if (rs->battery_percent >= 0)
 		fprintf(f, "%d", rs->battery_percent);

@@ -46,6 +46,7 @@ struct renderer {
 	bool draw_sky;
 	bool sky_due;     /* the sky of the frame begun, not drawn yet (sky_pass) */
 	bool smooth_off;  /* the governor turned the filter after the frame off */
+	bool detail_off;  /* ... and the close-up detail: every mesh drawn with PROG_FAR */
 	struct camera cam;       /* this frame's, for a variant made mid-frame */
 	const struct params *par; /* this frame's parameters (renderer_begin's) */
 	float clear[3];
@@ -418,7 +419,7 @@ static int depth_pass(struct renderer *r, const struct pipeline_draw *d, uint32_
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
 			float dist)
 {
-	int want = dist >= DETAIL_RANGE ? PROG_FAR : PROG_NEAR;
+	int want = dist >= DETAIL_RANGE || r->detail_off ? PROG_FAR : PROG_NEAR;
 	if (want == PROG_FAR && !r->tp[PROG_FAR].prog) {
 		r->tp[PROG_FAR].prog = terrain_variant(r->key, PROG_FAR);
 		if (r->tp[PROG_FAR].prog)
@@ -559,6 +560,11 @@ int renderer_end(struct renderer *r)
 void renderer_set_smoothing(struct renderer *r, bool on)
 {
 	r->smooth_off = !on;
+}
+
+void renderer_set_detail(struct renderer *r, bool on)
+{
+	r->detail_off = !on;
 }
 
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen)

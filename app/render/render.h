@@ -82,6 +82,10 @@ int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen
  * software rasterizer) on or off from the next frame (the governor's first
  * step); multisampling is not touched.  On by default. */
 void renderer_set_smoothing(struct renderer *r, bool on);
+/* The close-up detail (render.frag's DETAIL_NORMALS) on or off from the
+ * next mesh drawn (the governor's second step): off, every mesh is drawn
+ * with the program of those beyond DETAIL_RANGE.  On by default. */
+void renderer_set_detail(struct renderer *r, bool on);
 /* Paint on the ground: an RGBA16F texture over the XZ rectangle origin ..
  * origin + size, per texel (paint weight, surface ROAD_SURFACE_*, height
  * less y0); a fragment within tol of that height takes the surface's

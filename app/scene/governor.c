@@ -7,35 +7,42 @@
  * the user notices least: first the edge smoothing after the frame (the
  * filter a software rasterizer runs instead of multisampling: about a
  * tenth of a 640x480 world frame on llvmpipe; on a GPU, which
- * multisamples, the step changes nothing), then resolution (upscaled with
- * a filter that keeps edges; the upscale replaces the smoothing), and
- * with its first step the autopilot's composed start
- * (the view tilted down onto the land for a flight's first seconds: land
- * filling the frame is the frame's whole cost on a software rasterizer,
- * so a governor that must step down gives up the framing first), then how
- * fast new blocks arrive, then the blocks' AO, then their sun shadows
- * (half the steps, then none), then the far blocks' finest octaves, and
- * only then how far one sees.  AO and shadows are baked into new blocks:
- * what they save is generation time. */
+ * multisamples, the step changes nothing), then the close-up detail (the
+ * near meshes drawn with the far ones' program: the grain of the rock and
+ * the grass within 25 units, faint at the flight's height, gone; 12-14 %
+ * of a full-quality world frame on llvmpipe), then how fast new blocks
+ * arrive (half, a quarter of the budget: the finer levels come in later,
+ * the coarser ones stand in meanwhile; before the scale, whose steps
+ * down cost the whole picture and could never be taken back while the
+ * budget, below them, had to come back first), then resolution
+ * (upscaled with a filter that keeps edges; the upscale replaces the
+ * smoothing), and with its first step the autopilot's composed start (the
+ * view tilted down onto the land for a flight's first seconds: land
+ * filling the frame is the frame's whole cost on a software rasterizer),
+ * then the blocks' AO, then their sun shadows (half the steps, then
+ * none), then the far blocks' finest octaves, and only then how far one
+ * sees.  AO and shadows are baked into new blocks: what they save is
+ * generation time. */
 static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
-	/* scale, budget, AO, shadows, far octaves dropped, view, framing, smoothing, level */
-	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 1.00f, 0 },
-	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 1 },
-	{ 0.85f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 2 },
-	{ 0.75f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 3 },
-	{ 0.66f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 4 },
-	{ 0.58f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 5 },
-	{ 0.50f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 6 },
-	{ 0.50f, 0.50f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 7 },
-	{ 0.50f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 8 },
-	{ 0.50f, 0.25f, 0.50f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 9 },
-	{ 0.50f, 0.25f, 0.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 10 },
-	{ 0.50f, 0.25f, 0.00f, 0.50f, 0, 1.00f, 0.00f, 0.00f, 11 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 0, 1.00f, 0.00f, 0.00f, 12 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 1, 1.00f, 0.00f, 0.00f, 13 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 1.00f, 0.00f, 0.00f, 14 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.75f, 0.00f, 0.00f, 15 },
-	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.55f, 0.00f, 0.00f, 16 },
+	/* scale, budget, AO, shadows, far octaves dropped, view, framing, smoothing, detail, level */
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 1.00f, 1.00f, 0 },
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 1.00f, 1 },
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.00f, 2 },
+	{ 1.00f, 0.50f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.00f, 3 },
+	{ 1.00f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.00f, 4 },
+	{ 0.85f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 5 },
+	{ 0.75f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 6 },
+	{ 0.66f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 7 },
+	{ 0.58f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 8 },
+	{ 0.50f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 9 },
+	{ 0.50f, 0.25f, 0.50f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 10 },
+	{ 0.50f, 0.25f, 0.00f, 1.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 11 },
+	{ 0.50f, 0.25f, 0.00f, 0.50f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 12 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 0, 1.00f, 0.00f, 0.00f, 0.00f, 13 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 1, 1.00f, 0.00f, 0.00f, 0.00f, 14 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 1.00f, 0.00f, 0.00f, 0.00f, 15 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.75f, 0.00f, 0.00f, 0.00f, 16 },
+	{ 0.50f, 0.25f, 0.00f, 0.00f, 2, 0.55f, 0.00f, 0.00f, 0.00f, 17 },
 };
 
 #define OVER 1.00        /* step down above the target ... */

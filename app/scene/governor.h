@@ -1,9 +1,9 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
  * quality, in a fixed order (the edge smoothing after the frame, the
- * composed start's view with the first step of render scale, then the
- * block generation budget, AO rays, sun
- * shadow steps, far-LOD octaves, view distance), and gives it back when
- * there is headroom.  It only sees frame times and a clock, so a test
+ * close-up detail, the block generation budget, the render scale and with
+ * its first step the composed start's view, then AO rays, sun shadow
+ * steps, far-LOD octaves, view distance), and gives it back when there is
+ * headroom.  It only sees frame times and a clock, so a test
  * drives it with a fake clock and a synthetic load.
  *
  * What it holds is the frame time most frames stay under: the smoothed
@@ -35,10 +35,12 @@ struct governor_quality {
 	                       * land); 0: the cruise's tilt, whose frames draw half the terrain */
 	float smoothing;      /* 1: the edge smoothing after the frame as configured (--antialias:
 	                       * the filter on a software rasterizer); 0: none */
+	float detail;         /* 1: the close-up detail of the near meshes (render.frag's DETAIL_NORMALS);
+	                       * 0: every mesh drawn with the far meshes' program */
 	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
 };
 
-#define GOVERNOR_LEVELS 17
+#define GOVERNOR_LEVELS 18
 
 struct governor {
 	double target_ms;

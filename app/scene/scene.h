@@ -40,6 +40,12 @@ struct scene_frame {
 	                          * holds its budget when no target_fps is set */
 	int min_quality;         /* the world holds at least this level of the
 	                          * governor's ladder (the low-power profile) */
+	double last_work_ms;     /* the frame before's whole work, ms: from the
+	                          * top of the loop to its present done, less the
+	                          * frame cap's sleep and the time the present
+	                          * waited for the display (what the governor
+	                          * holds); < 0: not known (the first frame, a
+	                          * pause's idle wait) */
 	struct scene_timing *timing; /* NULL, or the scene waits for the GPU after
 	                              * its update and after its draw and says how
 	                              * long each took (--results) */
@@ -62,6 +68,11 @@ struct scene_counts {
 	/* the world's coarse pre-pass: blocks it bounded, and those it proved
 	 * all air or all rock (skipped: never generated) */
 	unsigned long long blocks_probed, blocks_skipped;
+	/* the world's governor, when it ran: the render scale and view
+	 * distance it held on average, and its level at the end */
+	bool governed;
+	double held_scale, held_view;
+	int held_level;
 };
 
 struct scene;

@@ -67,6 +67,13 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 		ws->governed = true;
 	}
 	ws->gov.target_ms = 1000.0 / governor_fps(p, fr); /* a cap that changed: its budget */
+	/* the frame before, whole: update, draw, the passes after it, the
+	 * overlays and the present, not the display's waits (app/run.c); the
+	 * first frame fills the view: not a frame time */
+	if (fr->index >= 2 && fr->last_work_ms >= 0) {
+		ws->last_work_ms = fr->last_work_ms;
+		ws->q = governor_update(&ws->gov, fr->last_work_ms, clock_ms() / 1e3);
+	}
 	if (ws->q.level < fr->min_quality) /* the low-power profile's floor */
 		ws->q = governor_level(fr->min_quality);
 	return world_hold_quality(ws->w, fr->r, &ws->q, p, eff, err, errlen);
@@ -82,10 +89,10 @@ static void world_status(struct scene *s, char *line, size_t len)
 	struct governor_quality q = ws->q;
 	/* held: the smoothed frame time plus its deviation (governor.h) */
 	snprintf(line, len,
-		 "governor %.1f ms held of %.1f (last %.1f): level %d, smoothing %s, scale %.2f, budget x%.2f, AO x%.2f, "
-		 "shadows x%.2f, far -%d oct, view x%.2f",
+		 "governor %.1f ms held of %.1f (last %.1f): level %d, smoothing %s, detail %s, scale %.2f, budget x%.2f, "
+		 "AO x%.2f, shadows x%.2f, far -%d oct, view x%.2f",
 		 governor_held_ms(&ws->gov), ws->gov.target_ms, ws->last_work_ms, q.level, q.smoothing > 0.5f ? "on" : "off",
-		 q.render_scale, q.gen_budget, q.ao_rays, q.shadow_steps, q.far_octaves_drop, q.view_distance);
+		 q.detail > 0.5f ? "on" : "off", q.render_scale, q.gen_budget, q.ao_rays, q.shadow_steps, q.far_octaves_drop, q.view_distance);
 }
 
 /* A flight that sees no terrain for seconds (in empty sky above the
@@ -183,14 +190,6 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 		glFinish();
 		fr->timing->draw_ms = clock_ms() - td;
 	}
-	if (ws->governed && fr->index > 0) { /* the first frame fills the view: not a frame time */
-		/* the frame's work, not the display's wait: a frame that holds
-		 * the refresh rate with room to spare reads as short */
-		glFinish();
-		double now = clock_ms();
-		ws->last_work_ms = now - t0;
-		ws->q = governor_update(&ws->gov, ws->last_work_ms, now / 1e3);
-	}
 	return 0;
 }
 
@@ -220,9 +219,15 @@ static int world_counts(struct scene *s, struct scene_counts *c)
 {
 	struct world_stats st;
 	world_get_stats(((struct world_scene *)s)->w, &st);
+	const struct world_scene *ws = (const struct world_scene *)s;
 	*c = (struct scene_counts){ .blocks_generated = st.generated, .blocks_evicted = st.evicted,
 				    .blocks_drawn = st.drawn, .blocks_probed = st.prepass_probed,
-				    .blocks_skipped = st.prepass_empty };
+				    .blocks_skipped = st.prepass_empty, .governed = ws->governed };
+	if (ws->governed) {
+		c->held_scale = governor_mean_scale(&ws->gov);
+		c->held_view = governor_mean_view(&ws->gov);
+		c->held_level = ws->q.level;
+	}
 	return 0;
 }
 

@@ -3,7 +3,9 @@
 # headless render of the same frame; resize (ConfigureNotify) re-renders at
 # the new size; WM_DELETE_WINDOW and SIGTERM end the app cleanly (exit 0);
 # --fullscreen fills the screen; --count N exits by itself; --rotate 90
-# turns the picture in the window; paused, the app idles (CPU time); a missing X server is one clear error.
+# turns the picture in the window; paused, the app idles (CPU time); the
+# governed world's results say the quality it held; a missing X server is
+# one clear error.
 . "$(dirname "$0")/lib.sh"
 need Xvfb xwd "${X11POKE:-x11poke}"
 scratch # $T; kills $APID and $SERVER_PID on exit
@@ -171,6 +173,31 @@ fi
 exec 4>&-
 [ -n "$PPID5" ] && kill "$PPID5" 2>/dev/null
 wait "$SPID" 2>/dev/null
+
+# 3d. the governed world in a window: the results file says what quality the
+#     governor held on average beside the frame times (--results "held"),
+#     the same as the run's report line; an offline run says null
+if "$BIN" --platform x11 --scene world --size 160x120 --count 40 --target-fps 30 --results "$T/gov.json" \
+	>"$T/app6.log" 2>&1; then
+	line=$(grep -o 'governor held render scale [0-9.]*, view distance x[0-9.]*' "$T/app6.log")
+	verdict=$(python3 - "$T/gov.json" "$line" <<'PY'
+import json, sys
+h = json.load(open(sys.argv[1]))["held"]
+w = sys.argv[2].replace(",", "").split()
+ok = (h is not None and 0.5 <= h["render_scale"] <= 1 and 0.55 <= h["view_distance"] <= 1 and
+      0 <= h["level_at_end"] <= 17 and len(w) == 8 and "%.2f" % h["render_scale"] == w[4] and
+      "x%.2f" % h["view_distance"] == w[7])
+print("held %s; the report: %s" % (h, sys.argv[2]))
+sys.exit(0 if ok else 1)
+PY
+)
+	[ $? -eq 0 ] && ok "governed window: $verdict" || bad "governed window: results and report disagree: $verdict"
+else
+	bad "governed world in a window failed: $(tail -3 "$T/app6.log")"
+fi
+"$BIN" --platform surfaceless --scene world --size 96x64 --count 2 --out "$T/w.png" --results "$T/off.json" >/dev/null 2>&1 &&
+	python3 -c 'import json, sys; sys.exit(json.load(open(sys.argv[1]))["held"] is not None)' "$T/off.json" &&
+	ok "an offline world: no governor, \"held\": null" || bad "an offline world's results: $(cat "$T/off.json")"
 
 # 4. auto picks x11 when DISPLAY is set
 "$BIN" --platform auto --size 96x64 --grid 8 --count 1 --out "$T/auto.png" --verbose >"$T/auto.log" 2>&1
