@@ -7,7 +7,7 @@
  *     and 1280x720 with live streaming under the per-frame budget; after
  *     the first second, the worst frame against the p99 (the hitches: how
  *     many frames exceed 3 x p99) and what the worst one did besides
- *     drawing: programs made, the block arena grown, blocks generated;
+ *     drawing: programs made, block arena chunks added or packed, blocks generated;
  *  3. peak resident memory;
  *  4. the world's own rate: a fresh world filling the autopilot's first
  *     view, blocks settled per second (generated, or proven empty by the
@@ -156,7 +156,8 @@ static void flight_close(struct flight *fl)
 struct frame_note {
 	double ms, t;           /* its time, and when it began (s from the start) */
 	uint64_t generated;     /* blocks generated in it */
-	uint64_t grown;         /* block arena growths in it */
+	uint64_t grown;         /* block arena chunks added in it */
+	uint64_t packed;        /* block arena chunks packed in it */
 	unsigned programs;      /* programs made in it (compiled or loaded from the cache) */
 };
 
@@ -195,8 +196,9 @@ static void hitches(const struct frame_note *fn, int frames)
 	if (w->programs)
 		snprintf(cause, sizeof(cause), "%u program%s made (a compile or a cache load)", w->programs,
 			 w->programs == 1 ? "" : "s");
-	else if (w->grown)
-		snprintf(cause, sizeof(cause), "the block arena grown");
+	else if (w->grown || w->packed)
+		snprintf(cause, sizeof(cause), "the block arena: %llu chunk%s added, %llu packed",
+			 (unsigned long long)w->grown, w->grown == 1 ? "" : "s", (unsigned long long)w->packed);
 	else if (w->generated)
 		snprintf(cause, sizeof(cause), "block generation (%llu block%s)", (unsigned long long)w->generated,
 			 w->generated == 1 ? "" : "s");
@@ -283,7 +285,8 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, do
 		world_get_stats(wd, &now);
 		unsigned progs = programs_made();
 		fn[f] = (struct frame_note){ .ms = ft[f], .t = t, .generated = now.generated - before.generated,
-					     .grown = now.arena_grown - before.arena_grown, .programs = progs - progs_before };
+					     .grown = now.arena_grown - before.arena_grown,
+					     .packed = now.arena_packed - before.arena_packed, .programs = progs - progs_before };
 		before = now;
 		progs_before = progs;
 		if (governed)
@@ -313,7 +316,9 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, do
 	if (governed)
 		printf("  (held: render scale %.2f, view x%.2f on average; level %d at the end)", governor_mean_scale(&gov),
 		       governor_mean_view(&gov), q.level);
-	printf("\n");
+	printf("\n    block arena: %lld KB in %d chunks (%llu added, %llu packed) for %lld KB of meshes\n",
+	       st.arena_bytes >> 10, st.arena_chunks, (unsigned long long)st.arena_grown,
+	       (unsigned long long)st.arena_packed, st.arena_used >> 10);
 	hitches(fn, frames);
 	double p50 = ft[frames / 2];
 	free(ft);

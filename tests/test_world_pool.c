@@ -1,9 +1,10 @@
 /* isoterra — the streaming world's block memory (app/scene/world_pool.c):
- * meshes kept at their real sizes in an arena that grows to what the
- * blocks hold.  A world whose arena started at 64 KB and grew (compacting
- * its blocks each time) draws the same image and exports the same mesh as
- * one that did not; the arena holds exactly the exported triangles and
- * vertices (plus alignment) and a fraction of the worst case; evictions and
+ * meshes kept at their real sizes in an arena of chunks added as the
+ * blocks need them.  A world whose arena is in 64 KB chunks (many added,
+ * some packed) draws the same image and exports the same mesh as one in a
+ * few large chunks; the arena holds exactly the exported triangles and
+ * vertices (plus alignment), its chunks at most twice that plus one chunk,
+ * and a fraction of the worst case; evictions and
  * blocks over capacity (--block-tris 256) keep every staging canary intact
  * and every mesh inside the arena, apart from the others; the table of
  * known blocks stays bounded over a long flight. */
@@ -106,27 +107,31 @@ static void check_sized_to_need(const struct params *p)
 {
 	struct run a, b;
 	CHECK(run_world(p, 0, false, &a) == 0, "world with the default arena");
-	CHECK(run_world(p, 64 << 10, true, &b) == 0, "world with a 64 KB arena to start");
-	printf("arena: default %lld KB (%lld KB used, worst case %lld KB), grown %llu times; from 64 KB: %lld KB, grown "
-	       "%llu times, %llu evicted after the move; %u triangles, %u vertices\n",
-	       a.st.arena_bytes >> 10, a.st.arena_used >> 10, a.st.arena_max >> 10, (unsigned long long)a.st.arena_grown,
-	       b.st.arena_bytes >> 10, (unsigned long long)b.st.arena_grown, (unsigned long long)b.st.evicted,
-	       a.mesh.ntris, a.mesh.nverts);
+	CHECK(run_world(p, 64 << 10, true, &b) == 0, "world with an arena of 64 KB chunks");
+	printf("arena: default %lld KB in %d chunks of %lld KB (%lld KB used, worst case %lld KB), %llu added, %llu packed; "
+	       "in 64 KB chunks: %lld KB in %d, %llu added, %llu packed, %llu evicted after the move; %u triangles, "
+	       "%u vertices\n",
+	       a.st.arena_bytes >> 10, a.st.arena_chunks, a.st.arena_chunk >> 10, a.st.arena_used >> 10,
+	       a.st.arena_max >> 10, (unsigned long long)a.st.arena_grown, (unsigned long long)a.st.arena_packed,
+	       b.st.arena_bytes >> 10, b.st.arena_chunks, (unsigned long long)b.st.arena_grown,
+	       (unsigned long long)b.st.arena_packed, (unsigned long long)b.st.evicted, a.mesh.ntris, a.mesh.nverts);
 	CHECK(a.mesh.ntris > 1000, "the view holds a surface (%u triangles)", a.mesh.ntris);
-	CHECK(b.st.arena_grown >= 3, "the 64 KB arena grew %llu times", (unsigned long long)b.st.arena_grown);
+	CHECK(b.st.arena_grown >= 3 && b.st.arena_chunks == (int)b.st.arena_grown + 1,
+	      "the 64 KB chunks: %llu added, %d in all", (unsigned long long)b.st.arena_grown, b.st.arena_chunks);
 	CHECK(a.img.rgba && b.img.rgba && !memcmp(a.img.rgba, b.img.rgba, (size_t)a.img.width * a.img.height * 4),
-	      "the grown (compacted) arena draws a different image");
-	CHECK(same_mesh(&a.mesh, &b.mesh), "the grown (compacted) arena exports a different mesh");
+	      "the arena of small chunks draws a different image");
+	CHECK(same_mesh(&a.mesh, &b.mesh), "the arena of small chunks exports a different mesh");
 	/* exactly the exported mesh, each block's range aligned to 32 bytes */
 	long long mesh_bytes = (long long)a.mesh.nverts * VERTEX_BYTES + (long long)a.mesh.ntris * 12;
 	int blocks = a.st.ready + a.st.pending;
 	CHECK(a.st.arena_used >= mesh_bytes && a.st.arena_used <= mesh_bytes + 32LL * blocks,
 	      "arena use %lld bytes for a mesh of %lld bytes in %d blocks", a.st.arena_used, mesh_bytes, blocks);
-	/* grown by half when a block did not fit (rounded to 1 MB), from what
-	 * it held then: never more than 1.5 times the meshes plus 1 MB, and
-	 * well under the worst case (the view, tilted down at the ground,
-	 * holds about a fifth of it) */
-	CHECK(a.st.arena_bytes <= a.st.arena_used * 3 / 2 + (1 << 20) && a.st.arena_bytes < a.st.arena_max / 2,
+	/* a chunk added only when every chunk is more than half full (none
+	 * evicted here): at most twice the meshes plus one chunk, and well
+	 * under the worst case (the view, tilted down at the ground, holds
+	 * about a fifth of it) */
+	CHECK(a.st.evicted == 0 && a.st.arena_bytes <= 2 * a.st.arena_used + a.st.arena_chunk &&
+		      a.st.arena_bytes < a.st.arena_max / 2,
 	      "arena of %lld KB for %lld KB of meshes: not sized to need (worst case %lld KB)", a.st.arena_bytes >> 10,
 	      a.st.arena_used >> 10, a.st.arena_max >> 10);
 	CHECK(a.faults == 0 && b.faults == 0, "pool faults: %d, %d", a.faults, b.faults);
@@ -134,7 +139,7 @@ static void check_sized_to_need(const struct params *p)
 	CHECK(b.faults_moved == 0, "pool faults after the move and its evictions: %d", b.faults_moved);
 	printf("compaction after the move: %d meshes moved\n", b.compacted);
 	CHECK(b.compacted > 0, "the compaction after the evictions moved no mesh (%d)", b.compacted);
-	CHECK(b.same_compacted, "the compacted arena draws a different image");
+	CHECK(b.same_compacted, "the packed arena draws a different image");
 	run_free(&a);
 	run_free(&b);
 }

@@ -105,10 +105,10 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 		world_destroy(w);
 		return NULL;
 	}
-	log_debug("world: %d slots; %d staging slots x (%u vertices, %u triangles) = %lld KB; block arena %lld KB "
-		  "to start, at most %lld MB",
+	log_debug("world: %d slots; %d staging slots x (%u vertices, %u triangles) = %lld KB; block arena "
+		  "in chunks of %lld KB, its meshes at most %lld MB",
 		  w->slots, WORLD_STAGES, w->vcap, w->tcap, (long long)((w->vstride + w->istride) * WORLD_STAGES >> 10),
-		  (long long)(w->arena_cap >> 10), (long long)(w->arena_max >> 20));
+		  (long long)(w->chunk_bytes >> 10), (long long)(w->arena_max >> 20));
 	return w;
 }
 
@@ -117,10 +117,11 @@ void world_destroy(struct world *w)
 	if (!w)
 		return;
 	probes_destroy(w);
-	log_debug("world: at most %llu triangles drawn in a frame; block arena %lld KB (%lld KB of meshes, grown %llu times); "
-		  "block table %u of %u entries (%zu bytes each), %llu forgotten",
-		  (unsigned long long)w->st.drawn_tris_max, (long long)(w->arena_cap >> 10), (long long)(w->arena_used >> 10),
-		  (unsigned long long)w->st.arena_grown, w->count, w->cap, sizeof(struct block),
+	log_debug("world: at most %llu triangles drawn in a frame; block arena %lld KB in %d chunks (%lld KB of "
+		  "meshes; %llu chunks added, %llu packed); block table %u of %u entries (%zu bytes each), %llu forgotten",
+		  (unsigned long long)w->st.drawn_tris_max, (long long)(w->arena_cap >> 10), w->nchunks,
+		  (long long)(w->arena_used >> 10), (unsigned long long)w->st.arena_grown,
+		  (unsigned long long)w->st.arena_packed, w->count, w->cap, sizeof(struct block),
 		  (unsigned long long)w->st.forgotten);
 	pipeline_destroy(w->pl);
 	terrain_destroy(w->terrain);
@@ -321,6 +322,8 @@ void world_get_stats(const struct world *w, struct world_stats *st)
 	st->blocks_known = w->count;
 	st->table_cap = w->cap;
 	st->arena_bytes = (long long)w->arena_cap;
+	st->arena_chunk = (long long)w->chunk_bytes;
+	st->arena_chunks = w->nchunks;
 	st->arena_used = (long long)w->arena_used;
 	st->arena_max = (long long)w->arena_max;
 }

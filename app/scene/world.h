@@ -27,10 +27,13 @@ struct world_stats {
 	 * proved all air or all rock (never generated, known empty) */
 	uint64_t prepass_probed;
 	uint64_t prepass_empty;
-	uint64_t arena_grown;     /* times the block arena was re-made larger */
+	uint64_t arena_grown;     /* chunks added to the block arena (the first aside) */
+	uint64_t arena_packed;    /* times one of its chunks was packed to make room */
 	uint64_t forgotten;       /* blocks dropped from the table, not wanted for long */
 	uint32_t blocks_known, table_cap; /* the block table: entries, capacity */
-	long long arena_bytes;    /* the block arena's capacity (bytes) */
+	long long arena_bytes;    /* the block arena's capacity (bytes, its chunks together) */
+	long long arena_chunk;    /* of it, the size of a chunk (at least: one may be larger) */
+	int arena_chunks;         /* its chunks */
 	long long arena_used;     /* of it, the meshes of the blocks in it */
 	long long arena_max;      /* what it may grow to: block_pool worst-case blocks */
 	uint64_t drawn_tris;      /* triangles the last frame drew (a staged block counts its capacity) */

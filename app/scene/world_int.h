@@ -72,11 +72,18 @@ struct readback {
 #define AO_MARGIN 6      /* extra density samples around a block: short AO rays */
 
 /* A slot's mesh: in staging slot `stage` (>= 0) until its counts are known,
- * then `bytes` of the arena at `off` (its vertices, then its indices). */
+ * then `bytes` of arena chunk `chunk` at `off` (its vertices, then its
+ * indices). */
 struct slot_mem {
 	GLintptr off, bytes;
 	uint32_t tris, verts;
-	int stage;
+	int stage, chunk;
+};
+
+/* One buffer of the block arena: meshes at their real sizes, first fit. */
+struct arena_chunk {
+	GLuint buf;
+	GLintptr cap, used;
 };
 
 /* a wanted block with its sort keys (nearest first) */
@@ -105,8 +112,10 @@ struct world {
 	int *slot_block;     /* slot -> block index, -1 free */
 	struct slot_mem *mem;      /* slot -> where its mesh is */
 	int stage_slot[WORLD_STAGES]; /* staging slot -> slot, -1 free */
-	GLuint arena;              /* the meshes at their real sizes */
-	GLintptr arena_cap, arena_max, arena_used, arena_start;
+	struct arena_chunk *chunks; /* the block arena: the meshes at their real sizes */
+	int nchunks, chunks_cap;
+	GLintptr chunk_bytes;      /* a new chunk's size (at least what a block needs) */
+	GLintptr arena_cap, arena_max, arena_used; /* the chunks' bytes; what the meshes may take; hold */
 	struct block *blocks;
 	uint32_t cap, count; /* hash table of blocks (open addressing) */
 	struct readback rb[READBACKS];

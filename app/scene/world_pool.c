@@ -4,13 +4,18 @@
  * A block is generated into a staging slot of worst-case capacity
  * (block_tris triangles, 3/4 as many vertices; WORLD_STAGES of them) and
  * drawn from there until its status read-back says how many triangles and
- * vertices it wrote.  Then exactly that much is taken from one arena buffer
- * (its vertices, then its indices, 32-byte aligned), copied there on the
- * GPU, and the block's draw command is pointed at it; the staging slot is
- * free again.  The arena starts small and grows by half (compacting the
- * blocks into the new buffer) when a block does not fit, up to what
- * block_pool worst-case blocks would take, so it always can.  The status
- * blocks (draw commands, counters) stay one per slot. */
+ * vertices it wrote.  Then exactly that much is taken from the arena (its
+ * vertices, then its indices, 32-byte aligned, first fit), copied there on
+ * the GPU, and the block's draw command is pointed at it; the staging slot
+ * is free again.  The arena is a list of chunks, buffers of a fixed size
+ * (a sixteenth of the worst case, at most 4 MB, at least two worst-case
+ * blocks) that are never re-made: when no chunk has a gap for a block, the
+ * chunk with the most free bytes is packed (one chunk copied, not the
+ * arena) if that makes room, else a chunk is added.  So making room costs
+ * at most one chunk's copy — no frame copies the whole arena — and a chunk
+ * is added only when every chunk holds more than its size less a block:
+ * the chunks never hold more than twice their meshes plus one chunk.  The
+ * status blocks (draw commands, counters) stay one per slot. */
 #include "world_int.h"
 #include "gpu.h"
 #include "core.h"
@@ -20,7 +25,7 @@
 #include <string.h>
 
 #define ARENA_ALIGN 32 /* a whole vertex: base_vertex = offset / VERTEX_BYTES */
-#define ARENA_FIRST (4 << 20)
+#define CHUNK_MOST (4 << 20)
 
 static GLintptr round_up(GLintptr v, GLintptr a)
 {
@@ -71,6 +76,43 @@ static void make_stages(struct world *w)
 	write_guards(w->ibo, w->istride, (GLintptr)w->tcap * 12);
 }
 
+/* The size of a new chunk: chunk_bytes, at least two worst-case blocks
+ * (so a chunk that cannot take a block is more than half full), and at
+ * least need.  A test's small start is taken as it is (many chunks). */
+static GLintptr chunk_size(const struct world *w, GLintptr need)
+{
+	GLintptr c = w->chunk_bytes;
+	if (test_start <= 0 && c < 2 * block_bytes(w->tcap, w->vcap))
+		c = 2 * block_bytes(w->tcap, w->vcap);
+	if (c < need)
+		c = need;
+	return round_up(c, 1 << 16);
+}
+
+/* A new, empty chunk of at least need bytes: its index, or -1. */
+static int add_chunk(struct world *w, GLintptr need)
+{
+	if (w->nchunks == w->chunks_cap) {
+		int n = w->chunks_cap ? 2 * w->chunks_cap : 8;
+		struct arena_chunk *c = realloc(w->chunks, sizeof(*c) * (size_t)n);
+		if (!c)
+			return -1;
+		w->chunks = c;
+		w->chunks_cap = n;
+	}
+	GLintptr cap = chunk_size(w, need);
+	GLuint b = new_buffer(GL_ARRAY_BUFFER, cap, GL_DYNAMIC_DRAW);
+	if (gpu_check("block arena chunk") < 0) {
+		glDeleteBuffers(1, &b);
+		return -1;
+	}
+	w->chunks[w->nchunks] = (struct arena_chunk){ .buf = b, .cap = cap };
+	w->arena_cap += cap;
+	log_debug("world: block arena chunk %d of %lld KB (%lld KB in all, %lld KB of meshes)", w->nchunks,
+		  (long long)(cap >> 10), (long long)(w->arena_cap >> 10), (long long)(w->arena_used >> 10));
+	return w->nchunks++;
+}
+
 int pool_create(struct world *w, char *err, size_t errlen)
 {
 	w->mem = calloc((size_t)w->slots, sizeof(*w->mem));
@@ -82,18 +124,18 @@ int pool_create(struct world *w, char *err, size_t errlen)
 		w->mem[i].stage = -1;
 	for (int i = 0; i < WORLD_STAGES; i++)
 		w->stage_slot[i] = -1;
-	/* it starts at a sixteenth of the worst case (at most 4 MB) and grows
-	 * by half to what the blocks hold */
+	/* chunks of a sixteenth of the worst case (at most 4 MB); the first
+	 * one now */
 	w->arena_max = (GLintptr)w->slots * block_bytes(w->tcap, w->vcap);
-	w->arena_cap = test_start > 0 ? (GLintptr)test_start : round_up(w->arena_max / 16, 1 << 16);
-	if (w->arena_cap > ARENA_FIRST)
-		w->arena_cap = ARENA_FIRST;
-	if (w->arena_cap > w->arena_max)
-		w->arena_cap = w->arena_max;
-	w->arena_start = w->arena_cap;
+	w->chunk_bytes = test_start > 0 ? (GLintptr)test_start : round_up(w->arena_max / 16, 1 << 16);
+	if (w->chunk_bytes > CHUNK_MOST)
+		w->chunk_bytes = CHUNK_MOST;
 	make_stages(w);
 	w->status = new_buffer(GL_SHADER_STORAGE_BUFFER, w->sstride * w->slots, GL_DYNAMIC_DRAW);
-	w->arena = new_buffer(GL_ARRAY_BUFFER, w->arena_cap, GL_DYNAMIC_DRAW);
+	if (add_chunk(w, 0) < 0) {
+		snprintf(err, errlen, "cannot allocate the block arena's first %lld KB", (long long)(w->chunk_bytes >> 10));
+		return -1;
+	}
 	for (int i = 0; i < READBACKS; i++) {
 		w->rb[i].buf = new_buffer(GL_COPY_WRITE_BUFFER, RB_BYTES, GL_STREAM_READ);
 		w->rb[i].block = -1;
@@ -134,10 +176,13 @@ int pool_grow(struct world *w)
 
 void pool_destroy(struct world *w)
 {
-	GLuint bufs[] = { w->vbo, w->ibo, w->status, w->arena };
+	GLuint bufs[] = { w->vbo, w->ibo, w->status };
 	for (size_t i = 0; i < sizeof(bufs) / sizeof(bufs[0]); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
+	for (int i = 0; i < w->nchunks; i++)
+		glDeleteBuffers(1, &w->chunks[i].buf);
+	free(w->chunks);
 	free(w->mem);
 }
 
@@ -154,7 +199,10 @@ void pool_release(struct world *w, int slot)
 	struct slot_mem *m = &w->mem[slot];
 	if (m->stage >= 0)
 		w->stage_slot[m->stage] = -1;
-	w->arena_used -= m->bytes;
+	if (m->bytes) {
+		w->chunks[m->chunk].used -= m->bytes;
+		w->arena_used -= m->bytes;
+	}
 	memset(m, 0, sizeof(*m));
 	m->stage = -1;
 }
@@ -181,7 +229,7 @@ void pool_mesh_at(const struct world *w, int slot, GLuint *vbo, GLintptr *voff, 
 		*voff = w->vstride * m->stage;
 		*ioff = w->istride * m->stage;
 	} else {
-		*vbo = *ibo = w->arena;
+		*vbo = *ibo = w->chunks[m->chunk].buf;
 		*voff = m->off;
 		*ioff = m->off + (GLintptr)m->verts * VERTEX_BYTES;
 	}
@@ -198,14 +246,16 @@ static void point_draw(struct world *w, int slot)
 	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
-static int by_offset(const void *a, const void *b)
+static int by_place(const void *a, const void *b)
 {
-	GLintptr x = ((const struct slot_mem *)a)->off, y = ((const struct slot_mem *)b)->off;
-	return (x > y) - (x < y);
+	const struct slot_mem *x = a, *y = b;
+	if (x->chunk != y->chunk)
+		return (x->chunk > y->chunk) - (x->chunk < y->chunk);
+	return (x->off > y->off) - (x->off < y->off);
 }
 
-/* The live arena ranges sorted by offset into ord (slot numbers in slot_of);
- * their count. */
+/* The live arena ranges sorted by chunk, then offset, into ord (slot
+ * numbers in `stage`); their count. */
 static int live_ranges(const struct world *w, struct slot_mem *ord)
 {
 	int n = 0;
@@ -215,12 +265,13 @@ static int live_ranges(const struct world *w, struct slot_mem *ord)
 			ord[n].stage = s; /* the slot, carried through the sort */
 			n++;
 		}
-	qsort(ord, (size_t)n, sizeof(*ord), by_offset);
+	qsort(ord, (size_t)n, sizeof(*ord), by_place);
 	return n;
 }
 
-/* The first gap of at least need bytes, or -1. */
-static GLintptr first_fit(const struct world *w, const struct slot_mem *ord, int n, GLintptr need)
+/* The first gap of at least need bytes in chunk c, whose ranges are the n
+ * of ord (sorted by offset), or -1. */
+static GLintptr first_fit(const struct world *w, int c, const struct slot_mem *ord, int n, GLintptr need)
 {
 	GLintptr at = 0;
 	for (int i = 0; i < n; i++) {
@@ -228,23 +279,27 @@ static GLintptr first_fit(const struct world *w, const struct slot_mem *ord, int
 			return at;
 		at = ord[i].off + ord[i].bytes;
 	}
-	return w->arena_cap - at >= need ? at : -1;
+	return w->chunks[c].cap - at >= need ? at : -1;
 }
 
-/* A new arena of cap bytes with the live blocks packed at its start. */
-static int regrow(struct world *w, struct slot_mem *ord, int n, GLintptr cap)
+/* Chunk c re-made at its size with its n meshes (ord, by offset) packed at
+ * its start, their draw commands following: the meshes moved. */
+static int pack_chunk(struct world *w, int c, const struct slot_mem *ord, int n)
 {
-	GLuint next = new_buffer(GL_COPY_WRITE_BUFFER, cap, GL_DYNAMIC_DRAW);
-	if (gpu_check("block arena") < 0) {
+	struct arena_chunk *k = &w->chunks[c];
+	GLuint next = new_buffer(GL_COPY_WRITE_BUFFER, k->cap, GL_DYNAMIC_DRAW);
+	if (gpu_check("block arena chunk") < 0) {
 		glDeleteBuffers(1, &next);
 		return -1;
 	}
-	glBindBuffer(GL_COPY_READ_BUFFER, w->arena);
+	glBindBuffer(GL_COPY_READ_BUFFER, k->buf);
 	glBindBuffer(GL_COPY_WRITE_BUFFER, next);
 	GLintptr at = 0;
+	int moved = 0;
 	for (int i = 0; i < n; i++) {
 		int s = ord[i].stage;
 		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, ord[i].off, at, ord[i].bytes);
+		moved += ord[i].off != at;
 		w->mem[s].off = at;
 		at += ord[i].bytes;
 	}
@@ -252,13 +307,61 @@ static int regrow(struct world *w, struct slot_mem *ord, int n, GLintptr cap)
 	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 	for (int i = 0; i < n; i++)
 		point_draw(w, ord[i].stage);
-	glDeleteBuffers(1, &w->arena);
-	w->arena = next;
-	log_debug("world: block arena %lld -> %lld KB (%lld KB in %d blocks)", (long long)(w->arena_cap >> 10),
-		  (long long)(cap >> 10), (long long)(w->arena_used >> 10), n);
-	w->arena_cap = cap;
-	w->st.arena_grown++;
-	return gpu_check("block arena copy");
+	glDeleteBuffers(1, &k->buf);
+	k->buf = next;
+	w->st.arena_packed++;
+	log_debug("world: block arena chunk %d packed: %d meshes, %lld of %lld KB", c, n, (long long)(k->used >> 10),
+		  (long long)(k->cap >> 10));
+	return gpu_check("block arena pack") < 0 ? -1 : moved;
+}
+
+/* Where a mesh of need bytes goes: a gap in a chunk (first fit, chunk by
+ * chunk); else the chunk with the most free bytes, packed, if they are
+ * enough; else a new chunk.  0 with *chunk, *at; -1. */
+static int place(struct world *w, GLintptr need, int *chunk, GLintptr *at)
+{
+	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
+	if (!ord)
+		return -1;
+	int n = live_ranges(w, ord), best = -1, rc = 0;
+	GLintptr best_free = 0;
+	*at = -1;
+	*chunk = -1;
+	for (int c = 0, i = 0; c < w->nchunks && *at < 0; c++) {
+		int j = i;
+		while (j < n && ord[j].chunk == c)
+			j++;
+		GLintptr free_bytes = w->chunks[c].cap - w->chunks[c].used;
+		if (free_bytes >= need) {
+			*at = first_fit(w, c, ord + i, j - i, need);
+			*chunk = c;
+			if (*at < 0 && free_bytes > best_free) {
+				best = c;
+				best_free = free_bytes;
+			}
+		}
+		i = j;
+	}
+	if (*at < 0 && best >= 0) {
+		int i = 0;
+		while (ord[i].chunk != best)
+			i++;
+		int j = i;
+		while (j < n && ord[j].chunk == best)
+			j++;
+		rc = pack_chunk(w, best, ord + i, j - i) < 0 ? -1 : 0;
+		*chunk = best;
+		*at = w->chunks[best].used;
+	} else if (*at < 0) {
+		*chunk = add_chunk(w, need);
+		if (*chunk < 0)
+			rc = -1;
+		else
+			w->st.arena_grown++;
+		*at = 0;
+	}
+	free(ord);
+	return rc;
 }
 
 int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts)
@@ -268,30 +371,12 @@ int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts)
 		return 0; /* not staged (evicted or generated again meanwhile) */
 	tris = tris < w->tcap ? tris : w->tcap;
 	verts = verts < w->vcap ? verts : w->vcap;
-	GLintptr need = block_bytes(tris, verts);
-	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
-	if (!ord)
+	GLintptr need = block_bytes(tris, verts), at = 0;
+	int c = -1;
+	if (place(w, need, &c, &at) < 0)
 		return -1;
-	int n = live_ranges(w, ord);
-	GLintptr at = first_fit(w, ord, n, need);
-	if (at < 0) {
-		/* grow by half (at least what is needed), packing the blocks:
-		 * slots x worst case always fits */
-		GLintptr cap = w->arena_cap + w->arena_cap / 2;
-		if (cap < w->arena_used + need)
-			cap = w->arena_used + need;
-		cap = round_up(cap, 1 << 20);
-		if (cap > w->arena_max)
-			cap = w->arena_max;
-		if (regrow(w, ord, n, cap) < 0) {
-			free(ord);
-			return -1;
-		}
-		at = w->arena_used;
-	}
-	free(ord);
 	int stage = m->stage;
-	glBindBuffer(GL_COPY_WRITE_BUFFER, w->arena);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, w->chunks[c].buf);
 	glBindBuffer(GL_COPY_READ_BUFFER, w->vbo);
 	if (verts)
 		glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, w->vstride * stage, at, (GLsizeiptr)verts * VERTEX_BYTES);
@@ -303,10 +388,12 @@ int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts)
 	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 	w->stage_slot[stage] = -1;
 	m->stage = -1;
+	m->chunk = c;
 	m->off = at;
 	m->bytes = need;
 	m->tris = tris;
 	m->verts = verts;
+	w->chunks[c].used += need;
 	w->arena_used += need;
 	point_draw(w, slot);
 	return gpu_check("block settle");
@@ -341,22 +428,39 @@ int world_check_pool(struct world *w)
 	if (!ord)
 		return -1;
 	int n = live_ranges(w, ord);
-	GLintptr sum = 0, end = 0;
-	for (int i = 0; i < n; i++) {
-		const struct slot_mem *m = &ord[i];
-		if (m->off < end || m->off + m->bytes > w->arena_cap || m->bytes < block_bytes(m->tris, m->verts) ||
-		    m->off % ARENA_ALIGN || m->tris > w->tcap || m->verts > w->vcap) {
-			log_error("world: slot %d: arena bytes %lld..%lld (%u triangles, %u vertices) overlap another "
-				  "or lie outside the arena's %lld", m->stage, (long long)m->off, (long long)(m->off + m->bytes),
-				  m->tris, m->verts, (long long)w->arena_cap);
+	GLintptr sum = 0, end = 0, caps = 0;
+	for (int c = 0, i = 0; c < w->nchunks; c++) {
+		GLintptr in_chunk = 0;
+		end = 0;
+		for (; i < n && ord[i].chunk == c; i++) {
+			const struct slot_mem *m = &ord[i];
+			if (m->off < end || m->off + m->bytes > w->chunks[c].cap || m->bytes < block_bytes(m->tris, m->verts) ||
+			    m->off % ARENA_ALIGN || m->tris > w->tcap || m->verts > w->vcap) {
+				log_error("world: slot %d: chunk %d bytes %lld..%lld (%u triangles, %u vertices) overlap another "
+					  "or lie outside the chunk's %lld", m->stage, c, (long long)m->off,
+					  (long long)(m->off + m->bytes), m->tris, m->verts, (long long)w->chunks[c].cap);
+				bad++;
+			}
+			end = m->off + m->bytes;
+			in_chunk += m->bytes;
+		}
+		if (in_chunk != w->chunks[c].used) {
+			log_error("world: chunk %d: %lld bytes in use, its meshes hold %lld", c, (long long)w->chunks[c].used,
+				  (long long)in_chunk);
 			bad++;
 		}
-		end = m->off + m->bytes;
-		sum += m->bytes;
+		sum += in_chunk;
+		caps += w->chunks[c].cap;
 	}
+	for (int i = 0; i < n; i++)
+		if (ord[i].chunk < 0 || ord[i].chunk >= w->nchunks) {
+			log_error("world: slot %d: in chunk %d of %d", ord[i].stage, ord[i].chunk, w->nchunks);
+			bad++;
+		}
 	free(ord);
-	if (sum != w->arena_used) {
-		log_error("world: arena bytes in use %lld, the meshes hold %lld", (long long)w->arena_used, (long long)sum);
+	if (sum != w->arena_used || caps != w->arena_cap) {
+		log_error("world: arena bytes in use %lld of %lld, the meshes hold %lld, the chunks %lld",
+			  (long long)w->arena_used, (long long)w->arena_cap, (long long)sum, (long long)caps);
 		bad++;
 	}
 	return bad;
@@ -368,9 +472,14 @@ int world_test_compact(struct world *w)
 	if (!ord)
 		return -1;
 	int n = live_ranges(w, ord), moved = 0;
-	int rc = regrow(w, ord, n, w->arena_cap);
-	for (int i = 0; i < n; i++)
-		moved += w->mem[ord[i].stage].off != ord[i].off;
+	for (int c = 0, i = 0; c < w->nchunks && moved >= 0; c++) {
+		int j = i;
+		while (j < n && ord[j].chunk == c)
+			j++;
+		int r = pack_chunk(w, c, ord + i, j - i);
+		moved = r < 0 ? -1 : moved + r;
+		i = j;
+	}
 	free(ord);
-	return rc < 0 ? -1 : moved;
+	return moved;
 }
