@@ -2,7 +2,8 @@
 # isoterra — the results file (--results, app/output/sink_results.c) read
 # back by Python's json module: the fields a dashboard reads, frame counts
 # equal to --count, ordered percentiles, the renderer the run logs, the
-# world's block counts; a run that fails leaves an earlier results file as
+# world's block counts, the frames after the first second (the hitches:
+# null for a run shorter than that, else within the whole run's figures); a run that fails leaves an earlier results file as
 # it was; --results - with --out - is refused; --fps-report works headless.
 BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
 T=$(mktemp -d)
@@ -36,6 +37,21 @@ if scene == "world":
          (r["blocks_skipped"], r["blocks_probed"]))
 else:
     need(r["triangles"] > 0, "volume triangles %s" % r["triangles"])
+h = r["after_first_second"]
+run_s = (r["frame_ms"]["mean"] * (count - 1)) / 1e3  # the frames after the first
+if h is None:
+    need(run_s < 1.0 + r["frame_ms"]["max"] / 1e3, "no frames after the first second in a run of %.2f s" % run_s)
+else:
+    need(0 < h["frames"] < count and run_s >= 1.0, "%s frames after the first second of %d in %.2f s" %
+         (h["frames"], count, run_s))
+    need(h["frames"] <= count - 1 - 1000.0 / r["frame_ms"]["max"] + 1, "%s frames after the first second: "
+         "the first second cannot hold so few" % h["frames"])
+    need(0 < h["p99"] <= h["max"] <= r["frame_ms"]["max"] + 1e-3, "hitches out of order: %s, %s" %
+         (h, r["frame_ms"]))
+    need(abs(h["max_over_p99"] - h["max"] / h["p99"]) < 1e-3 * h["max_over_p99"] + 1e-3, "max/p99 %s" % h)
+    need(0 <= h["over_3x_p99"] <= h["frames"] // 100 + 1, "%s frames over 3 x the p99 of %s" %
+         (h["over_3x_p99"], h["frames"]))
+    need(1.0 <= h["worst_at_s"] <= run_s + 1e-3, "the worst frame at %s s of %.2f" % (h["worst_at_s"], run_s))
 print("\n".join(bad) if bad else "ok")
 sys.exit(1 if bad else 0)
 PY
@@ -52,6 +68,15 @@ if "$BIN" --scene world --size 96x64 --count 3 --out w.png --results - >w.json 2
 	if msg=$(check_json w.json 3 world); then ok; else bad "world results to stdout: $msg"; fi
 else
 	bad "world run with --results - failed: $(cat log)"
+fi
+# a run of a few seconds: its frames after the first second
+if "$BIN" --scene world --size 96x64 --count 240 --out l.png --results l.json 2>log; then
+	if msg=$(check_json l.json 240 world); then ok; else bad "world results of 240 frames: $msg"; fi
+	if python3 -c 'import json,sys; sys.exit(json.load(open("l.json"))["after_first_second"] is None)'; then ok; else
+		bad "240 frames and none after the first second: $(cat l.json)"
+	fi
+else
+	bad "world run of 240 frames failed: $(cat log)"
 fi
 # a run that fails (its mesh cannot be written) leaves the earlier file
 cp v.json keep.json

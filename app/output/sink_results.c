@@ -123,6 +123,43 @@ static void json_dist(FILE *f, const char *name, double *v, size_t n)
 		v[n / 2], v[(n * 95) / 100], v[(n * 99) / 100], v[n - 1], sum / (double)n);
 }
 
+/* The hitches (issue 29's measure): of the frames that began a second or
+ * more after the first frame, the p99, the worst (when it began, s after
+ * the first frame), and how many took over 3 x that p99.  null when the
+ * run was not that long. */
+static void json_hitches(FILE *f, const double *ft, size_t n)
+{
+	double *v = malloc(sizeof(double) * (n ? n : 1));
+	double t = 0, worst_t = 0, worst = 0;
+	size_t k = 0;
+	for (size_t i = 1; v && i < n; i++) {
+		if (t >= 1000.0) {
+			if (ft[i] > worst) {
+				worst = ft[i];
+				worst_t = t / 1e3;
+			}
+			v[k++] = ft[i];
+		}
+		t += ft[i];
+	}
+	fputs("  \"after_first_second\": ", f);
+	if (k == 0) {
+		fputs("null", f);
+		free(v);
+		return;
+	}
+	qsort(v, k, sizeof(double), cmp_double);
+	double p99 = v[(k * 99) / 100];
+	size_t over = 0;
+	for (size_t i = 0; i < k; i++)
+		over += v[i] > 3.0 * p99;
+	fprintf(f,
+		"{\"frames\": %zu, \"p99\": %.3f, \"max\": %.3f, \"max_over_p99\": %.3f, \"over_3x_p99\": %zu, "
+		"\"worst_at_s\": %.3f}",
+		k, p99, worst, p99 > 0 ? worst / p99 : 0.0, over, worst_t);
+	free(v);
+}
+
 static void cpu_model(char *out, size_t n)
 {
 	snprintf(out, n, "unknown");
@@ -186,6 +223,8 @@ static void write_json(struct results_sink *rs, FILE *f, const struct sink_end *
 	json_str(f, rs->size);
 	fprintf(f, ", \"grid\": %d, \"frames\": %zu, \"first_frame_ms\": %.3f, \"fps\": %.3f},\n", rs->grid, rs->n,
 		rs->ft[0], total > 0 ? 1e3 * (double)n / total : 0.0);
+	json_hitches(f, rs->ft, rs->n); /* before json_dist sorts the times */
+	fputs(",\n", f);
 	json_dist(f, "frame_ms", rs->ft + first, n);
 	fputs(",\n", f);
 	json_dist(f, "update_ms", rs->up + first, n);
