@@ -91,6 +91,7 @@ struct pipeline {
 	bool cut_pending;              /* a density slab cut far samples: the refine pass is due */
 	bool filtered;                 /* b_signs holds this run's filtered bits (the refine pass ran the filter) */
 	bool has_target;
+	bool keep_ao, keep_sun;        /* their code stays in the vertex pass at a count of 0 (pipeline_keep_terms) */
 	struct pipeline_target target;
 	double pass_ms[PASS_COUNT];
 };
@@ -112,6 +113,8 @@ GLuint extract_density_program(struct pipeline *pl, const struct params *p, char
 bool extract_field_cuts(const struct pipeline *pl, const struct params *p);
 GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
 GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
+/* Whether that program is the field's (its AO or sun rays read the field). */
+bool extract_vertex_reads_field(const struct pipeline *pl, const struct params *p);
 /* Every program of a run: all issued first (parallel compilation), then
  * taken in order into pl->p_*.  0, or -1 with err. */
 int extract_create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen);

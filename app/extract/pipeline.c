@@ -65,6 +65,12 @@ unsigned pipeline_compiles(const struct pipeline *pl)
 	return pl->compiles;
 }
 
+void pipeline_keep_terms(struct pipeline *pl, bool ao, bool sun)
+{
+	pl->keep_ao = ao;
+	pl->keep_sun = sun;
+}
+
 GLuint pipeline_density_program(const struct pipeline *pl)
 {
 	return pl->p_density;
@@ -406,7 +412,8 @@ static int output_passes(struct pipeline *pl, const struct params *p, GLuint sta
 		return -1;
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
-	if (p->ao_rays > 0 && bind_field(pl, pl->p_vertices, p, err, errlen) < 0) /* the AO rays read the field */
+	/* the AO and sun rays read the field (its program's, even at a count of 0) */
+	if (extract_vertex_reads_field(pl, p) && bind_field(pl, pl->p_vertices, p, err, errlen) < 0)
 		return -1;
 	bind(BIND_DENSITY, pl->b_dens);
 	bind_vertices(pl);

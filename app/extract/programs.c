@@ -111,7 +111,7 @@ GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char 
 /* The vertex pass's variant (extract_vertex_program). */
 static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field)
 {
-	bool ao = p->ao_rays > 0, sun = p->shadows > 0.0f && p->shadow_steps > 0;
+	bool ao = p->ao_rays > 0 || pl->keep_ao, sun = (p->shadows > 0.0f && p->shadow_steps > 0) || pl->keep_sun;
 	*field = ao || sun;
 	*file = *field ? pl->field->program : "mc_vertices.comp";
 	if (!*field)
@@ -128,6 +128,14 @@ static const char *vertex_defines(const struct pipeline *pl, const struct params
 		    "#define FIELD_PASS_VERTICES 1\n#define WITH_AO 1\n#define WITH_SUN 1\n#define AO_FAR_OUTSIDE 1\n" } },
 	};
 	return defs[pl->g.margin_extra > 0][ao][sun];
+}
+
+bool extract_vertex_reads_field(const struct pipeline *pl, const struct params *p)
+{
+	const char *file;
+	bool field;
+	vertex_defines(pl, p, &file, &field);
+	return field;
 }
 
 /* The vertex pass: with ambient occlusion or shadows their rays read the field, so it is

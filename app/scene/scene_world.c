@@ -172,6 +172,7 @@ static int world_frame(struct scene *s, struct params *p, const struct scene_fra
 		log_info("world: the terrain changed: %d blocks made again", world_invalidate(ws->w, &eff, everywhere));
 		refill = !fr->live;
 	}
+	world_keep_terms(ws->w, p);
 	int urc = fr->index == 0 || refill ? world_fill(ws->w, &eff, &cam, t) : world_update(ws->w, &eff, &cam, t, !fr->live);
 	if (urc < 0)
 		return -1;

@@ -112,6 +112,11 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 	return w;
 }
 
+void world_keep_terms(struct world *w, const struct params *configured)
+{
+	pipeline_keep_terms(w->pl, configured->ao_rays > 0, configured->shadows > 0.0f && configured->shadow_steps > 0);
+}
+
 void world_destroy(struct world *w)
 {
 	if (!w)
@@ -324,6 +329,7 @@ void world_get_stats(const struct world *w, struct world_stats *st)
 	st->arena_bytes = (long long)w->arena_cap;
 	st->arena_chunk = (long long)w->chunk_bytes;
 	st->arena_chunks = w->nchunks;
+	st->compiles = pipeline_compiles(w->pl);
 	st->arena_used = (long long)w->arena_used;
 	st->arena_max = (long long)w->arena_max;
 }

@@ -34,6 +34,7 @@ struct world_stats {
 	long long arena_bytes;    /* the block arena's capacity (bytes, its chunks together) */
 	long long arena_chunk;    /* of it, the size of a chunk (at least: one may be larger) */
 	int arena_chunks;         /* its chunks */
+	unsigned compiles;        /* programs the blocks' pipeline compiled (pipeline_compiles) */
 	long long arena_used;     /* of it, the meshes of the blocks in it */
 	long long arena_max;      /* what it may grow to: block_pool worst-case blocks */
 	uint64_t drawn_tris;      /* triangles the last frame drew (a staged block counts its capacity) */
@@ -49,6 +50,11 @@ void world_destroy(struct world *w);
  * to gen_per_frame blocks and wait for their results (offline rendering,
  * tests); otherwise stop at gen_budget_ms.  now: seconds (fades).  0/-1. */
 int world_update(struct world *w, const struct params *p, const struct camera *c, double now, bool deterministic);
+/* The parameters as configured, before a governor turned AO rays or sun
+ * shadow steps down: the terms they switch on keep their code in the
+ * blocks' vertex pass even at a count of 0 (pipeline_keep_terms), so the
+ * governor's steps compile nothing mid-flight. */
+void world_keep_terms(struct world *w, const struct params *configured);
 /* Generates until every wanted block is ready (or the pool is full). */
 int world_fill(struct world *w, const struct params *p, const struct camera *c, double now);
 /* Draws the visible blocks front to back with the renderer's program. */
