@@ -140,6 +140,7 @@ static int flight_open(struct flight *fl, const struct params *p, int w, int h)
 		edits_destroy(fl->ed);
 		return -1;
 	}
+	world_keep_terms(fl->wd, p); /* as the scene does: the governor's steps compile nothing */
 	return 0;
 }
 
