@@ -27,6 +27,18 @@ static inline int fixture_density(struct pipeline *pl, const struct params *p)
 	return fixture_report(pipeline_density(pl, p, err, sizeof(err)), "pipeline_density", err);
 }
 
+/* The tests' small streaming world: the world scene over a view of 40
+ * units, block_pool slots, 4 AO rays, no fade-in. */
+static inline void fixture_small_world(struct params *p, int block_pool)
+{
+	params_defaults(p);
+	p->scene = 1;
+	p->block_pool = block_pool;
+	p->view_distance = 40.0f;
+	p->ao_rays = 4;
+	p->fade_time = 0.0f;
+}
+
 /* The terrain's extraction on grid g: its own edit state, the terrain
  * field and a pipeline.  0, or -1 with err (nothing left open). */
 struct fixture_terrain {

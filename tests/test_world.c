@@ -16,12 +16,7 @@
 
 static void small_world(struct params *p)
 {
-	params_defaults(p);
-	p->scene = 1;
-	p->block_pool = 160;
-	p->view_distance = 40.0f;
-	p->ao_rays = 4;
-	p->fade_time = 0.0f;
+	fixture_small_world(p, 160);
 }
 
 /* vertices of m on the plane axis = v, as sorted (a, b, nx, ny, nz) rows */

@@ -18,13 +18,8 @@
 
 static void pool_world(struct params *p)
 {
-	params_defaults(p);
-	p->scene = 1;
+	fixture_small_world(p, 64);
 	p->seed = 7;
-	p->block_pool = 64;
-	p->view_distance = 40.0f;
-	p->ao_rays = 4;
-	p->fade_time = 0.0f;
 }
 
 struct run {

@@ -20,16 +20,6 @@
 #define W 160
 #define H 96
 
-static void terms_world(struct params *p)
-{
-	params_defaults(p);
-	p->scene = 1;
-	p->seed = 7;
-	p->block_pool = 64;
-	p->view_distance = 40.0f;
-	p->ao_rays = 4;
-	p->fade_time = 0.0f;
-}
 
 static void turned_down(const struct params *p, struct params *eff)
 {
@@ -86,7 +76,8 @@ int main(void)
 {
 	struct platform *plat = fixture_open();
 	struct params p, eff;
-	terms_world(&p);
+	fixture_small_world(&p, 64); /* test_world_pool's world */
+	p.seed = 7;
 	turned_down(&p, &eff);
 	struct outcome kept, plain, off, halved, half;
 	struct params e_half = p, c_half = p;

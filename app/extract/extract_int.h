@@ -112,9 +112,9 @@ GLuint extract_density_program(struct pipeline *pl, const struct params *p, char
  * `cuts`), and the variant that refines them near the surface. */
 bool extract_field_cuts(const struct pipeline *pl, const struct params *p);
 GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
-GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen);
-/* Whether that program is the field's (its AO or sun rays read the field). */
-bool extract_vertex_reads_field(const struct pipeline *pl, const struct params *p);
+/* *reads_field (may be NULL): the program is the field's (its AO or sun rays read the field). */
+GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, bool *reads_field, char *err,
+			      size_t errlen);
 /* Every program of a run: all issued first (parallel compilation), then
  * taken in order into pl->p_*.  0, or -1 with err. */
 int extract_create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen);

@@ -65,12 +65,6 @@ unsigned pipeline_compiles(const struct pipeline *pl)
 	return pl->compiles;
 }
 
-void pipeline_keep_terms(struct pipeline *pl, bool ao, bool sun)
-{
-	pl->keep_ao = ao;
-	pl->keep_sun = sun;
-}
-
 GLuint pipeline_density_program(const struct pipeline *pl)
 {
 	return pl->p_density;
@@ -407,13 +401,14 @@ static GLuint setup_pass(struct pipeline *pl, const struct params *p, GLintptr *
 static int output_passes(struct pipeline *pl, const struct params *p, GLuint status, GLintptr status_off, double *t,
 			 char *err, size_t errlen)
 {
-	pl->p_vertices = extract_vertex_program(pl, p, err, errlen);
+	bool reads_field;
+	pl->p_vertices = extract_vertex_program(pl, p, &reads_field, err, errlen);
 	if (!pl->p_vertices)
 		return -1;
 	glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status);
 	set_common(pl, pl->p_vertices, p);
 	/* the AO and sun rays read the field (its program's, even at a count of 0) */
-	if (extract_vertex_reads_field(pl, p) && bind_field(pl, pl->p_vertices, p, err, errlen) < 0)
+	if (reads_field && bind_field(pl, pl->p_vertices, p, err, errlen) < 0)
 		return -1;
 	bind(BIND_DENSITY, pl->b_dens);
 	bind_vertices(pl);

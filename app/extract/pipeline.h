@@ -59,12 +59,13 @@ void pipeline_profile(struct pipeline *pl, bool on, double ms[PASS_COUNT]);
  * moves a value within "on" must not add to it. */
 unsigned pipeline_compiles(const struct pipeline *pl);
 /* Terms a governor turns down to nothing and up again while the run goes
- * on (AO rays, sun shadow steps): kept, their code stays in the vertex
- * pass at a count of 0, which runs none of it (shaders/ao.glsl and
- * sun.glsl return full visibility, as the pass without them writes), so
- * the step switches no program.  A variant made mid-flight is a hitch: on
- * llvmpipe with empty caches, 281 ms for the pass without AO. */
-void pipeline_keep_terms(struct pipeline *pl, bool ao, bool sun);
+ * on (AO rays, sun shadow steps): those on in the configured parameters
+ * are kept, their code in the vertex pass at a count of 0, which runs
+ * none of it (shaders/ao.glsl and sun.glsl return full visibility, as the
+ * pass without them writes), so the step switches no program.  A variant
+ * made mid-flight is a hitch: on llvmpipe with empty caches, 281 ms for
+ * the pass without AO. */
+void pipeline_keep_terms(struct pipeline *pl, const struct params *configured);
 /* The density pass's program of the last pipeline_density/pipeline_run
  * (tests: which uniforms a variant still reads). */
 GLuint pipeline_density_program(const struct pipeline *pl);

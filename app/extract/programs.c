@@ -108,10 +108,27 @@ GLuint extract_refine_program(struct pipeline *pl, const struct params *p, char 
 	return extract_variant_program(pl, pl->field->program, REFINE_DEFINES, p, true, err, errlen);
 }
 
+/* The vertex pass's terms: AO rays, sun shadows. */
+static bool ao_on(const struct params *p)
+{
+	return p->ao_rays > 0;
+}
+
+static bool sun_on(const struct params *p)
+{
+	return p->shadows > 0.0f && p->shadow_steps > 0;
+}
+
+void pipeline_keep_terms(struct pipeline *pl, const struct params *configured)
+{
+	pl->keep_ao = ao_on(configured);
+	pl->keep_sun = sun_on(configured);
+}
+
 /* The vertex pass's variant (extract_vertex_program). */
 static const char *vertex_defines(const struct pipeline *pl, const struct params *p, const char **file, bool *field)
 {
-	bool ao = p->ao_rays > 0 || pl->keep_ao, sun = (p->shadows > 0.0f && p->shadow_steps > 0) || pl->keep_sun;
+	bool ao = ao_on(p) || pl->keep_ao, sun = sun_on(p) || pl->keep_sun;
 	*field = ao || sun;
 	*file = *field ? pl->field->program : "mc_vertices.comp";
 	if (!*field)
@@ -130,22 +147,17 @@ static const char *vertex_defines(const struct pipeline *pl, const struct params
 	return defs[pl->g.margin_extra > 0][ao][sun];
 }
 
-bool extract_vertex_reads_field(const struct pipeline *pl, const struct params *p)
-{
-	const char *file;
-	bool field;
-	vertex_defines(pl, p, &file, &field);
-	return field;
-}
-
 /* The vertex pass: with ambient occlusion or shadows their rays read the field, so it is
- * the field's program; without, the engine's own (not specialized: it reads
- * no parameter that selects code). */
-GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
+ * the field's program (*reads_field, may be NULL); without, the engine's own (not specialized:
+ * it reads no parameter that selects code). */
+GLuint extract_vertex_program(struct pipeline *pl, const struct params *p, bool *reads_field, char *err,
+			      size_t errlen)
 {
 	const char *file;
 	bool field;
 	const char *defines = vertex_defines(pl, p, &file, &field);
+	if (reads_field)
+		*reads_field = field;
 	return extract_variant_program(pl, file, defines, p, field, err, errlen);
 }
 
@@ -183,7 +195,7 @@ int extract_create_programs(struct pipeline *pl, const struct params *p, char *e
 	    !(pl->p_reduce = extract_program(pl, "hp_reduce.comp", err, errlen)) ||
 	    !(pl->p_downsweep = extract_program(pl, "hp_downsweep.comp", err, errlen)) ||
 	    !(pl->p_setup = extract_program(pl, "mc_setup.comp", err, errlen)) ||
-	    !(pl->p_vertices = extract_vertex_program(pl, p, err, errlen)) ||
+	    !(pl->p_vertices = extract_vertex_program(pl, p, NULL, err, errlen)) ||
 	    !(pl->p_indices = extract_program(pl, "mc_indices.comp", err, errlen)))
 		return -1;
 	return 0;

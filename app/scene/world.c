@@ -114,7 +114,7 @@ struct world *world_create(const struct params *p, struct edits *ed, char *err, 
 
 void world_keep_terms(struct world *w, const struct params *configured)
 {
-	pipeline_keep_terms(w->pl, configured->ao_rays > 0, configured->shadows > 0.0f && configured->shadow_steps > 0);
+	pipeline_keep_terms(w->pl, configured);
 }
 
 void world_destroy(struct world *w)
