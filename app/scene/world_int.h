@@ -111,6 +111,7 @@ struct world {
 	int slots;
 	int *slot_block;     /* slot -> block index, -1 free */
 	struct slot_mem *mem;      /* slot -> where its mesh is */
+	struct slot_mem *ord;      /* slots entries: the live meshes sorted by place (world_pool.c) */
 	int stage_slot[WORLD_STAGES]; /* staging slot -> slot, -1 free */
 	struct arena_chunk *chunks; /* the block arena: the meshes at their real sizes */
 	int nchunks, chunks_cap;

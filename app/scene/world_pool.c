@@ -116,7 +116,8 @@ static int add_chunk(struct world *w, GLintptr need)
 int pool_create(struct world *w, char *err, size_t errlen)
 {
 	w->mem = calloc((size_t)w->slots, sizeof(*w->mem));
-	if (!w->mem) {
+	w->ord = calloc((size_t)w->slots, sizeof(*w->ord));
+	if (!w->mem || !w->ord) {
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
@@ -183,6 +184,7 @@ void pool_destroy(struct world *w)
 	for (int i = 0; i < w->nchunks; i++)
 		glDeleteBuffers(1, &w->chunks[i].buf);
 	free(w->chunks);
+	free(w->ord);
 	free(w->mem);
 }
 
@@ -320,48 +322,40 @@ static int pack_chunk(struct world *w, int c, const struct slot_mem *ord, int n)
  * enough; else a new chunk.  0 with *chunk, *at; -1. */
 static int place(struct world *w, GLintptr need, int *chunk, GLintptr *at)
 {
-	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
-	if (!ord)
-		return -1;
-	int n = live_ranges(w, ord), best = -1, rc = 0;
+	struct slot_mem *ord = w->ord;
+	int n = live_ranges(w, ord), best = -1, best_i = 0, best_n = 0;
 	GLintptr best_free = 0;
-	*at = -1;
-	*chunk = -1;
-	for (int c = 0, i = 0; c < w->nchunks && *at < 0; c++) {
+	for (int c = 0, i = 0; c < w->nchunks; c++) {
 		int j = i;
 		while (j < n && ord[j].chunk == c)
 			j++;
 		GLintptr free_bytes = w->chunks[c].cap - w->chunks[c].used;
 		if (free_bytes >= need) {
 			*at = first_fit(w, c, ord + i, j - i, need);
-			*chunk = c;
-			if (*at < 0 && free_bytes > best_free) {
+			if (*at >= 0) {
+				*chunk = c;
+				return 0;
+			}
+			if (free_bytes > best_free) {
 				best = c;
 				best_free = free_bytes;
+				best_i = i;
+				best_n = j - i;
 			}
 		}
 		i = j;
 	}
-	if (*at < 0 && best >= 0) {
-		int i = 0;
-		while (ord[i].chunk != best)
-			i++;
-		int j = i;
-		while (j < n && ord[j].chunk == best)
-			j++;
-		rc = pack_chunk(w, best, ord + i, j - i) < 0 ? -1 : 0;
+	if (best >= 0) { /* packed, its free bytes are one gap at its end */
 		*chunk = best;
 		*at = w->chunks[best].used;
-	} else if (*at < 0) {
-		*chunk = add_chunk(w, need);
-		if (*chunk < 0)
-			rc = -1;
-		else
-			w->st.arena_grown++;
-		*at = 0;
+		return pack_chunk(w, best, ord + best_i, best_n) < 0 ? -1 : 0;
 	}
-	free(ord);
-	return rc;
+	*chunk = add_chunk(w, need);
+	*at = 0;
+	if (*chunk < 0)
+		return -1;
+	w->st.arena_grown++;
+	return 0;
 }
 
 int pool_settle(struct world *w, int slot, uint32_t tris, uint32_t verts)
@@ -424,9 +418,7 @@ int world_check_pool(struct world *w)
 	if (gv < 0 || gi < 0)
 		return -1;
 	int bad = gv + gi;
-	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
-	if (!ord)
-		return -1;
+	struct slot_mem *ord = w->ord;
 	int n = live_ranges(w, ord);
 	GLintptr sum = 0, end = 0, caps = 0;
 	for (int c = 0, i = 0; c < w->nchunks; c++) {
@@ -457,7 +449,6 @@ int world_check_pool(struct world *w)
 			log_error("world: slot %d: in chunk %d of %d", ord[i].stage, ord[i].chunk, w->nchunks);
 			bad++;
 		}
-	free(ord);
 	if (sum != w->arena_used || caps != w->arena_cap) {
 		log_error("world: arena bytes in use %lld of %lld, the meshes hold %lld, the chunks %lld",
 			  (long long)w->arena_used, (long long)w->arena_cap, (long long)sum, (long long)caps);
@@ -468,9 +459,7 @@ int world_check_pool(struct world *w)
 
 int world_test_compact(struct world *w)
 {
-	struct slot_mem *ord = malloc(sizeof(*ord) * (size_t)w->slots);
-	if (!ord)
-		return -1;
+	struct slot_mem *ord = w->ord;
 	int n = live_ranges(w, ord), moved = 0;
 	for (int c = 0, i = 0; c < w->nchunks && moved >= 0; c++) {
 		int j = i;
@@ -480,6 +469,5 @@ int world_test_compact(struct world *w)
 		moved = r < 0 ? -1 : moved + r;
 		i = j;
 	}
-	free(ord);
 	return moved;
 }
