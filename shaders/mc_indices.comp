@@ -26,9 +26,10 @@ void main()
 		ivec4 eo = mc_edge_owner[e];
 		ivec3 q = c + eo.xyz;
 		uint qc = uint(q.x + o.x * (q.y + o.y * q.z));
-		uint m = l0_byte(qc) >> 3;
+		uint w = hp_l0(qc >> 2); // one load for the byte and the prefix
+		uint m = (w >> (8u * (qc & 3u) + 3u)) & 7u;
 		uint r = uint(bitCount(m & ((1u << uint(eo.w)) - 1u)));
-		ids[k] = hp_prefix_fast(qc, 1) + r;
+		ids[k] = hp_prefix_word(qc, w, 1) + r;
 		ok = ok && ids[k] < vcount;
 	}
 	// a triangle whose vertices fell past the vertex capacity degenerates

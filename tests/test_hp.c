@@ -20,12 +20,12 @@ static int count_of(uint8_t b, int comp)
 	return comp == 0 ? (b & 7) : __builtin_popcount((unsigned)(b >> 3));
 }
 
-static void run_case(uint32_t n, int density_pct, int comp)
+static void run_band(uint32_t n, int density_pct, int comp, uint32_t from, uint32_t to)
 {
 	uint8_t *bytes = malloc(n ? n : 1);
 	for (uint32_t i = 0; i < n; i++) {
 		uint8_t b = 0;
-		if ((int)(rnd() % 100) < density_pct)
+		if (i >= from && i < to && (int)(rnd() % 100) < density_pct)
 			b = (uint8_t)((rnd() % 6) | ((rnd() % 8) << 3));
 		bytes[i] = b;
 	}
@@ -69,6 +69,11 @@ static void run_case(uint32_t n, int density_pct, int comp)
 	free(gf);
 }
 
+static void run_case(uint32_t n, int density_pct, int comp)
+{
+	run_band(n, density_pct, comp, 0, n);
+}
+
 int main(void)
 {
 	struct platform *p = fixture_open();
@@ -80,6 +85,13 @@ int main(void)
 	run_case(100000, 100, 0); /* every cell emits */
 	run_case(100000, 1, 1);   /* sparse */
 	run_case(4096, 0, 0);     /* nothing at all */
+	/* a surface in the middle of a 128^3 grid's owner cells: long runs of
+	 * empty nodes before and after */
+	run_band(2146689, 3, 0, 900000, 1200000);
+	run_band(2146689, 3, 1, 900000, 1200000);
+	/* 65 536 and 65 537 level-2 nodes: 16 and 17 halvings of the search */
+	run_case(1048576, 3, 0);
+	run_case(1048577, 3, 0);
 	platform_close(p);
 	return tc_done("histopyramid");
 }

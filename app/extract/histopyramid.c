@@ -45,6 +45,9 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 	loc = gpu_uniform(prog, "u_pre_base");
 	if (loc >= 0)
 		glProgramUniform1ui(prog, loc, h->pre_base);
+	loc = gpu_uniform(prog, "u_hp_n2");
+	if (loc >= 0)
+		glProgramUniform1ui(prog, loc, h->top >= 2 ? h->n[2] : 0);
 }
 
 void hp_dispatch_1d(uint64_t items, int max_groups)
