@@ -9,7 +9,11 @@
 // minimum's four): level 0 first, two words a uvec2, then level k at
 // u_hp_off[k], then the prefix sums of levels 2..top (hp_downsweep.comp).
 // The top level (u_hp_top) has one node: the totals.
+#ifdef HP_COHERENT
+layout(std430, binding = BIND_HP) coherent restrict buffer Hp { uvec2 hp[]; };
+#else
 layout(std430, binding = BIND_HP) restrict buffer Hp { uvec2 hp[]; };
+#endif
 uniform uint u_hp_off[16];
 uniform int u_hp_top;
 uniform uint u_pre_base; // prefix sums (hp_downsweep.comp) start here

@@ -46,10 +46,18 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h);
 /* glDispatchCompute of 64-wide groups over items, split in 2D past
  * max_groups. */
 void hp_dispatch_1d(uint64_t items, int max_groups);
-/* With levels 1 .. from-1 written (buffer b_hp, bound at BIND_HP): levels
- * from..top by the reduction, then the prefix sum of every node of levels
- * 2..top, top down (down-sweep). */
-void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups);
+/* A level of at most this many nodes is reduced in hp_top.comp's one work
+ * group (its six steps up cover 1024 nodes: 4^5 = 1024). */
+#define HP_TOP_NODES 1024
+/* The pyramid's programs: hp_reduce.comp, hp_downsweep.comp (a dispatch a
+ * level, for the large ones) and hp_top.comp (the small levels at once). */
+struct hp_programs {
+	GLuint reduce, downsweep, top;
+};
+/* With levels 1 .. from-1 written (bound at BIND_HP): levels from..top by
+ * the reduction, then the prefix sum of every node of levels 2..top, top
+ * down (down-sweep). */
+void hp_build(const struct hp_levels *h, int from, const struct hp_programs *pr, int max_groups);
 
 /* ---- the pipeline (pipeline.c) ---------------------------------------------- */
 
@@ -67,7 +75,8 @@ struct pipeline {
 	struct program_variant variants[PROGRAM_VARIANTS];
 	uint64_t variant_clock;        /* ticks at every variant lookup */
 	unsigned compiles;             /* programs compiled (pipeline_compiles) */
-	GLuint p_density, p_debris, p_classify, p_reduce, p_downsweep, p_setup, p_vertices, p_indices;
+	GLuint p_density, p_debris, p_classify, p_setup, p_vertices, p_indices;
+	struct hp_programs p_hp;
 	GLuint p_atomic, p_nocompact, p_finish;
 	GLuint p_refine_mark;          /* the refine list (made at the first cut) */
 	GLuint p_debris_flood;         /* the debris filter's second pass (mc_debris_flood.comp) */

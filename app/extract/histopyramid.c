@@ -1,7 +1,8 @@
 /* isoterra — the HistoPyramid's host side (Dyken & Ziegler, in a 1D,
  * 4-to-1 form; docs/PIPELINE.md): the level plan, the reduction up to the
  * totals (hp_reduce.comp) and the down-sweep of the prefix sums
- * (hp_downsweep.comp).  The extraction (pipeline.c) builds its pyramid over
+ * (hp_downsweep.comp), the small levels of both in one work group
+ * (hp_top.comp).  The extraction (pipeline.c) builds its pyramid over
  * the classified cells with hp_build(); hp_selftest() builds one over given
  * level-0 bytes with the very same calls. */
 #include "extract_int.h"
@@ -59,35 +60,46 @@ void hp_dispatch_1d(uint64_t items, int max_groups)
 	glDispatchCompute(gx, div_up(groups, gx), 1);
 }
 
-void hp_build(const struct hp_levels *h, int from, GLuint reduce, GLuint downsweep, GLuint b_hp, int max_groups)
+void hp_build(const struct hp_levels *h, int from, const struct hp_programs *pr, int max_groups)
 {
-	hp_set_uniforms(reduce, h);
-	GLint l_level = gpu_uniform(reduce, "u_level");
-	GLint l_count = gpu_uniform(reduce, "u_count");
-	GLint l_pad = gpu_uniform(reduce, "u_padded");
-	glUseProgram(reduce);
-	for (int k = from; k <= h->top; k++) {
-		glProgramUniform1i(reduce, l_level, k);
-		glProgramUniform1ui(reduce, l_count, h->n[k]);
-		glProgramUniform1ui(reduce, l_pad, h->pad[k]);
+	/* the large levels a dispatch each, from the first that fits one work
+	 * group on in hp_top.comp (at most six levels there) */
+	int first = from;
+	while (first <= h->top && (h->n[first] > HP_TOP_NODES || h->top - first > 5))
+		first++;
+	int down_last = first - 1 > 2 ? first - 1 : 2;
+	hp_set_uniforms(pr->reduce, h);
+	GLint l_level = gpu_uniform(pr->reduce, "u_level");
+	GLint l_count = gpu_uniform(pr->reduce, "u_count");
+	GLint l_pad = gpu_uniform(pr->reduce, "u_padded");
+	glUseProgram(pr->reduce);
+	for (int k = from; k < first; k++) {
+		glProgramUniform1i(pr->reduce, l_level, k);
+		glProgramUniform1ui(pr->reduce, l_count, h->n[k]);
+		glProgramUniform1ui(pr->reduce, l_pad, h->pad[k]);
 		hp_dispatch_1d(h->pad[k], max_groups);
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	}
 
-	/* prefix sums, top down to level 2 (hp_prefix_fast adds a level-1
-	 * node's left siblings itself): the top node's prefix is 0 */
-	hp_set_uniforms(downsweep, h);
-	glUseProgram(downsweep);
-	uint32_t zero[2] = { 0, 0 };
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, b_hp);
-	glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)(h->pre_base + h->off[h->top]) * 8, 8, zero);
-	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-	GLint l_lev = gpu_uniform(downsweep, "u_level");
-	GLint l_cnt = gpu_uniform(downsweep, "u_count");
-	for (int k = h->top - 1; k >= 2; k--) {
-		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-		glProgramUniform1i(downsweep, l_lev, k);
-		glProgramUniform1ui(downsweep, l_cnt, h->n[k]);
+	/* the small levels up, the top's prefix (0) and down to down_last */
+	hp_set_uniforms(pr->top, h);
+	glProgramUniform1i(pr->top, gpu_uniform(pr->top, "u_first"), first);
+	glProgramUniform1i(pr->top, gpu_uniform(pr->top, "u_down_last"), down_last);
+	glProgramUniform1uiv(pr->top, gpu_uniform(pr->top, "u_hp_n"), HP_MAX_LEVELS, h->n);
+	glProgramUniform1uiv(pr->top, gpu_uniform(pr->top, "u_hp_pad"), HP_MAX_LEVELS, h->pad);
+	glUseProgram(pr->top);
+	glDispatchCompute(1, 1, 1);
+
+	/* prefix sums of the large levels, down to level 2 (hp_prefix_fast
+	 * adds a level-1 node's left siblings itself) */
+	hp_set_uniforms(pr->downsweep, h);
+	glUseProgram(pr->downsweep);
+	GLint l_lev = gpu_uniform(pr->downsweep, "u_level");
+	GLint l_cnt = gpu_uniform(pr->downsweep, "u_count");
+	for (int k = down_last - 1; k >= 2; k--) {
+		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+		glProgramUniform1i(pr->downsweep, l_lev, k);
+		glProgramUniform1ui(pr->downsweep, l_cnt, h->n[k]);
 		hp_dispatch_1d(h->n[k], max_groups);
 	}
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -99,7 +111,8 @@ struct hp_test {
 	struct hp_levels h;
 	int max_groups;
 	uint32_t words;
-	GLuint prog, reduce, down;  /* hp_test.comp, hp_reduce.comp, hp_downsweep.comp */
+	GLuint prog;               /* hp_test.comp */
+	struct hp_programs pr;
 	GLuint b_hp, b_out;
 };
 
@@ -110,8 +123,8 @@ static void hp_test_free(struct hp_test *t)
 	for (int i = 0; i < 2; i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);
-	GLuint progs[3] = { t->prog, t->reduce, t->down };
-	for (int i = 0; i < 3; i++)
+	GLuint progs[4] = { t->prog, t->pr.reduce, t->pr.downsweep, t->pr.top };
+	for (int i = 0; i < 4; i++)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
 }
@@ -127,8 +140,9 @@ static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, ui
 	t->words = div_up(n, 4);
 	hp_plan(&t->h, t->words);
 	if (!(t->prog = gpu_compute_program("hp_test.comp", NULL, err, errlen)) ||
-	    !(t->reduce = gpu_compute_program("hp_reduce.comp", NULL, err, errlen)) ||
-	    !(t->down = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen)))
+	    !(t->pr.reduce = gpu_compute_program("hp_reduce.comp", NULL, err, errlen)) ||
+	    !(t->pr.downsweep = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen)) ||
+	    !(t->pr.top = gpu_compute_program("hp_top.comp", NULL, err, errlen)))
 		return -1;
 	uint32_t *words = calloc(t->words ? t->words : 1, 4);
 	if (!words) {
@@ -176,7 +190,7 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		glProgramUniform1ui(t.prog, gpu_uniform(t.prog, "u_words"), t.words);
 		glProgramUniform1i(t.prog, gpu_uniform(t.prog, "u_comp"), comp);
 		hp_test_pass(&t, 0, t.h.pad[1]); /* level 1 from the bytes */
-		hp_build(&t.h, 2, t.reduce, t.down, t.b_hp, t.max_groups);
+		hp_build(&t.h, 2, &t.pr, t.max_groups);
 		rc = gpu_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);
 	}
 	if (rc == 0) {

@@ -7,6 +7,7 @@
  *                     -> HistoPyramid level 0 (bytes) and level 1 (sums)
  *   hp_reduce.comp    level k = sums of four level k-1 nodes, to the top
  *   hp_downsweep.comp every node's prefix sum, top down (histopyramid.c)
+ *   hp_top.comp       the small levels of both in one work group
  *   mc_setup.comp     totals -> clamp to capacity -> indirect commands
  *   mc_vertices.comp  one invocation per shared vertex (indirect dispatch;
  *                     with ambient occlusion the field's program,
@@ -176,7 +177,7 @@ void pipeline_destroy(struct pipeline *pl)
 	for (int i = 0; i < PROGRAM_VARIANTS; i++)
 		if (pl->variants[i].prog)
 			glDeleteProgram(pl->variants[i].prog);
-	GLuint progs[] = { pl->p_debris, pl->p_debris_flood, pl->p_classify, pl->p_reduce, pl->p_downsweep, pl->p_setup,
+	GLuint progs[] = { pl->p_debris, pl->p_debris_flood, pl->p_classify, pl->p_hp.reduce, pl->p_hp.downsweep, pl->p_hp.top, pl->p_setup,
 			   pl->p_indices, pl->p_atomic, pl->p_nocompact, pl->p_finish, pl->p_refine_mark };
 	for (size_t i = 0; i < ARRAY_SIZE(progs); i++)
 		if (progs[i])
@@ -446,7 +447,7 @@ static void pyramid_passes(struct pipeline *pl, const struct params *p)
 	hp_dispatch_1d(l2, pl->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 	mark(pl, PASS_CLASSIFY, &t);
-	hp_build(&pl->hp, 3, pl->p_reduce, pl->p_downsweep, pl->b_hp, pl->max_groups);
+	hp_build(&pl->hp, 3, &pl->p_hp, pl->max_groups);
 	mark(pl, PASS_REDUCE, &t);
 }
 

@@ -176,7 +176,7 @@ static void prefetch_variant(struct pipeline *pl, const char *file, const char *
 int extract_create_programs(struct pipeline *pl, const struct params *p, char *err, size_t errlen)
 {
 	static const char *const own[] = { "mc_debris.comp", "mc_debris_flood.comp", "mc_classify.comp", "hp_reduce.comp",
-					   "hp_downsweep.comp", "mc_setup.comp", "mc_indices.comp" };
+					   "hp_downsweep.comp", "hp_top.comp", "mc_setup.comp", "mc_indices.comp" };
 	const char *vfile;
 	bool vfield;
 	const char *vdefs = vertex_defines(pl, p, &vfile, &vfield);
@@ -192,8 +192,9 @@ int extract_create_programs(struct pipeline *pl, const struct params *p, char *e
 	    !(pl->p_debris = extract_program(pl, "mc_debris.comp", err, errlen)) ||
 	    !(pl->p_debris_flood = extract_program(pl, "mc_debris_flood.comp", err, errlen)) ||
 	    !(pl->p_classify = extract_program(pl, "mc_classify.comp", err, errlen)) ||
-	    !(pl->p_reduce = extract_program(pl, "hp_reduce.comp", err, errlen)) ||
-	    !(pl->p_downsweep = extract_program(pl, "hp_downsweep.comp", err, errlen)) ||
+	    !(pl->p_hp.reduce = extract_program(pl, "hp_reduce.comp", err, errlen)) ||
+	    !(pl->p_hp.downsweep = extract_program(pl, "hp_downsweep.comp", err, errlen)) ||
+	    !(pl->p_hp.top = extract_program(pl, "hp_top.comp", err, errlen)) ||
 	    !(pl->p_setup = extract_program(pl, "mc_setup.comp", err, errlen)) ||
 	    !(pl->p_vertices = extract_vertex_program(pl, p, NULL, err, errlen)) ||
 	    !(pl->p_indices = extract_program(pl, "mc_indices.comp", err, errlen)))

@@ -38,6 +38,7 @@ static const struct gl_pass passes[] = {
 	{ "mc_classify.comp", "mc_classify.comp", NULL, NULL, NULL, false, NULL },
 	{ "hp_reduce.comp", "hp_reduce.comp", NULL, NULL, NULL, false, NULL },
 	{ "hp_downsweep.comp", "hp_downsweep.comp", NULL, NULL, NULL, false, NULL },
+	{ "hp_top.comp", "hp_top.comp", NULL, NULL, NULL, false, NULL },
 	{ "mc_setup.comp", "mc_setup.comp", NULL, NULL, NULL, false, NULL },
 	{ "mc_vertices.comp", "mc_vertices.comp", NULL, NULL, NULL, false, NULL },
 	{ "mc_vertices.comp (WITH_AO, WITH_SUN)", "density.comp", NULL, NULL,
