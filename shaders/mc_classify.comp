@@ -1,8 +1,8 @@
 // isoterra — classify every owner cell from the density pass's sign bits:
 // triangle count from the case byte (corner bit n = corner n inside) and
 // the vertices it owns on edges 3, 0, 8; write HistoPyramid level 0 (packed
-// bytes), level 1 (sums of four) and level 2 (sums of sixteen).  One
-// invocation: 16 owner cells (four level-0 words, one level-2 node).  Per piece of a row (one piece, two where the 16 cross a
+// bytes) and level 2 (sums of sixteen; level 1 is not stored, hp.glsl).
+// One invocation: 16 owner cells (four level-0 words, one level-2 node).  Per piece of a row (one piece, two where the 16 cross a
 // row's end) it reads four runs of sign bits, rows y and y+1 of slabs z and
 // z+1, one or two words each: at most one word per cell for rows of 16 cells
 // or more.  Cells whose eight corners agree are skipped with a few bit
@@ -11,9 +11,7 @@ layout(local_size_x = WG_SIZE) in;
 #define PASS_READS_SIGNS 1
 #include "common.glsl"
 #include "hp.glsl"
-uniform uint u_words;   // real level-0 words: ceil(owner cells / 4)
-uniform uint u_words_padded;
-uniform uint u_level2_nodes; // level 2's padded size (1 when level 1 is the top)
+uniform uint u_level2_nodes; // level 2's padded size (the pads' sums are zero)
 
 // The case byte of cell j of a piece from the runs of rows (y, z) r00,
 // (y+1, z) r10, (y, z+1) r01, (y+1, z+1) r11 (corner order as cell_case's).
@@ -69,28 +67,14 @@ void main()
 		piece(c, n, cell - first, w);
 		cell += n;
 	}
-	// the four level-0 words, two a uvec2 of the pyramid's buffer
-	uint w0 = 4u * g;
-	if (w0 + 1u < u_words)
+	// the four level-0 words, two a uvec2 of the pyramid's buffer (zero
+	// past the grid's last cell), and their sums at level 2
+	if (g < u_hp_n2) {
 		hp[2u * g] = w.xy;
-	else if (w0 < u_words)
-		hp[2u * g].x = w.x;
-	if (w0 + 3u < u_words)
 		hp[2u * g + 1u] = w.zw;
-	else if (w0 + 2u < u_words)
-		hp[2u * g + 1u].x = w.z;
-	uvec2 sum2 = uvec2(0u);
-	for (uint k = 0u; k < 4u; ++k) {
-		uint wi = 4u * g + k;
-		uvec2 sum = uvec2(0u);
-		for (uint j = 0u; j < 4u; ++j) {
-			uint b = (w[k] >> (8u * j)) & 255u;
-			sum += uvec2(b & 7u, uint(bitCount(b >> 3)));
-		}
-		if (wi < u_words_padded)
-			hp[u_hp_off[1] + wi] = sum;
-		sum2 += sum;
 	}
-	if (u_hp_top >= 2)
-		hp[u_hp_off[2] + g] = sum2;
+	uvec2 sum2 = uvec2(0u);
+	for (uint k = 0u; k < 4u; ++k)
+		sum2 += uvec2(word_count(w[k], 0), word_count(w[k], 1));
+	hp[u_hp_off[2] + g] = sum2;
 }

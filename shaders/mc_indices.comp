@@ -26,10 +26,10 @@ void main()
 		ivec4 eo = mc_edge_owner[e];
 		ivec3 q = c + eo.xyz;
 		uint qc = uint(q.x + o.x * (q.y + o.y * q.z));
-		uint w = hp_l0(qc >> 2); // one load for the byte and the prefix
+		uint w;
+		uint first = hp_prefix_w(qc, 1, w); // and the owner's word, for its byte
 		uint m = (w >> (8u * (qc & 3u) + 3u)) & 7u;
-		uint r = uint(bitCount(m & ((1u << uint(eo.w)) - 1u)));
-		ids[k] = hp_prefix_word(qc, w, 1) + r;
+		ids[k] = first + uint(bitCount(m & ((1u << uint(eo.w)) - 1u)));
 		ok = ok && ids[k] < vcount;
 	}
 	// a triangle whose vertices fell past the vertex capacity degenerates

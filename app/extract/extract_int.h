@@ -29,11 +29,12 @@ static inline uint32_t div_up(uint64_t a, uint64_t b)
 #define HP_MAX_LEVELS 16 /* u_hp_off[16] in shaders/hp.glsl */
 
 /* Level sizes: n[1] = level-0 words, n[k] = ceil(n[k-1] / 4) up to one node
- * at `top`; every level but the top padded to a multiple of four (pad) so
- * a parent reads four children.  One buffer of uvec2 nodes (shaders/hp.glsl):
- * level 0 first (l0 nodes, two words each), level k at node offset off[k],
- * then the prefix sums of levels 2..top, node i of level k at pre_base +
- * off[k] + i; `nodes` in all. */
+ * at `top` (2 or more); every level from 2 but the top padded to a multiple
+ * of four (pad) so a parent reads four children.  One buffer of uvec2 nodes
+ * (shaders/hp.glsl): level 0 first (l0 nodes, two words each, four words a
+ * level-2 node), level 1 not stored (off[1], pad[1] 0), level k >= 2 at
+ * node offset off[k], then the prefix sums of levels 2..top, node i of
+ * level k at pre_base + off[k] + i; `nodes` in all. */
 struct hp_levels {
 	int top;
 	uint32_t n[HP_MAX_LEVELS], pad[HP_MAX_LEVELS], off[HP_MAX_LEVELS];

@@ -17,22 +17,23 @@ void hp_plan(struct hp_levels *h, uint32_t words)
 	memset(h, 0, sizeof(*h));
 	int k = 1;
 	h->n[1] = words ? words : 1;
-	while (h->n[k] > 1) {
+	while (h->n[k] > 1 || k < 2) { /* level 2 at least: it holds the totals when it is the top */
 		h->n[k + 1] = div_up(h->n[k], 4);
 		k++;
 	}
 	h->top = k;
-	h->l0 = div_up(words ? words : 1, 2);
+	/* level 0: four words (two nodes) a level-2 node, the last one's
+	 * words past the grid zero; level 1 is not stored (shaders/hp.glsl) */
+	h->l0 = 2 * h->n[2];
 	uint32_t o = h->l0;
-	for (int i = 1; i <= k; i++) {
+	for (int i = 2; i <= k; i++) {
 		h->pad[i] = i < k ? 4 * h->n[i + 1] : 1;
 		h->off[i] = o;
 		o += h->pad[i];
 	}
-	/* the prefix sums of levels 2..top (of the top alone when it is 1) */
-	uint32_t first = h->off[k >= 2 ? 2 : k];
-	h->pre_base = o - first;
-	h->nodes = o + (o - first);
+	/* the prefix sums of levels 2..top */
+	h->pre_base = o - h->off[2];
+	h->nodes = o + (o - h->off[2]);
 }
 
 void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
@@ -144,7 +145,9 @@ static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, ui
 	    !(t->pr.downsweep = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen)) ||
 	    !(t->pr.top = gpu_compute_program("hp_top.comp", NULL, err, errlen)))
 		return -1;
-	uint32_t *words = calloc(t->words ? t->words : 1, 4);
+	/* level 0 as the pipeline leaves it: zero past the last word, to the
+	 * end of its last level-2 node's four */
+	uint32_t *words = calloc((size_t)t->h.l0 * 2, 4);
 	if (!words) {
 		snprintf(err, errlen, "out of memory");
 		return -1;
@@ -154,7 +157,7 @@ static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, ui
 	/* level 0 at the start of the pyramid's buffer */
 	t->b_hp = extract_buffer((GLsizeiptr)t->h.nodes * 8, NULL, GL_DYNAMIC_COPY);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, t->b_hp);
-	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)t->words * 4, words);
+	glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)t->h.l0 * 8, words);
 	glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 	free(words);
 	t->b_out = extract_buffer((GLsizeiptr)(outn ? outn : 1) * 8, NULL, GL_DYNAMIC_COPY);
@@ -163,7 +166,7 @@ static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, ui
 	return 0;
 }
 
-/* Runs hp_test.comp in mode (0 level 1, 1 traversal, 2 prefix sums) over
+/* Runs hp_test.comp in mode (0 level 2, 1 traversal, 2 prefix sums) over
  * count items. */
 static void hp_test_pass(const struct hp_test *t, int mode, uint32_t count)
 {
@@ -189,8 +192,8 @@ int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], u
 		hp_set_uniforms(t.prog, &t.h);
 		glProgramUniform1ui(t.prog, gpu_uniform(t.prog, "u_words"), t.words);
 		glProgramUniform1i(t.prog, gpu_uniform(t.prog, "u_comp"), comp);
-		hp_test_pass(&t, 0, t.h.pad[1]); /* level 1 from the bytes */
-		hp_build(&t.h, 2, &t.pr, t.max_groups);
+		hp_test_pass(&t, 0, t.h.pad[2]); /* level 2 from the words */
+		hp_build(&t.h, 3, &t.pr, t.max_groups);
 		rc = gpu_read_buffer(t.b_hp, (GLintptr)t.h.off[t.h.top] * 8, 8, top);
 	}
 	if (rc == 0) {

@@ -434,15 +434,13 @@ static void pyramid_passes(struct pipeline *pl, const struct params *p)
 	double t = clock_ms();
 	filtered_signs(pl);
 	set_common(pl, pl->p_classify, p);
-	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words"), pl->words);
-	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_words_padded"), pl->hp.pad[1]);
 	bind(BIND_SIGNS, pl->b_signs);
 	bind(BIND_HP, pl->b_hp);
 	glBindBufferBase(GL_UNIFORM_BUFFER, UBIND_MC_TABLES, pl->b_tables);
 	glUseProgram(pl->p_classify);
-	/* an invocation: four level-0 words, their level-1 nodes and the
-	 * level-2 node above them (or a level-2 pad) */
-	uint32_t l2 = pl->hp.top >= 2 ? pl->hp.pad[2] : 1;
+	/* an invocation: four level-0 words and the level-2 node above them
+	 * (or a level-2 pad) */
+	uint32_t l2 = pl->hp.pad[2];
 	glProgramUniform1ui(pl->p_classify, gpu_uniform(pl->p_classify, "u_level2_nodes"), l2);
 	hp_dispatch_1d(l2, pl->max_groups);
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
