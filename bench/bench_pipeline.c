@@ -26,7 +26,7 @@
  *
  * usage: bench_pipeline [--quick] [--runs N] [--sizes 64,128] [--peer-threads N]
  *                       [--no-peers] [--] [isoterra flags]
- * e.g.   bench_pipeline -- --preset fbm --octaves 7 --warp-amp 0 --grid 128 */
+ * e.g.   bench_pipeline -- --preset fbm --octaves 7 --warp-amp 0 --noise-y-scale 1 --grid 128 */
 #include "app.h"
 #include "bench.h"
 #include "bench_pipeline.h"

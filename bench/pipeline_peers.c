@@ -33,6 +33,8 @@ static const char *field_mismatch(const struct params *p)
 		return "a fractal family other than fbm or geiss (libnoise's Perlin module is a plain sum)";
 	if (p->warp_amp != 0 || p->floor_strength != 0 || p->rotated_octaves != 0)
 		return "domain warp, hard floor or rotated octaves on (--warp-amp 0 --floor-strength 0 --rotated-octaves 0)";
+	if (p->noise_y_scale != 1)
+		return "noise stretched along y (--noise-y-scale 1: libnoise's module is isotropic)";
 	if (p->closed)
 		return "a closed volume (--no-closed)";
 	if (p->terrace != TERRACE_OFF || p->shelf != SHELF_OFF || p->flat_spot || p->curves[0] || p->heightmap[0])

@@ -355,11 +355,17 @@ const struct preset presets[] = {
 	  "shape=planet;planet_radius=12;vol_size=34;vol_y=-12;vol_height=1;noise_amp=1.4;noise_freq=0.1;gain=0.38;"
 	  "floor_strength=0;warp_amp=0.5;water_level=-0.2;water_wave=0.3;snow_line=2.2;cam_dist=1.5;cam_pitch=20;"
 	  "fly_height=22;fog=0.4;lod_distance=6" },
-	{ "plains", "height-damped multifractal: smooth lowlands, rough peaks", "fractal=hetero;noise_amp=8" },
+	{ "plains", "height-damped multifractal: smooth green lowlands by a lake, rough peaks",
+	  "fractal=hetero;noise_amp=10;noise_freq=0.02;noise_y_scale=0.1;mf_offset=0.8;warp_amp=0.5;floor_strength=0;"
+	  "water_level=-5;snow_line=12" },
 	{ "cells", "Worley F2-F1 cellular terrain: plates meeting at creases", "fractal=worley;noise_amp=10;noise_freq=0.05;octaves=1;warp_amp=0" },
 	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },
-	{ "fbm", "fractional Brownian motion", "fractal=fbm;hurst=1.0" },
-	{ "multifractal", "multiplicative multifractal cascade", "fractal=multifractal;noise_amp=18" },
+	{ "fbm", "fractional Brownian motion: hills rough alike everywhere, cut by gorges",
+	  "fractal=fbm;hurst=0.8;noise_amp=12;noise_freq=0.03;noise_y_scale=0.3;warp_amp=0;floor_strength=0;rotated_octaves=0;"
+	  "water_level=-7;snow_line=8" },
+	{ "multifractal", "multiplicative multifractal cascade: smooth green uplands under jagged peaks",
+	  "fractal=multifractal;noise_amp=12;noise_freq=0.03;noise_y_scale=0.35;warp_amp=1;floor_strength=0;water_level=-7;"
+	  "snow_line=7" },
 	{ "landing", "terrain with a flat landing pad", "flat_spot=true;flat_y=-4;flat_inner=16;flat_outer=26;cam_pitch=50" },
 	{ "diorama", "the default terrain as a closed block with cut walls, orbited from outside",
 	  "closed=true;vol_size=32;vol_height=1;cam_dist=1.85;cam_pitch=24" },
