@@ -60,12 +60,14 @@ void main()
 	ivec3 o = u_cells + 1;
 	uint owners = uint(o.x * o.y * o.z);
 	uint first = 16u * g, end = min(first + 16u, owners);
+	// the first piece's cell by a division, the next ones' (the start of
+	// the next row or slab) by counting on
+	ivec3 c = cell_of(int(first), o);
 	for (uint cell = first; cell < end;) {
-		int ic = int(cell);
-		ivec3 c = cell_of(ic, o);
 		uint n = min(end - cell, uint(o.x - c.x));
 		piece(c, n, cell - first, w);
 		cell += n;
+		c = c.y + 1 < o.y ? ivec3(0, c.y + 1, c.z) : ivec3(0, 0, c.z + 1);
 	}
 	// the four level-0 words, two a uvec2 of the pyramid's buffer (zero
 	// past the grid's last cell), and their sums at level 2
