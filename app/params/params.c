@@ -358,7 +358,8 @@ const struct preset presets[] = {
 	{ "plains", "height-damped multifractal: smooth green lowlands by a lake, rough peaks",
 	  "fractal=hetero;noise_amp=10;noise_freq=0.02;noise_y_scale=0.1;mf_offset=0.8;warp_amp=0.5;floor_strength=0;"
 	  "water_level=-5;snow_line=12" },
-	{ "cells", "Worley F2-F1 cellular terrain: plates meeting at creases", "fractal=worley;noise_amp=10;noise_freq=0.05;octaves=1;warp_amp=0" },
+	{ "cells", "Worley F2-F1 cellular terrain: plates meeting at creases, stepped in shelves",
+	  "fractal=worley;noise_amp=10;noise_freq=0.05;octaves=1;warp_amp=0;terrace=pre;terrace_step=2.5;terrace_strength=4" },
 	{ "turbulence", "Perlin turbulence, Dembogurski's field", "fractal=turbulence;gain=0.56;lacunarity=2.0;octaves=7;noise_amp=16" },
 	{ "fbm", "fractional Brownian motion: hills rough alike everywhere, cut by gorges",
 	  "fractal=fbm;hurst=0.8;noise_amp=12;noise_freq=0.03;noise_y_scale=0.3;warp_amp=0;floor_strength=0;rotated_octaves=0;"
