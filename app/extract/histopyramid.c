@@ -49,7 +49,7 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 		glProgramUniform1ui(prog, loc, h->pre_base);
 	loc = gpu_uniform(prog, "u_hp_n2");
 	if (loc >= 0)
-		glProgramUniform1ui(prog, loc, h->top >= 2 ? h->n[2] : 0);
+		glProgramUniform1ui(prog, loc, h->n[2]);
 }
 
 void hp_dispatch_1d(uint64_t items, int max_groups)
@@ -91,8 +91,8 @@ void hp_build(const struct hp_levels *h, int from, const struct hp_programs *pr,
 	glUseProgram(pr->top);
 	glDispatchCompute(1, 1, 1);
 
-	/* prefix sums of the large levels, down to level 2 (hp_prefix_fast
-	 * adds a level-1 node's left siblings itself) */
+	/* prefix sums of the large levels, down to level 2 (a cell's prefix
+	 * adds the words before its own in its level-2 node: shaders/hp.glsl) */
 	hp_set_uniforms(pr->downsweep, h);
 	glUseProgram(pr->downsweep);
 	GLint l_lev = gpu_uniform(pr->downsweep, "u_level");
