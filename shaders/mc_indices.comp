@@ -1,6 +1,7 @@
-// isoterra — generate the triangles: traverse the triangle pyramid to the
-// emitting cell, look up its case's edges and turn each edge into the index
-// of the vertex its owner cell generated (prefix sum of the vertex pyramid).
+// isoterra — generate the triangles: find each one's emitting cell in the
+// triangle pyramid (hp.glsl hp_traverse), look up its case's edges and turn
+// each edge into the index of the vertex its owner cell generated (prefix
+// sum of the vertex pyramid).
 layout(local_size_x = WG_SIZE) in;
 #define PASS_READS_SIGNS 1 // the cell's case from four runs of sign bits
 #include "common.glsl"

@@ -1,4 +1,4 @@
-// isoterra — generate each shared vertex once: traverse the vertex pyramid to
+// isoterra — generate each shared vertex once: search the vertex pyramid to
 // find the owner cell and which of its edges (3, 0, 8 = +x, +y, +z) it is.
 #ifndef FIELD_PASS_VERTICES // in a field's program common.glsl declares it first
 layout(local_size_x = WG_SIZE) in;

@@ -4,10 +4,12 @@
  *   field program     density at every corner + margin (FIELD_PASS_DENSITY;
  *                     the field's file, main() in common.glsl)
  *   mc_classify.comp  per owner cell: triangle count + owned-vertex mask
- *                     -> HistoPyramid level 0 (bytes) and level 1 (sums)
- *   hp_reduce.comp    level k = sums of four level k-1 nodes, to the top
- *   hp_downsweep.comp every node's prefix sum, top down (histopyramid.c)
- *   hp_top.comp       the small levels of both in one work group
+ *                     -> HistoPyramid level 0 (bytes) and level 2 (sums
+ *                     of 16; level 1 is not stored: shaders/hp.glsl)
+ *   hp_reduce.comp    level k = sums of four level k-1 nodes, the large levels
+ *   hp_top.comp       the small levels up to the top, and their prefix sums
+ *   hp_downsweep.comp the large levels' prefix sums, down to level 2
+ *                     (histopyramid.c hp_build)
  *   mc_setup.comp     totals -> clamp to capacity -> indirect commands
  *   mc_vertices.comp  one invocation per shared vertex (indirect dispatch;
  *                     with ambient occlusion the field's program,
