@@ -20,7 +20,6 @@
 #define W 160
 #define H 96
 
-
 static void turned_down(const struct params *p, struct params *eff)
 {
 	*eff = *p;

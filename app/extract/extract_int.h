@@ -55,9 +55,9 @@ void hp_dispatch_1d(uint64_t items, int max_groups);
 struct hp_programs {
 	GLuint reduce, downsweep, top;
 };
-/* With levels 1 .. from-1 written (bound at BIND_HP): levels from..top by
- * the reduction, then the prefix sum of every node of levels 2..top, top
- * down (down-sweep). */
+/* With level 0 and levels 2 .. from-1 written (bound at BIND_HP; from >=
+ * 3): levels from..top by the reduction, then the prefix sum of every node
+ * of levels 2..top, top down (down-sweep). */
 void hp_build(const struct hp_levels *h, int from, const struct hp_programs *pr, int max_groups);
 
 /* ---- the pipeline (pipeline.c) ---------------------------------------------- */
