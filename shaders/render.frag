@@ -14,8 +14,9 @@ in vec3 v_pos;
 in vec3 v_nrm;
 in float v_ao;
 in float v_sun;
+in float v_fog;  // render.vert
+in float v_slow;
 uniform vec3 u_eye;
-uniform float u_fog_density;
 layout(binding = TEX_SURFACE) uniform highp sampler2D u_surface; // R albedo, GB slopes, A height
 #ifndef ROAD_MAP
 #define ROAD_MAP 0
@@ -146,7 +147,7 @@ void main()
 	}
 
 	// albedo: soil table along slow variation, strata bands by altitude
-	float slow = texture(u_surface, v_pos.xz * 0.011).a;
+	float slow = v_slow;
 	float band = 0.5 + 0.5 * sin(alt * 1.7 + slow * 6.0 + up_n * 0.8);
 	vec3 rock = soil_color(slow * 0.8 + band * 0.25);
 	rock *= mix(1.0, 0.72 + 0.5 * band * band, u_strata);
@@ -185,6 +186,6 @@ void main()
 #endif
 	vec3 light = u_sun * SUN_COLOR * ndl * lit * mix(1.0, occ, 0.5) + u_ambient * 2.0 * (sky_amb + ground_amb) * occ;
 	vec3 col = albedo * light * back;
-	col = apply_fog(col, v_pos, u_eye, u_fog_density);
+	col = mix(col, haze_color(normalize(v_pos - u_eye)), v_fog);
 	frag = vec4(display(col), 1.0);
 }
