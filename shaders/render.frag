@@ -172,7 +172,7 @@ void main()
 #if ROAD_MAP
 	albedo = road_paint(albedo, v_pos, tex, hgt);
 #endif
-	albedo = srgb_to_linear(albedo);
+	albedo = albedo_to_linear(albedo);
 
 	vec3 l = sun_dir();
 	float ndl = max(dot(n, l), 0.0);

@@ -6,7 +6,9 @@
  *     haze's colour: the horizon's away from the sun, warmer towards it;
  *   - the snow: its invariants (none on steep ground, none well under the
  *     line, full cover on flat ground well over it, more the higher and
- *     the flatter) over a grid of altitudes, slopes and both noises.
+ *     the flatter) over a grid of altitudes, slopes and both noises;
+ *   - the gamma fits (albedo_to_linear, linear_to_srgb) against powf, in
+ *     levels of 255 of the picture written.
  * The sun shadows have their own test against the CPU (test_shadows.c). */
 #include "app.h"
 #include "tcheck.h"
@@ -157,6 +159,42 @@ static void check_snow(GLuint prog, struct params *p)
 	CHECK(full > N / 10 && partial > N / 50, "the grid tests little (%u full, %u partial)", full, partial);
 }
 
+/* The fits of gamma 2.2 against powf, over their ranges (the albedo up to
+ * 1.3: the texture's grain brightens it; the display 0 .. 1, after the
+ * tone mapping's clamp), in levels of 255 of what is written: the albedo's
+ * error taken back through pow 1/2.2 (what a viewer sees of it). */
+static void check_gamma(GLuint prog)
+{
+	enum { N = 2601 };
+	static float in[N * 4], out[N * 4];
+	for (int i = 0; i < N; i++) {
+		float x = (float)i / (N - 1);
+		in[4 * i + 0] = x;          /* display's input, and an albedo 0 .. 1 */
+		in[4 * i + 1] = 1.3f * x;   /* an albedo up to 1.3 */
+		in[4 * i + 2] = 0.5f * x;
+	}
+	CHECK(run(prog, 2, in, N, N, 0.0f, out), "gamma: dispatch");
+	double worst_alb = 0, worst_disp = 0;
+	for (int i = 0; i < N; i++) {
+		for (int c = 0; c < 3; c++) {
+			double a = in[4 * i + c], lin = out[4 * i + c];
+			double back = pow(lin > 0 ? lin : 0, 1 / 2.2);
+			worst_alb = fmax(worst_alb, fabs(back - a) * 255);
+			CHECK(lin >= -1e-6, "albedo_to_linear(%g) = %g is negative", a, lin);
+		}
+		double x = in[4 * i];
+		worst_disp = fmax(worst_disp, fabs(out[4 * i + 3] - pow(x, 1 / 2.2)) * 255);
+	}
+	printf("gamma fits: albedo within %.2f, display within %.2f levels of 255\n", worst_alb, worst_disp);
+	CHECK(worst_alb <= 1.25, "albedo_to_linear: %.2f levels off pow 2.2 (1.25 allowed)", worst_alb);
+	CHECK(worst_disp <= 0.6, "linear_to_srgb: %.2f levels off pow 1/2.2 (0.6 allowed)", worst_disp);
+	/* both rise: no band where a brighter input writes a darker pixel */
+	unsigned falls = 0;
+	for (int i = 1; i < N; i++)
+		falls += out[4 * i + 1] < out[4 * (i - 1) + 1] || out[4 * i + 3] < out[4 * (i - 1) + 3];
+	CHECK(falls == 0, "a gamma fit falls somewhere (%u steps)", falls);
+}
+
 int main(void)
 {
 	struct platform *plat = fixture_open();
@@ -171,6 +209,7 @@ int main(void)
 		check_fog(prog, &p, 0.0f);
 		check_fog(prog, &p, 0.25f);
 		check_snow(prog, &p);
+		check_gamma(prog);
 		glDeleteProgram(prog);
 	}
 	platform_close(plat);
