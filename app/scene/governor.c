@@ -47,7 +47,11 @@ static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 
 #define OVER 1.00        /* step down above the target ... */
 #define OVER_FOR_S 0.25  /* ... held this long */
-#define UNDER 0.75       /* step up below target * UNDER ... */
+#define UNDER 0.75       /* step up below target * UNDER (a step whose cost is not known yet) ... */
+#define FIT 0.90         /* ... or when the level above is predicted under target * FIT */
+#define COST_MIN 1.02    /* a step up's measured cost, clamped: it never makes the frame cheaper */
+#define COST_MAX 2.0
+#define LEARN_MAX 1.5    /* no cost learnt from a step taken while more than this times the target was held */
 #define UP_WAIT_MIN_S 2.0 /* ... held this long at first */
 #define UP_WAIT_MAX_S 32.0
 #define SETTLE_S 0.5     /* after a step: let the average follow */
@@ -66,11 +70,18 @@ struct governor_quality governor_level(int level)
 void governor_init(struct governor *g, double target_ms)
 {
 	*g = (struct governor){ .target_ms = target_ms, .smooth_ms = -1, .over_since = -1, .under_since = -1,
-				.settle_until = -1e300, .up_wait_s = UP_WAIT_MIN_S, .last_up_s = -1 };
+				.settle_until = -1e300, .up_wait_s = UP_WAIT_MIN_S, .last_up_s = -1, .learn_from = -1 };
+}
+
+double governor_held_ms(const struct governor *g)
+{
+	return g->smooth_ms < 0 ? -1 : g->smooth_ms + sqrt(g->smooth_var);
 }
 
 static void step(struct governor *g, int dir, double now_s)
 {
+	g->learn_from = g->level;
+	g->learn_held = governor_held_ms(g);
 	g->level += dir;
 	g->over_since = g->under_since = -1;
 	g->settle_until = now_s + SETTLE_S;
@@ -79,27 +90,53 @@ static void step(struct governor *g, int dir, double now_s)
 		/* the step up just before did not hold: wait twice as long next time */
 		if (g->last_up_s >= 0 && now_s - g->last_up_s < FAILED_UP_S)
 			g->up_wait_s = fmin(g->up_wait_s * 2, UP_WAIT_MAX_S);
+		g->up_judged = true; /* the step up before, held or not, is judged */
 	} else {
 		g->steps_up++;
 		g->last_up_s = now_s;
+		g->up_judged = false;
 	}
 }
 
-double governor_held_ms(const struct governor *g)
+/* Settled after a step: what it cost, the time held at the upper of the
+ * two levels over that at the lower, read a settle apart (the same view,
+ * nearly), averaged with what the last step between them said. */
+static void learn(struct governor *g)
 {
-	return g->smooth_ms < 0 ? -1 : g->smooth_ms + sqrt(g->smooth_var);
+	double now = governor_held_ms(g);
+	int from = g->learn_from;
+	g->learn_from = -1;
+	/* a step down forced by a hitch or a jump of the view says nothing of the step */
+	if (from < 0 || g->learn_held <= 0 || now <= 0 || g->learn_held > LEARN_MAX * g->target_ms)
+		return;
+	int lower = from > g->level ? from : g->level;
+	double upper_ms = from > g->level ? now : g->learn_held;
+	double lower_ms = from > g->level ? g->learn_held : now;
+	double c = fmin(fmax(upper_ms / lower_ms, COST_MIN), COST_MAX);
+	g->up_cost[lower] = g->up_cost[lower] > 0 ? (float)(0.5 * (g->up_cost[lower] + c)) : (float)c;
+}
+
+/* Whether the level above fits: held times that step's cost under
+ * target * FIT.  The cost is what was measured, at most what the fixed
+ * line assumes (FIT / UNDER: up only under target * UNDER); a measure
+ * can only let it climb sooner than that line, never hold it lower (a
+ * step measured while the view grew heavier says too much). */
+static bool above_fits(const struct governor *g, double held)
+{
+	double c = g->up_cost[g->level], line = FIT / UNDER;
+	return held * (c > 0 && c < line ? c : line) < g->target_ms * FIT;
 }
 
 static void decide(struct governor *g, double now_s)
 {
-	double over = g->target_ms * OVER, under = g->target_ms * UNDER, held = governor_held_ms(g);
+	double over = g->target_ms * OVER, held = governor_held_ms(g);
 	if (held > over) {
 		g->under_since = -1;
 		if (g->over_since < 0)
 			g->over_since = now_s;
 		if (now_s - g->over_since >= OVER_FOR_S && g->level < GOVERNOR_LEVELS - 1)
 			step(g, +1, now_s);
-	} else if (held < under) {
+	} else if (g->level > 0 && above_fits(g, held)) {
 		g->over_since = -1;
 		if (g->under_since < 0)
 			g->under_since = now_s;
@@ -128,8 +165,16 @@ struct governor_quality governor_update(struct governor *g, double frame_ms, dou
 		/* the deviation's average, as the mean's (West's incremental form) */
 		g->smooth_var = (1 - SMOOTH) * (g->smooth_var + SMOOTH * d * d);
 	}
-	if (now_s >= g->settle_until)
+	if (now_s >= g->settle_until) {
+		if (g->learn_from >= 0)
+			learn(g);
+		/* a step up that has held a while: the next try need not wait as long */
+		if (g->last_up_s >= 0 && !g->up_judged && now_s - g->last_up_s >= FAILED_UP_S) {
+			g->up_wait_s = fmax(g->up_wait_s / 2, UP_WAIT_MIN_S);
+			g->up_judged = true;
+		}
 		decide(g, now_s);
+	}
 	struct governor_quality q = ladder[g->level];
 	g->scale_sum += q.render_scale;
 	g->view_sum += q.view_distance;

@@ -11,11 +11,18 @@
  * under the target while a third of the frames miss it is not held.
  *
  * Hysteresis: it steps down when that is over the target for a short
- * while, up only when it is under 75 % of the
- * target for longer, waits after every step for the frame time to settle,
- * and each step up that has to be taken back doubles the wait before the
- * next try (so a load that sits between two steps does not make it
- * oscillate). */
+ * while, up only when the level above is predicted to fit for longer,
+ * waits after every step for the frame time to settle, and each step up
+ * that has to be taken back doubles the wait before the next try (so a
+ * load that sits between two steps does not make it oscillate), a step up
+ * that holds halves it again.  The prediction: what it holds now times
+ * what that step cost when it was last taken, either way (the frame time
+ * held just after a step over the one just before it, the same view a
+ * moment apart), under 90 % of the target.  A step not measured yet is
+ * taken to cost 1.2 times (up only under 75 % of the target, the fixed
+ * line it had before); a measured cost counts only where it is lower.  So
+ * after a heavy stretch of the flight it climbs back as soon as the level
+ * above fits, not only once the frame is under the fixed line. */
 #ifndef ISOTERRA_GOVERNOR_H
 #define ISOTERRA_GOVERNOR_H
 
@@ -50,6 +57,11 @@ struct governor {
 	double settle_until;    /* no decision before this */
 	double up_wait_s;       /* how long under the line before a step up */
 	double last_up_s;       /* when the last step up was taken (< 0: none) */
+	bool up_judged;         /* whether that step up was found to hold (or not) yet */
+	float up_cost[GOVERNOR_LEVELS]; /* [L]: the frame time held at L - 1 over that at L, measured
+	                                 * across the last step between them (0: none yet) */
+	int learn_from;         /* the level a step just left, until the time held after it is read (-1) */
+	double learn_held;      /* the time held there, just before the step */
 	int level;
 	unsigned steps_down, steps_up;
 	double scale_sum;       /* for the mean render scale / view distance held */
