@@ -37,6 +37,8 @@ if not bad:
                 bad.append("limit %s not ok" % l["name"])
         if not any(l["needed_by"].startswith("density.comp") for l in lim):
             bad.append("no limit names the density pass: %s" % [l["needed_by"] for l in lim])
+        if not any(l["needed_by"].startswith("render.vert + render.frag") for l in lim):
+            bad.append("no limit names the terrain's shading program: %s" % [l["needed_by"] for l in lim])
         if not r["gl"]["programs_built"]:
             bad.append("the job's programs were not built")
         if not r["gl"]["platform"]:

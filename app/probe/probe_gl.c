@@ -68,6 +68,11 @@ static int build_job(const struct params *p, int w, int h, char *err, size_t err
 	struct renderer *rd = renderer_create(w, h, p->antialias, err, errlen);
 	if (!rd)
 		return -1;
+	if (renderer_prepare(rd, p) < 0) {
+		snprintf(err, errlen, "the terrain's shading program does not build (the error is logged above)");
+		renderer_destroy(rd);
+		return -1;
+	}
 	struct scene *sc = scene_create(p, err, errlen);
 	scene_destroy(sc);
 	renderer_destroy(rd);

@@ -279,6 +279,11 @@ static int terrain_program(struct renderer *r, const struct params *p)
 	return 0;
 }
 
+int renderer_prepare(struct renderer *r, const struct params *p)
+{
+	return terrain_program(r, p);
+}
+
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p)
 {
 	if (terrain_program(r, p) < 0)
