@@ -5,8 +5,8 @@
 // interpolated: the aerial perspective's share (fog_amount: smooth over a
 // triangle of a few pixels) and the soil's slow variation (the surface
 // texture's height at 0.011 cycles a unit: a texel is 0.7 units, wider than
-// the coarsest LOD's cells) — each per pixel was a tenth of a 640x480
-// world frame on a software rasterizer.
+// the coarsest LOD's cells) — per pixel, the two were 8 % of a 640x480
+// world frame on a software rasterizer (docs/PERFORMANCE.md).
 #include "vertex.glsl"
 #include "shade.glsl"
 layout(location = 0) in vec3 a_pos;

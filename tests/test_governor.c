@@ -191,8 +191,9 @@ int main(void)
 	/* a heavy stretch of the flight, then a lighter one that sits over
 	 * the fixed line (0.75 of the target) at every level but whose steps
 	 * cost little: 26 ms of fixed work and 4 of pixels (27-30 ms, held
-	 * about 1 more).  The steps' costs measured on the way down (the
-	 * level above about 1.03 times the one below) let it climb back to
+	 * about 1 more).  The steps' costs measured on the way down (by the
+	 * load's formula the level above 1.0-1.03 times the one below, clamped
+	 * to 1.02 at least) let it climb back to
 	 * where the next step does not fit; with the fixed line alone it would
 	 * stay at the floor. */
 	struct run cl = { .now = 0 };

@@ -109,9 +109,9 @@ static void learn(struct governor *g)
 	/* a step down forced by a hitch or a jump of the view says nothing of the step */
 	if (from < 0 || g->learn_held <= 0 || now <= 0 || g->learn_held > LEARN_MAX * g->target_ms)
 		return;
-	int lower = from > g->level ? from : g->level;
-	double upper_ms = from > g->level ? now : g->learn_held;
-	double lower_ms = from > g->level ? g->learn_held : now;
+	bool went_up = from > g->level;
+	int lower = went_up ? from : g->level;
+	double upper_ms = went_up ? now : g->learn_held, lower_ms = went_up ? g->learn_held : now;
 	double c = fmin(fmax(upper_ms / lower_ms, COST_MIN), COST_MAX);
 	g->up_cost[lower] = g->up_cost[lower] > 0 ? (float)(0.5 * (g->up_cost[lower] + c)) : (float)c;
 }

@@ -55,7 +55,7 @@ struct governor {
 	double smooth_var;      /* exponential average of their squared deviation from it */
 	double over_since, under_since; /* clock when the current excursion began (< 0: none) */
 	double settle_until;    /* no decision before this */
-	double up_wait_s;       /* how long under the line before a step up */
+	double up_wait_s;       /* how long the level above must be predicted to fit before a step up */
 	double last_up_s;       /* when the last step up was taken (< 0: none) */
 	bool up_judged;         /* whether that step up was found to hold (or not) yet */
 	float up_cost[GOVERNOR_LEVELS]; /* [L]: the frame time held at L - 1 over that at L, measured
