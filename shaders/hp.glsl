@@ -12,7 +12,11 @@
 // minimum's four): level 0 first, two words a uvec2, four words (two
 // uvec2) a level-2 node, then level k at u_hp_off[k], then the prefix sums
 // of levels 2..top (hp_top.comp, hp_downsweep.comp).  The top level
-// (u_hp_top, 2 or more) has one node: the totals.
+// (u_hp_top, 2 or more) has one node: the totals.  After the prefix sums,
+// the hints (u_hint_base): for every WG_SIZE keys of a component, the
+// level-2 node of the first (written by the down-sweep of level 2,
+// hp_down_children), so that a traversal searches only the nodes between two
+// hints.
 #ifdef HP_COHERENT
 layout(std430, binding = BIND_HP) coherent restrict buffer Hp { uvec2 hp[]; };
 #else
@@ -22,6 +26,8 @@ uniform uint u_hp_off[16];
 uniform int u_hp_top;
 uniform uint u_pre_base; // prefix sums (hp_top.comp, hp_downsweep.comp) start here
 uniform uint u_hp_n2;    // real level-2 nodes
+uniform uint u_hint_base; // the hints start here: uvec2(triangles, vertices) per WG_SIZE keys
+uniform uint u_hint_n;    // hints held (the capacities' keys)
 
 // level-0 word i (four owner cells)
 uint hp_l0(uint i) { return hp[i >> 1u][i & 1u]; }
@@ -34,25 +40,68 @@ uint word_count(uint w, int comp)
 	return comp == 0 ? ((w & 0x07070707u) * 0x01010101u) >> 24 : uint(bitCount(w & 0x38383838u));
 }
 
-// Output number key of component comp (0 triangles, 1 vertices) -> the cell
-// that emits it and its rank among that cell's outputs.
-void hp_traverse(uint key, int comp, out uint cell, out uint rank)
+// The level-2 node of output key (component comp): the last in [lo, hi]
+// whose down-swept prefix is <= key (an empty node shares its prefix with
+// the next), the caller knowing it is there; below gets that prefix.  A
+// binary search of the prefixes, each step without a branch (a SIMD driver
+// runs a divergent loop as long as its slowest lane).  The exponent is
+// counted down: a step halved each turn, 17 turns from 65 537 nodes on,
+// came out wrong under Mesa 22.3's llvmpipe.
+uint hp_node(uint key, int comp, uint lo, uint hi, out uint below)
 {
-	// the level-2 node: the last whose down-swept prefix is <= key (an
-	// empty node shares its prefix with the next), by a binary search of
-	// the prefixes: log2(nodes) loads where the walk down the levels takes
-	// three a level, each step without a branch (a SIMD driver runs a
-	// divergent loop as long as its slowest lane).  The exponent is
-	// counted down: a step halved each turn, 17 turns from 65 537 nodes on,
-	// came out wrong under Mesa 22.3's llvmpipe.
-	uint i = 0u, base = u_pre_base + u_hp_off[2], n = u_hp_n2, below = 0u;
-	for (int s = findMSB(n - 1u); s >= 0; --s) { // findMSB(0u) = -1: no step
+	uint base = u_pre_base + u_hp_off[2], i = lo;
+	for (int s = findMSB(hi - lo); s >= 0; --s) { // findMSB(0u) = -1: no step
 		uint m = i + (1u << uint(s));
-		uint v = hp[base + min(m, n - 1u)][comp];
-		bool right = m < n && v <= key;
+		bool right = m <= hi && hp[base + min(m, hi)][comp] <= key;
 		i = right ? m : i;
-		below = right ? v : below;
 	}
+	below = hp[base + i][comp];
+	return i;
+}
+
+// The down-sweep, a parent at a time (hp_downsweep.comp, hp_top.comp): the
+// prefix sums of the four children of node p of level k + 1, pre(child) =
+// pre(p) + the counts of its left siblings (their four counts are read
+// once, where a node at a time read them four times over).  Level 2's also
+// write the hints: every multiple of WG_SIZE among p's outputs of each
+// kind is hinted to the child that holds it (the last whose prefix is at
+// most it, as the search finds it).
+void hp_down_children(int k, uint p)
+{
+	uvec2 pre = hp[u_pre_base + u_hp_off[k + 1] + p];
+	uint c = u_hp_off[k] + 4u * p;
+	uvec2 p1 = pre + hp[c], p2 = p1 + hp[c + 1u], p3 = p2 + hp[c + 2u];
+	hp[u_pre_base + c] = pre;
+	hp[u_pre_base + c + 1u] = p1;
+	hp[u_pre_base + c + 2u] = p2;
+	hp[u_pre_base + c + 3u] = p3;
+	if (k != 2)
+		return;
+	uvec2 end = p3 + hp[c + 3u];
+	if (end == pre) // most parents: empty
+		return;
+	for (int comp = 0; comp < 2; ++comp)
+		for (uint h = (pre[comp] + uint(WG_SIZE) - 1u) / uint(WG_SIZE); h * uint(WG_SIZE) < end[comp] && h < u_hint_n;
+		     ++h) {
+			uint key = h * uint(WG_SIZE);
+			hp[u_hint_base + h][comp] = 4u * p + uint(key >= p1[comp]) + uint(key >= p2[comp]) + uint(key >= p3[comp]);
+		}
+}
+
+// Output number key (< count, the keys written) of component comp (0
+// triangles, 1 vertices) -> the cell that emits it and its rank among that
+// cell's outputs: the level-2 node searched between the hints of its
+// WG_SIZE keys and of the next (the default field at 128^3: 11 nodes
+// apart, a median; four steps where all 134 000 nodes took 18), then
+// its word and byte.
+void hp_traverse(uint key, int comp, uint count, out uint cell, out uint rank)
+{
+	uint k = key / uint(WG_SIZE), below;
+	// (keys past the hints held, a target's capacity over the pipeline's:
+	// every node)
+	uint lo = k < u_hint_n ? hp[u_hint_base + k][comp] : 0u;
+	uint hi = (k + 1u) * uint(WG_SIZE) < count && k + 1u < u_hint_n ? hp[u_hint_base + k + 1u][comp] : u_hp_n2 - 1u;
+	uint i = hp_node(key, comp, lo, hi, below);
 	key -= below;
 	// its four words (two loads): which one, then which byte
 	uvec2 a = hp[2u * i], b = hp[2u * i + 1u];

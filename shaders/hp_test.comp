@@ -23,7 +23,7 @@ void main()
 		hp[u_hp_off[2] + i] = s;
 	} else if (u_mode == 1) {
 		uint cell, rank;
-		hp_traverse(i, u_comp, cell, rank);
+		hp_traverse(i, u_comp, u_n, cell, rank);
 		test_out[i] = uvec2(cell, rank);
 	} else {
 		test_out[i] = uvec2(hp_prefix(i, u_comp), hp_prefix_fast(i, u_comp));

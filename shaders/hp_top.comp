@@ -30,16 +30,11 @@ void reduce_level(int k)
 	}
 }
 
-// hp_downsweep.comp's rule: pre(node) = pre(parent) + its left siblings
+// hp_downsweep.comp's rule, a parent of level k + 1 an invocation
 void down_level(int k)
 {
-	uint base = u_hp_off[k];
-	for (uint i = gl_LocalInvocationID.x; i < u_hp_n[k]; i += uint(WG_SIZE)) {
-		uvec2 s = hp[u_pre_base + u_hp_off[k + 1] + (i >> 2)];
-		for (uint m = i & ~3u; m < i; ++m)
-			s += hp[base + m];
-		hp[u_pre_base + base + i] = s;
-	}
+	for (uint p = gl_LocalInvocationID.x; p < u_hp_n[k + 1]; p += uint(WG_SIZE))
+		hp_down_children(k, p);
 }
 
 #define UP(s)                                   \
@@ -58,6 +53,13 @@ void main()
 	UP(0) UP(1) UP(2) UP(3) UP(4) UP(5)
 	if (gl_LocalInvocationID.x == 0u)
 		hp[u_pre_base + u_hp_off[u_hp_top]] = uvec2(0u);
+	// level 2 the top: its one node holds every output, the hints all 0
+	if (u_hp_top == 2) {
+		uvec2 total = hp[u_hp_off[2]];
+		uint keys = max(total.x, total.y);
+		for (uint h = gl_LocalInvocationID.x; h * uint(WG_SIZE) < keys && h < u_hint_n; h += uint(WG_SIZE))
+			hp[u_hint_base + h] = uvec2(0u);
+	}
 	memoryBarrierBuffer();
 	barrier();
 	DOWN(0) DOWN(1) DOWN(2) DOWN(3) DOWN(4) DOWN(5)

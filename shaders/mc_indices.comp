@@ -15,7 +15,7 @@ void main()
 	if (t >= st[ST_TRIS_WRITTEN])
 		return;
 	uint cell, rank;
-	hp_traverse(t, 0, cell, rank);
+	hp_traverse(t, 0, st[ST_TRIS_WRITTEN], cell, rank);
 	ivec3 o = u_cells + 1;
 	ivec3 c = cell_of(int(cell), o);
 	int cs = cell_case(c);

@@ -21,7 +21,7 @@ void main()
 	if (v >= st[ST_VERTS_WRITTEN])
 		return;
 	uint cell, rank;
-	hp_traverse(v, 1, cell, rank);
+	hp_traverse(v, 1, st[ST_VERTS_WRITTEN], cell, rank);
 	uint m = l0_byte(cell) >> 3;
 	int axis = 0;
 	for (; axis < 2; ++axis) {

@@ -20,7 +20,7 @@ static int count_of(uint8_t b, int comp)
 	return comp == 0 ? (b & 7) : __builtin_popcount((unsigned)(b >> 3));
 }
 
-static void run_band(uint32_t n, int density_pct, int comp, uint32_t from, uint32_t to)
+static void run_band(uint32_t n, int density_pct, int comp, uint32_t from, uint32_t to, uint32_t hint_keys)
 {
 	uint8_t *bytes = malloc(n ? n : 1);
 	for (uint32_t i = 0; i < n; i++) {
@@ -42,7 +42,7 @@ static void run_band(uint32_t n, int density_pct, int comp, uint32_t from, uint3
 	uint32_t *gf = malloc(4 * (size_t)(n ? n : 1));
 	uint32_t gt[2] = { 0, 0 };
 	char err[512] = "";
-	int rc = hp_selftest(bytes, n, comp, gt, kc, kr, gp, gf, err, sizeof(err));
+	int rc = hp_selftest(bytes, n, comp, hint_keys, gt, kc, kr, gp, gf, err, sizeof(err));
 	CHECK(rc == 0, "hp_selftest n=%u: %s", n, err);
 	if (rc == 0) {
 		CHECK(gt[0] == total[0] && gt[1] == total[1], "n=%u totals GPU %u/%u CPU %u/%u", n, gt[0], gt[1], total[0],
@@ -71,7 +71,7 @@ static void run_band(uint32_t n, int density_pct, int comp, uint32_t from, uint3
 
 static void run_case(uint32_t n, int density_pct, int comp)
 {
-	run_band(n, density_pct, comp, 0, n);
+	run_band(n, density_pct, comp, 0, n, 0);
 }
 
 int main(void)
@@ -87,8 +87,13 @@ int main(void)
 	run_case(4096, 0, 0);     /* nothing at all */
 	/* a surface in the middle of a 128^3 grid's owner cells: long runs of
 	 * empty nodes before and after */
-	run_band(2146689, 3, 0, 900000, 1200000);
-	run_band(2146689, 3, 1, 900000, 1200000);
+	run_band(2146689, 3, 0, 900000, 1200000, 0);
+	run_band(2146689, 3, 1, 900000, 1200000, 0);
+	/* hints for the first 1000 keys only (a world stage grown past its
+	 * pipeline's capacity): the keys past them searched over every node */
+	run_band(2146689, 3, 0, 900000, 1200000, 1000);
+	run_band(100000, 30, 1, 0, 100000, 1000);
+	run_band(100000, 30, 0, 0, 100000, 64);
 	/* 65 536 and 65 537 level-2 nodes: 16 and 17 halvings of the search */
 	run_case(1048576, 3, 0);
 	run_case(1048577, 3, 0);

@@ -39,9 +39,12 @@ struct hp_levels {
 	int top;
 	uint32_t n[HP_MAX_LEVELS], pad[HP_MAX_LEVELS], off[HP_MAX_LEVELS];
 	uint32_t l0, pre_base, nodes;
+	uint32_t hint, hint_n; /* the traversal's hints (shaders/hp.glsl): where, how many */
 };
 
-void hp_plan(struct hp_levels *h, uint32_t words);
+/* The levels over `words` level-0 words, with hints for up to `keys`
+ * outputs of either component. */
+void hp_plan(struct hp_levels *h, uint32_t words, uint32_t keys);
 /* u_hp_off, u_hp_top, u_pre_base of a program (those it uses). */
 void hp_set_uniforms(GLuint prog, const struct hp_levels *h);
 /* glDispatchCompute of 64-wide groups over items, split in 2D past

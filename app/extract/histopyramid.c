@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void hp_plan(struct hp_levels *h, uint32_t words)
+void hp_plan(struct hp_levels *h, uint32_t words, uint32_t keys)
 {
 	memset(h, 0, sizeof(*h));
 	int k = 1;
@@ -33,7 +33,10 @@ void hp_plan(struct hp_levels *h, uint32_t words)
 	}
 	/* the prefix sums of levels 2..top */
 	h->pre_base = o - h->off[2];
-	h->nodes = o + (o - h->off[2]);
+	/* then a hint per WG_SIZE keys (the last one's next: one more) */
+	h->hint = o + (o - h->off[2]);
+	h->hint_n = div_up(keys, WG_SIZE) + 1;
+	h->nodes = h->hint + h->hint_n;
 }
 
 void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
@@ -50,6 +53,12 @@ void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 	loc = gpu_uniform(prog, "u_hp_n2");
 	if (loc >= 0)
 		glProgramUniform1ui(prog, loc, h->n[2]);
+	loc = gpu_uniform(prog, "u_hint_base");
+	if (loc >= 0)
+		glProgramUniform1ui(prog, loc, h->hint);
+	loc = gpu_uniform(prog, "u_hint_n");
+	if (loc >= 0)
+		glProgramUniform1ui(prog, loc, h->hint_n);
 }
 
 void hp_dispatch_1d(uint64_t items, int max_groups)
@@ -97,11 +106,11 @@ void hp_build(const struct hp_levels *h, int from, const struct hp_programs *pr,
 	glUseProgram(pr->downsweep);
 	GLint l_lev = gpu_uniform(pr->downsweep, "u_level");
 	GLint l_cnt = gpu_uniform(pr->downsweep, "u_count");
-	for (int k = down_last - 1; k >= 2; k--) {
+	for (int k = down_last - 1; k >= 2; k--) { /* an invocation a parent */
 		glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 		glProgramUniform1i(pr->downsweep, l_lev, k);
-		glProgramUniform1ui(pr->downsweep, l_cnt, h->n[k]);
-		hp_dispatch_1d(h->n[k], max_groups);
+		glProgramUniform1ui(pr->downsweep, l_cnt, h->n[k + 1]);
+		hp_dispatch_1d(h->n[k + 1], max_groups);
 	}
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -132,14 +141,14 @@ static void hp_test_free(struct hp_test *t)
 
 /* Programs, the level-0 words from the bytes, the pyramid and the output
  * buffer (outn keys or prefixes of 8 bytes). */
-static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, uint32_t outn, char *err,
-			 size_t errlen)
+static int hp_test_setup(struct hp_test *t, const uint8_t *bytes, uint32_t n, uint32_t outn, uint32_t hint_keys,
+			 char *err, size_t errlen)
 {
 	glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &t->max_groups);
 	if (t->max_groups <= 0)
 		t->max_groups = 65535;
 	t->words = div_up(n, 4);
-	hp_plan(&t->h, t->words);
+	hp_plan(&t->h, t->words, hint_keys ? hint_keys : outn);
 	if (!(t->prog = gpu_compute_program("hp_test.comp", NULL, err, errlen)) ||
 	    !(t->pr.reduce = gpu_compute_program("hp_reduce.comp", NULL, err, errlen)) ||
 	    !(t->pr.downsweep = gpu_compute_program("hp_downsweep.comp", NULL, err, errlen)) ||
@@ -177,14 +186,14 @@ static void hp_test_pass(const struct hp_test *t, int mode, uint32_t count)
 	glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
+int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t hint_keys, uint32_t total[2], uint32_t *key_cell,
 		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen)
 {
 	struct hp_test t;
 	memset(&t, 0, sizeof(t));
 	size_t room = (size_t)n * (comp == 0 ? 5 : 3);
 	uint32_t *tmp = malloc(8 * (room ? room : 1));
-	int rc = tmp ? hp_test_setup(&t, bytes, n, (uint32_t)room, err, errlen) : -1;
+	int rc = tmp ? hp_test_setup(&t, bytes, n, (uint32_t)room, hint_keys, err, errlen) : -1;
 	if (!tmp)
 		snprintf(err, errlen, "out of memory");
 	uint32_t top[2] = { 0, 0 };

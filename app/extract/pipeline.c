@@ -155,14 +155,14 @@ struct pipeline *pipeline_create(const struct grid *g, const struct params *p, c
 	 * take that path) */
 	pl->refine_cap = (uint32_t)(dens / 64 > 64 ? dens / 64 : 64);
 	pl->words = div_up(owners, 4);
-	hp_plan(&pl->hp, pl->words);
+	extract_plan_capacities(pl, p);
+	hp_plan(&pl->hp, pl->words, pl->tri_cap > pl->vert_cap ? pl->tri_cap : pl->vert_cap);
 	if ((uint64_t)pl->hp.nodes * 8 > (uint64_t)pl->max_ssbo) {
 		snprintf(err, errlen, "grid %dx%dx%d needs a %llu MB HistoPyramid buffer, over the GL limit (%d MB)", g->nx,
 			 g->ny, g->nz, (unsigned long long)((uint64_t)pl->hp.nodes * 8 >> 20), pl->max_ssbo >> 20);
 		free(pl);
 		return NULL;
 	}
-	extract_plan_capacities(pl, p);
 	if (extract_create_programs(pl, p, err, errlen) < 0 || extract_create_buffers(pl, err, errlen) < 0) {
 		pipeline_destroy(pl);
 		return NULL;

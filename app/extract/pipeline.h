@@ -150,9 +150,12 @@ int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
  * (triangles, vertices), the (cell, rank) of every output key of component
  * comp (0 triangles, 1 vertices) and every cell's prefix sum, read
  * bottom-up (prefix) and from the down-swept prefix sums (prefix_fast, may
- * be NULL).  key_* must hold 5n (triangles) or 3n (vertices) entries,
- * prefix n.  Needs a current context.  0 or -1 with err. */
-int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t total[2], uint32_t *key_cell,
+ * be NULL).  The traversal's hints cover the first hint_keys keys (0:
+ * every one; past them it searches every node, as for a world stage grown
+ * past its pipeline's capacity).  key_* must hold 5n (triangles) or 3n
+ * (vertices) entries, prefix n.  Needs a current context.  0 or -1 with
+ * err. */
+int hp_selftest(const uint8_t *bytes, uint32_t n, int comp, uint32_t hint_keys, uint32_t total[2], uint32_t *key_cell,
 		uint32_t *key_rank, uint32_t *prefix, uint32_t *prefix_fast, char *err, size_t errlen);
 
 #endif
