@@ -58,11 +58,15 @@ int renderer_end(struct renderer *r);
  * order): the mesh's depth laid down first, so each pixel is shaded once,
  * by its nearest surface, instead of once per layer drawn over it.  On by
  * default on a software rasterizer (every shaded fragment costs CPU time
- * there, and the second draw less), off on a GPU (early depth tests there,
+ * there, and the second draw less) where the picture has at least a third
+ * as many pixels as the mesh's capacity has triangles (a smaller picture
+ * pays more for binning the mesh twice than it saves: renderer_draw),
+ * off on a GPU (early depth tests there,
  * and vertex work twice on a tiler).  The world does not use it: its blocks
  * are drawn front to back already, and on llvmpipe its frames cost more
  * with it (640x480 governed fly-through under load, p50 38-41 ms without,
  * 46-55 with). */
+/* on or off for every picture size (tests) */
 void renderer_set_prepass(struct renderer *r, bool on);
 bool renderer_prepass(const struct renderer *r);
 /* renderer_draw's mesh in parts of at least `triangles` (more when its
