@@ -41,24 +41,13 @@ void hp_plan(struct hp_levels *h, uint32_t words, uint32_t keys)
 
 void hp_set_uniforms(GLuint prog, const struct hp_levels *h)
 {
-	GLint loc = gpu_uniform(prog, "u_hp_off");
-	if (loc >= 0)
-		glProgramUniform1uiv(prog, loc, HP_MAX_LEVELS, h->off);
-	loc = gpu_uniform(prog, "u_hp_top");
-	if (loc >= 0)
-		glProgramUniform1i(prog, loc, h->top);
-	loc = gpu_uniform(prog, "u_pre_base");
-	if (loc >= 0)
-		glProgramUniform1ui(prog, loc, h->pre_base);
-	loc = gpu_uniform(prog, "u_hp_n2");
-	if (loc >= 0)
-		glProgramUniform1ui(prog, loc, h->n[2]);
-	loc = gpu_uniform(prog, "u_hint_base");
-	if (loc >= 0)
-		glProgramUniform1ui(prog, loc, h->hint);
-	loc = gpu_uniform(prog, "u_hint_n");
-	if (loc >= 0)
-		glProgramUniform1ui(prog, loc, h->hint_n);
+	/* a program without one of them gets location -1, which GL ignores */
+	glProgramUniform1uiv(prog, gpu_uniform(prog, "u_hp_off"), HP_MAX_LEVELS, h->off);
+	glProgramUniform1i(prog, gpu_uniform(prog, "u_hp_top"), h->top);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_pre_base"), h->pre_base);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_hp_n2"), h->n[2]);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_hint_base"), h->hint);
+	glProgramUniform1ui(prog, gpu_uniform(prog, "u_hint_n"), h->hint_n);
 }
 
 void hp_dispatch_1d(uint64_t items, int max_groups)
