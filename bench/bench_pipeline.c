@@ -18,14 +18,17 @@
  *     all three: only the HistoPyramid path has them);
  *  5. the noise sources (ALU, 16^3 textures) for the density pass;
  *  6. with --sizes, density, whole pipeline and compaction methods at
- *     other grid sizes.
+ *     other grid sizes;
+ *  7. one-shot: the program itself, whole processes, at the flags' grid
+ *     against grid 2: what one extraction costs outside the loop
+ *     (pipeline_oneshot.c; --no-oneshot leaves it out).
  *
  * Wall time around glFinish(), median [min-max] of the runs; series are
  * interleaved in rounds (bench_pipeline.h).  The load average is printed
  * at the start and at the end.
  *
  * usage: bench_pipeline [--quick] [--runs N] [--sizes 64,128] [--peer-threads N]
- *                       [--no-peers] [--] [isoterra flags]
+ *                       [--no-peers] [--no-oneshot] [--] [isoterra flags]
  * e.g.   bench_pipeline -- --preset fbm --octaves 7 --warp-amp 0 --noise-y-scale 1 --grid 128 */
 #include "app.h"
 #include "bench.h"
@@ -39,7 +42,7 @@
 #include <unistd.h>
 
 struct options {
-	int quick, runs, threads, peers;
+	int quick, runs, threads, peers, oneshot;
 	int sizes[8], nsizes;
 	int argc;          /* isoterra's flags, argv[0] = "isoterra" */
 	char *argv[256];
@@ -47,12 +50,14 @@ struct options {
 
 static void usage(const char *argv0)
 {
-	printf("usage: %s [--quick] [--runs N] [--sizes 64,128] [--peer-threads N] [--no-peers] [--] [isoterra flags]\n"
+	printf("usage: %s [--quick] [--runs N] [--sizes 64,128] [--peer-threads N] [--no-peers] [--no-oneshot] [--]\n"
+	       "       [isoterra flags]\n"
 	       "  --quick            5 runs per series (default 9), no noise-source table\n"
 	       "  --runs N           runs per series (at least 5)\n"
 	       "  --sizes LIST       also density, whole pipeline and compaction at these grids\n"
 	       "  --peer-threads N   libnoise and VTK threads (default 2)\n"
 	       "  --no-peers         skip libnoise and VTK\n"
+	       "  --no-oneshot       skip the one-shot row (the program as whole processes, --grid N against 2)\n"
 	       "Everything else (and everything after --) is isoterra's own flags: the field,\n"
 	       "--grid, --platform, ... (isoterra --help).\n",
 	       argv0);
@@ -65,6 +70,7 @@ static int parse_options(int argc, char **argv, struct options *o)
 	memset(o, 0, sizeof(*o));
 	o->threads = 2;
 	o->peers = 1;
+	o->oneshot = 1;
 	o->argv[o->argc++] = "isoterra";
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i];
@@ -78,6 +84,8 @@ static int parse_options(int argc, char **argv, struct options *o)
 			o->quick = 1;
 		} else if (!strcmp(a, "--no-peers")) {
 			o->peers = 0;
+		} else if (!strcmp(a, "--no-oneshot")) {
+			o->oneshot = 0;
 		} else if (!strcmp(a, "--runs") && has_val) {
 			o->runs = atoi(argv[++i]);
 		} else if (!strcmp(a, "--peer-threads") && has_val) {
@@ -285,13 +293,14 @@ static struct pipeline *open_pipeline(const struct params *p, struct grid *g, co
 	return pl;
 }
 
-/* 1-3: the passes, whole runs and peers at the flags' grid. */
-static void measure_grid(const struct params *p, const struct field *f, const struct options *o)
+/* 1-3: the passes, whole runs and peers at the flags' grid; the whole
+ * pipeline's median wall ms with the flags' AO (0: none measured). */
+static double measure_grid(const struct params *p, const struct field *f, const struct options *o)
 {
 	struct grid g;
 	struct pipeline *pl = open_pipeline(p, &g, f);
 	if (!pl)
-		return;
+		return 0.0;
 	struct params off = *p;
 	off.ao_rays = 0;
 	off.shadows = 0.0f;
@@ -323,6 +332,7 @@ static void measure_grid(const struct params *p, const struct field *f, const st
 	peers_report(pe, &dens, ao ? &prof_off : &prof, ao ? &full_off : &full);
 	peers_close(pe);
 	pipeline_destroy(pl);
+	return full.n ? series_stat(&full, V_WALL).med : 0.0;
 }
 
 /* Rows: wall and CPU median [min-max], their medians' ratios to row 0's
@@ -445,8 +455,10 @@ int main(int argc, char **argv)
 	struct edits *ed = edits_create();
 	struct terrain *tr = terrain_create(ed);
 	const struct field *f = terrain_field(tr);
-	measure_grid(&p, f, &o);
+	double loop_ms = measure_grid(&p, f, &o);
 	measure_compaction(&p, p.grid, f, o.runs);
+	if (o.oneshot)
+		measure_oneshot(o.argv, o.argc, p.grid, o.runs * 2, loop_ms);
 	if (!o.quick)
 		measure_noise(&p, f, o.runs);
 	if (o.nsizes)

@@ -67,4 +67,12 @@ void peers_report(const struct peers *pe, const struct series *iso_density, cons
 		  const struct series *iso_full);
 void peers_close(struct peers *pe);
 
+/* ---- one-shot (pipeline_oneshot.c) -------------------------------------- */
+/* The program (ISOTERRA_PROGRAM) with isoterra's flags (flags[1..nflags-1])
+ * as whole processes at --grid `grid` and --grid 2, runs rounds
+ * interleaved: wall, CPU, page faults and the first frame's update and
+ * draw, and their differences against loop_ms, the loop's whole pipeline
+ * (<= 0: no ratios). */
+void measure_oneshot(char *const *flags, int nflags, int grid, int runs, double loop_ms);
+
 #endif

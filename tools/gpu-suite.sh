@@ -288,7 +288,7 @@ def bench_pipeline():
         if mm:
             passes[re.sub(r"\\", "", name)] = float(mm.group(1))
     f["grid128_pass_ms_median"] = passes
-    f["grid128_whole_pipeline_ms"] = num(r"^  whole pipeline, AO as given\s+([\d.]+)", o)
+    f["grid128_whole_pipeline_ms"] = num(r"^  whole pipeline, AO\+sun as given\s+([\d.]+)", o)
     f["grid128_density_pass_ms"] = num(r"^  density pass alone\s+([\d.]+)", o)
     sizes = {}
     for mm in re.finditer(r"^grid (\d+) \(the flags' field and AO\).*?\n(.*?)(?=^grid \d+ \(the flags|^compaction|\Z)",
