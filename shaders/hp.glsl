@@ -91,9 +91,9 @@ void hp_down_children(int k, uint p)
 // Output number key (< count, the keys written) of component comp (0
 // triangles, 1 vertices) -> the cell that emits it and its rank among that
 // cell's outputs: the level-2 node searched between the hints of its
-// WG_SIZE keys and of the next (the default field at 128^3: 11 nodes
-// apart, a median; four steps where all 134 000 nodes took 18), then
-// its word and byte.
+// WG_SIZE keys and of the next (the same-field benchmark's fBm at 128^3:
+// 11 nodes apart, a median; four steps where all 134 000 nodes took 18),
+// then its word and byte.
 void hp_traverse(uint key, int comp, uint count, out uint cell, out uint rank)
 {
 	uint k = key / uint(WG_SIZE), below;

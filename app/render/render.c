@@ -34,8 +34,8 @@ struct renderer {
 	/* the depth pre-pass (a software rasterizer's: its fragment shading
 	 * costs CPU time for every layer drawn over a pixel) */
 	bool prepass;
-	bool prepass_by_size; /* only where the picture has more pixels than the mesh has triangles
-	                       * (renderer_draw); renderer_set_prepass sets it for every picture */
+	bool prepass_by_size; /* only where the picture has a third as many pixels as the mesh's
+	                       * capacity has triangles (renderer_draw); renderer_set_prepass: every picture */
 	GLuint depth_prog;
 	/* renderer_draw's mesh in parts of at least this many triangles, each
 	 * finished before the next is binned (a software rasterizer's: its

@@ -65,8 +65,8 @@ int renderer_end(struct renderer *r);
  * and vertex work twice on a tiler).  The world does not use it: its blocks
  * are drawn front to back already, and on llvmpipe its frames cost more
  * with it (640x480 governed fly-through under load, p50 38-41 ms without,
- * 46-55 with). */
-/* on or off for every picture size (tests) */
+ * 46-55 with).  renderer_set_prepass: on or off for every picture size
+ * (tests). */
 void renderer_set_prepass(struct renderer *r, bool on);
 bool renderer_prepass(const struct renderer *r);
 /* renderer_draw's mesh in parts of at least `triangles` (more when its
