@@ -76,6 +76,8 @@ void measure_oneshot(char *const *flags, int nflags, int grid, int runs, double 
 	       "a whole process at --grid %d and at --grid 2, %d rounds interleaved, ms median [min-max];\n"
 	       "wall to its exit, CPU its user + system, minor page faults; its first frame from its --results:\n",
 	       ISOTERRA_PROGRAM, grid, runs);
+	if (runs > MAX_RUNS)
+		runs = MAX_RUNS;
 	double v[2][MAX_RUNS][OS_VALUES];
 	int n = 0;
 	for (int r = 0; r < runs; r++) {
