@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -92,6 +94,52 @@ static inline double bench_loadavg(void)
 		fclose(f);
 	}
 	return l;
+}
+
+/* A program run as a user runs it (bench_spawn): wall ms to its exit, its
+ * CPU ms (user + system), peak RSS (MB) and minor page faults. */
+struct bench_child {
+	double wall_ms, cpu_ms, rss_mb;
+	long minflt;
+};
+
+/* Runs program with args (args[0] its name, NULL-terminated), its stderr
+ * to /dev/null, $XDG_CACHE_HOME set to cache unless NULL (Mesa's shader
+ * cache and isoterra's program cache), and waits for it: 0 when it exited
+ * with 0 (c filled), else -1. */
+static inline int bench_spawn(const char *program, char *const *args, const char *cache, struct bench_child *c)
+{
+	double t0 = clock_ms();
+	pid_t pid = fork();
+	if (pid == 0) {
+		if (cache)
+			setenv("XDG_CACHE_HOME", cache, 1);
+		if (!freopen("/dev/null", "w", stderr))
+			_exit(127);
+		execv(program, args);
+		_exit(127);
+	}
+	int status = 0;
+	struct rusage ru;
+	if (pid < 0 || wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+		return -1;
+	c->wall_ms = clock_ms() - t0;
+	c->cpu_ms = (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1e3 +
+		    (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e3;
+	c->rss_mb = (double)ru.ru_maxrss / 1024.0;
+	c->minflt = ru.ru_minflt;
+	return 0;
+}
+
+/* A small text file (a run's --results) into buf, NUL-terminated; "" when
+ * it cannot be read. */
+static inline void bench_read_text(const char *path, char *buf, size_t len)
+{
+	FILE *f = fopen(path, "r");
+	size_t n = f ? fread(buf, 1, len - 1, f) : 0;
+	if (f)
+		fclose(f);
+	buf[n] = 0;
 }
 
 /* "machine: CPU model, N cores, load average L" and "GL: renderer | version". */

@@ -424,21 +424,11 @@ static void wall_cost(const struct params *p_in, int tw, int th, int frames, int
  * for the run (Mesa's shader cache and isoterra's program cache). */
 static double program_run(char *const *args, const char *cache, double *rss_mb)
 {
-	double t0 = clock_ms();
-	pid_t pid = fork();
-	if (pid == 0) {
-		setenv("XDG_CACHE_HOME", cache, 1);
-		if (!freopen("/dev/null", "w", stderr))
-			_exit(127);
-		execv(ISOTERRA_PROGRAM, args);
-		_exit(127);
-	}
-	int status = 0;
-	struct rusage ru;
-	if (pid < 0 || wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+	struct bench_child c;
+	if (bench_spawn(ISOTERRA_PROGRAM, args, cache, &c) < 0)
 		return -1;
-	*rss_mb = ru.ru_maxrss / 1024.0;
-	return clock_ms() - t0;
+	*rss_mb = c.rss_mb;
+	return c.wall_ms;
 }
 
 /* One run of the program with extra arguments: wall and CPU ms (the child's
@@ -453,25 +443,13 @@ static int capped_run(const char *cap, double *wall, double *cpu, double *p50, d
 	snprintf(png, sizeof(png), "%s.png", results);
 	char *args[] = { "isoterra", "--size", "320x240", "--grid", "32", "--count", "150", "--results", results,
 			 "--out", png, cap ? "--max-fps" : NULL, (char *)cap, NULL };
-	double t0 = clock_ms();
-	pid_t pid = fork();
-	if (pid == 0) {
-		if (!freopen("/dev/null", "w", stderr))
-			_exit(127);
-		execv(ISOTERRA_PROGRAM, args);
-		_exit(127);
-	}
-	int status = 0, rc = -1;
-	struct rusage ru;
-	if (pid > 0 && wait4(pid, &status, 0, &ru) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-		*wall = clock_ms() - t0;
-		*cpu = (ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1e3 + (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e3;
-		FILE *f = fopen(results, "r");
+	struct bench_child c;
+	int rc = -1;
+	if (bench_spawn(ISOTERRA_PROGRAM, args, NULL, &c) == 0) {
+		*wall = c.wall_ms;
+		*cpu = c.cpu_ms;
 		char buf[8192];
-		size_t n = f ? fread(buf, 1, sizeof(buf) - 1, f) : 0;
-		if (f)
-			fclose(f);
-		buf[n] = 0;
+		bench_read_text(results, buf, sizeof(buf));
 		const char *fm = strstr(buf, "\"frame_ms\"");
 		if (fm && sscanf(fm, "\"frame_ms\": {\"p50\": %lf, \"p95\": %lf", p50, p95) == 2)
 			rc = 0;

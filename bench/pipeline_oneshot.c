@@ -11,8 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 enum { OS_WALL, OS_CPU, OS_FAULTS, OS_FRAME, OS_UPDATE, OS_DRAW, OS_VALUES };
@@ -37,27 +35,14 @@ static int oneshot_run(char *const *flags, int nflags, int grid, double v[OS_VAL
 	for (size_t i = 0; i < sizeof(tail) / sizeof(tail[0]); i++)
 		args[n++] = tail[i];
 	args[n] = NULL;
-	double t0 = clock_ms();
-	pid_t pid = fork();
-	if (pid == 0) {
-		if (!freopen("/dev/null", "w", stderr))
-			_exit(127);
-		execv(ISOTERRA_PROGRAM, args);
-		_exit(127);
-	}
-	int status = 0, rc = -1;
-	struct rusage ru;
-	if (pid > 0 && wait4(pid, &status, 0, &ru) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-		v[OS_WALL] = clock_ms() - t0;
-		v[OS_CPU] = (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1e3 +
-			    (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e3;
-		v[OS_FAULTS] = (double)ru.ru_minflt;
-		FILE *f = fopen(results, "r");
+	struct bench_child c;
+	int rc = -1;
+	if (bench_spawn(ISOTERRA_PROGRAM, args, NULL, &c) == 0) {
+		v[OS_WALL] = c.wall_ms;
+		v[OS_CPU] = c.cpu_ms;
+		v[OS_FAULTS] = (double)c.minflt;
 		char buf[8192];
-		size_t len = f ? fread(buf, 1, sizeof(buf) - 1, f) : 0;
-		if (f)
-			fclose(f);
-		buf[len] = 0;
+		bench_read_text(results, buf, sizeof(buf));
 		const char *a = strstr(buf, "\"first_frame_ms\""), *u = strstr(buf, "\"update_ms\""),
 			   *d = strstr(buf, "\"draw_ms\"");
 		if (a && u && d && sscanf(a, "\"first_frame_ms\": %lf", &v[OS_FRAME]) == 1 &&

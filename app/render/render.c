@@ -33,9 +33,7 @@ struct renderer {
 	GLuint vao, sky, water;
 	/* the depth pre-pass (a software rasterizer's: its fragment shading
 	 * costs CPU time for every layer drawn over a pixel) */
-	bool prepass;
-	bool prepass_by_size; /* only where the picture has a third as many pixels as the mesh's
-	                       * capacity has triangles (renderer_draw); renderer_set_prepass: every picture */
+	enum { PREPASS_OFF, PREPASS_ON, PREPASS_BY_SIZE } prepass; /* by size: renderer_draw */
 	GLuint depth_prog;
 	/* renderer_draw's mesh in parts of at least this many triangles, each
 	 * finished before the next is binned (a software rasterizer's: its
@@ -106,7 +104,7 @@ struct renderer *renderer_create(int width, int height, int antialias, char *err
 	r->aa = antialias;
 	if (r->aa == ANTIALIAS_AUTO)
 		r->aa = gpu_software_rasterizer() ? ANTIALIAS_FXAA : ANTIALIAS_MSAA;
-	r->prepass = r->prepass_by_size = gpu_software_rasterizer();
+	r->prepass = gpu_software_rasterizer() ? PREPASS_BY_SIZE : PREPASS_OFF;
 	r->part_tris = gpu_software_rasterizer() ? RENDER_PART_TRIANGLES : 0;
 	if (r->aa == ANTIALIAS_MSAA && max_samples < 4)
 		r->aa = ANTIALIAS_FXAA;
@@ -342,13 +340,12 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 
 void renderer_set_prepass(struct renderer *r, bool on)
 {
-	r->prepass = on;
-	r->prepass_by_size = false;
+	r->prepass = on ? PREPASS_ON : PREPASS_OFF;
 }
 
 bool renderer_prepass(const struct renderer *r)
 {
-	return r->prepass;
+	return r->prepass != PREPASS_OFF;
 }
 
 void renderer_set_parts(struct renderer *r, uint32_t triangles)
@@ -629,12 +626,14 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	if (renderer_begin(r, c, p) < 0)
 		return -1;
 	/* the pre-pass bins every triangle once more, which pays where the
-	 * picture has more pixels than the mesh has triangles (the same-field
-	 * run's 88 114 at --grid 128: 10 ms less at 640x480, the same at
-	 * 320x240, 8-10 ms more at 160x120 and 64x48); the count is the GPU's,
-	 * the capacity (16 triangles a cell of the grid's largest face, or
-	 * --max-triangles) about three times a terrain's */
-	bool pre = r->prepass && (!r->prepass_by_size || (uint64_t)r->w * (uint64_t)r->h * 3 >= d->capacity);
+	 * picture has about as many pixels as the mesh has triangles or more
+	 * (the same-field run's 88 114 at --grid 128, draw p50 medians: 8.5 ms
+	 * less at 640x480, 0.7 more at 320x240, 6.6 more at 160x120, 8.2 more
+	 * at 64x48); the count is the GPU's, the capacity (16 triangles a cell
+	 * of the grid's largest face, or --max-triangles) about three times a
+	 * terrain's */
+	bool pre = r->prepass == PREPASS_ON ||
+		   (r->prepass == PREPASS_BY_SIZE && (uint64_t)r->w * (uint64_t)r->h * 3 >= d->capacity);
 	if (pre && depth_pass(r, d, parts, c) < 0)
 		return -1;
 	draw_mesh(r, d, parts, true);
