@@ -56,6 +56,7 @@ static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 #define UP_WAIT_MAX_S 32.0
 #define SETTLE_S 0.5     /* after a step: let the average follow */
 #define FAILED_UP_S 4.0  /* a step down this soon after a step up: that step up failed */
+#define SURE_S 0.25      /* a sure climb (sure_steps) waits this long under its line */
 #define SMOOTH 0.2       /* weight of the newest frame in the averages */
 
 struct governor_quality governor_level(int level)
@@ -80,15 +81,17 @@ double governor_held_ms(const struct governor *g)
 
 static void step(struct governor *g, int dir, double now_s)
 {
-	g->learn_from = g->level;
+	g->learn_from = dir == 1 || dir == -1 ? g->level : -1; /* a jump's cost is no one step's */
 	g->learn_held = governor_held_ms(g);
 	g->level += dir;
 	g->over_since = g->under_since = -1;
 	g->settle_until = now_s + SETTLE_S;
 	if (dir > 0) {
 		g->steps_down++;
-		/* the step up just before did not hold: wait twice as long next time */
-		if (g->last_up_s >= 0 && now_s - g->last_up_s < FAILED_UP_S)
+		/* the step up just before did not hold: wait twice as long next
+		 * time (a sure climb that did not hold met a heavier view, not a
+		 * cost it guessed wrong) */
+		if (g->last_up_s >= 0 && !g->last_up_sure && now_s - g->last_up_s < FAILED_UP_S)
 			g->up_wait_s = fmin(g->up_wait_s * 2, UP_WAIT_MAX_S);
 		g->up_judged = true; /* the step up before, held or not, is judged */
 	} else {
@@ -127,21 +130,41 @@ static bool above_fits(const struct governor *g, double held)
 	return held * (c > 0 && c < line ? c : line) < g->target_ms * FIT;
 }
 
+/* How many levels up are sure to fit: held times the fixed line's cost
+ * for every one of them and for one more, under target * FIT (a view
+ * lighter by that much, the sky or the land far below: a climb the
+ * learnt costs need not be asked about, and no gamble to wait for).  At
+ * 30 fps a frame held under 20.8 ms climbs one level, one under 7 ms
+ * seven. */
+static int sure_steps(const struct governor *g, double held)
+{
+	double line = FIT / UNDER, x = held * line * line;
+	int k = 0;
+	while (k < g->level && x < g->target_ms * FIT) {
+		k++;
+		x *= line;
+	}
+	return k;
+}
+
 static void decide(struct governor *g, double now_s)
 {
 	double over = g->target_ms * OVER, held = governor_held_ms(g);
+	int sure = g->level > 0 ? sure_steps(g, held) : 0;
 	if (held > over) {
 		g->under_since = -1;
 		if (g->over_since < 0)
 			g->over_since = now_s;
 		if (now_s - g->over_since >= OVER_FOR_S && g->level < GOVERNOR_LEVELS - 1)
 			step(g, +1, now_s);
-	} else if (g->level > 0 && above_fits(g, held)) {
+	} else if (g->level > 0 && (sure > 0 || above_fits(g, held))) {
 		g->over_since = -1;
 		if (g->under_since < 0)
 			g->under_since = now_s;
-		if (now_s - g->under_since >= g->up_wait_s && g->level > 0)
-			step(g, -1, now_s);
+		if (now_s - g->under_since >= (sure > 0 ? SURE_S : g->up_wait_s)) {
+			step(g, sure > 0 ? -sure : -1, now_s);
+			g->last_up_sure = sure > 0;
+		}
 	} else {
 		g->over_since = g->under_since = -1;
 		/* a long quiet spell at a level: trust steps up again */

@@ -22,7 +22,10 @@
  * taken to cost 1.2 times (up only under 75 % of the target, the fixed
  * line it had before); a measured cost counts only where it is lower.  So
  * after a heavy stretch of the flight it climbs back as soon as the level
- * above fits, not only once the frame is under the fixed line. */
+ * above fits, not only once the frame is under the fixed line.  A frame
+ * held so far under the target that two levels more at the fixed line's
+ * cost would fit (the view turned to the sky) climbs at once, as many
+ * levels as that line allows, without the doubled wait. */
 #ifndef ISOTERRA_GOVERNOR_H
 #define ISOTERRA_GOVERNOR_H
 
@@ -58,6 +61,7 @@ struct governor {
 	double up_wait_s;       /* how long the level above must be predicted to fit before a step up */
 	double last_up_s;       /* when the last step up was taken (< 0: none) */
 	bool up_judged;         /* whether that step up was found to hold (or not) yet */
+	bool last_up_sure;      /* whether it was a sure climb (governor.c sure_steps) */
 	float up_cost[GOVERNOR_LEVELS]; /* [L]: the frame time held at L - 1 over that at L, measured
 	                                 * across the last step between them (0: none yet) */
 	int learn_from;         /* the level a step just left, until the time held after it is read (-1) */
