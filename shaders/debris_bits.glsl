@@ -1,16 +1,23 @@
-// isoterra — the raw sign bits as the debris filter reads them
-// (shaders/mc_debris.comp, mc_debris_flood.comp): words, unaligned runs,
-// a z slab's runs.  The including pass declares u_sign_words and binds the
-// raw bits as Signs (common.glsl, PASS_READS_SIGNS).
-uint raw_word(uint w) { return w < u_sign_words ? signs[w] : 0u; }
+// isoterra — the bits the debris filter reads (shaders/mc_debris.comp,
+// mc_debris_flood.comp): words, unaligned runs, a z slab's runs, of the
+// raw sign bits or (src 1) of the candidate bits the first pass keeps for
+// every word (abi.h DL_BITS).  The including pass declares u_sign_words,
+// binds the raw bits as Signs (common.glsl, PASS_READS_SIGNS) and the
+// candidate list as dl.
+uint src_word(uint w, int src)
+{
+	return w >= u_sign_words ? 0u : src == 0 ? signs[w] : dl[DL_BITS(u_sign_words) + w];
+}
+uint raw_word(uint w) { return src_word(w, 0); }
 
-// 32 raw bits from bit b on (any alignment), bit 0 = sample b
-uint raw_run32(uint b)
+// 32 bits from bit b on (any alignment), bit 0 = sample b
+uint src_run32(uint b, int src)
 {
 	uint w = b >> 5u, s = b & 31u;
-	uint v = raw_word(w) >> s;
-	return s == 0u ? v : v | (raw_word(w + 1u) << (32u - s));
+	uint v = src_word(w, src) >> s;
+	return s == 0u ? v : v | (src_word(w + 1u, src) << (32u - s));
 }
+uint raw_run32(uint b) { return src_run32(b, 0); }
 
 // the bits j of a word for which 0 <= first + j < limit (first may be negative)
 uint bits_below(int first, int limit)
@@ -20,11 +27,12 @@ uint bits_below(int first, int limit)
 }
 
 // Samples start .. start + 31 of slab zz (0 outside the slab or the grid)
-uint slab_run(int zz, int start, int n, uint words)
+uint src_slab_run(int zz, int start, int n, uint words, int src)
 {
 	if (zz < 0 || zz >= dens_dims().z || start <= -32)
 		return 0u;
 	uint base = uint(zz) * words * 32u;
-	uint v = start >= 0 ? raw_run32(base + uint(start)) : raw_run32(base) << uint(-start);
+	uint v = start >= 0 ? src_run32(base + uint(start), src) : src_run32(base, src) << uint(-start);
 	return v & bits_below(start, n) & ~bits_below(start, 0);
 }
+uint slab_run(int zz, int start, int n, uint words) { return src_slab_run(zz, start, n, words, 0); }

@@ -1,68 +1,83 @@
 // isoterra — debris of a few samples: the debris filter's second pass
 // (shaders/mc_debris_flood.comp) asks it; app/extract/mc_ref.c mirrors it
-// (the CPU reference, which tests/test_debris.c checks by labelling).  box holds the inside bits of a 7x7x7
-// box around a sample, row (dz + 3) * 7 + dy + 3 the samples dx = -3 .. 3
-// in bits 0 .. 6 (a sample beyond the grid outside).
+// (the CPU reference, which tests/test_debris.c checks by labelling).  The
+// box: the inside bits of DEBRIS_BOX samples an edge around a sample
+// (abi.h: 2 * DEBRIS_SPAN + 1), row (dz + S) * B + dy + S the samples
+// dx = -S .. S in bits 0 .. B - 1 (S = DEBRIS_SPAN, B = DEBRIS_BOX; a
+// sample beyond the grid outside).
 // The sample's 6-connected inside component, grown within the box, is
-// debris when it never reaches the box's faces and spans at most
-// DEBRIS_SPAN samples along each axis: then each of its samples finds the
-// whole component within its own box, and all decide alike; a component
-// that spans more is kept by every one of its samples.  At most 27
-// samples, so 28 steps of growth settle it (one that still grows is more).
-#define DEBRIS_SPAN 3
-bool debris_island(uint box[49])
+// debris when it never reaches the box's faces and spans at most S samples
+// along each axis: then each of its samples finds the whole component
+// within its own box (the others lie within S - 1 steps along each axis),
+// and all decide alike; a component that spans more is kept by every one
+// of its samples (it reaches the faces, or its span shows).  The growth
+// runs in place, row after row (a fixed point, whatever the order): a
+// component of at most S^3 samples settles within S^3 + 1 sweeps, one
+// that still grows is larger.
+// The box's rows are read as the growth first reaches them (the
+// including pass defines debris_box_row(dz, dy), dz, dy = 0 .. B - 1: the
+// inside samples that are candidates of the first pass in bits 0 .. B - 1,
+// those that are not in bits 16 ..).  Every sample of debris is a
+// candidate, so the growth stops, kept, when it reaches one that is not
+// (a component of the ground reaches its rock within a step or two).
+#define DEBRIS_ROWS (DEBRIS_BOX * DEBRIS_BOX)
+bool debris_island()
 {
-	uint cur[49];
-	for (int i = 0; i < 49; i++)
+	const int B = DEBRIS_BOX, S = DEBRIS_SPAN;
+	const uint faces = 1u | (1u << uint(B - 1));
+	uint cur[DEBRIS_ROWS], box[DEBRIS_ROWS];
+	for (int i = 0; i < DEBRIS_ROWS; i++) {
 		cur[i] = 0u;
-	cur[24] = box[24] & 8u;
-	if (cur[24] == 0u)
+		box[i] = ~0u; // not read yet
+	}
+	int centre = S * B + S;
+	box[centre] = debris_box_row(S, S);
+	cur[centre] = box[centre] & (1u << uint(S));
+	if (cur[centre] == 0u)
 		return false; // an outside centre: no component
 	bool settled = false;
-	for (int step = 0; step < 28 && !settled; step++) {
-		uint nxt[49];
+	int zlo = S, zhi = S, ylo = S, yhi = S; // the rows the component has reached
+	for (int sweep = 0; sweep <= S * S * S && !settled; sweep++) {
 		bool grew = false;
-		for (int z = 0; z < 7; z++)
-			for (int y = 0; y < 7; y++) {
-				int i = z * 7 + y;
+		uint face = 0u;
+		for (int z = max(zlo - 1, 0); z <= min(zhi + 1, B - 1); z++)
+			for (int y = max(ylo - 1, 0); y <= min(yhi + 1, B - 1); y++) {
+				int i = z * B + y;
 				uint v = cur[i] | (cur[i] << 1) | (cur[i] >> 1);
 				if (y > 0)
 					v |= cur[i - 1];
-				if (y < 6)
+				if (y < B - 1)
 					v |= cur[i + 1];
 				if (z > 0)
-					v |= cur[i - 7];
-				if (z < 6)
-					v |= cur[i + 7];
-				v &= box[i];
-				grew = grew || v != cur[i];
-				nxt[i] = v;
+					v |= cur[i - B];
+				if (z < B - 1)
+					v |= cur[i + B];
+				if (v == 0u)
+					continue; // nothing reaches this row yet
+				if (box[i] == ~0u)
+					box[i] = debris_box_row(z, y);
+				if ((v & (box[i] >> 16u)) != 0u)
+					return false; // an inside sample that is no candidate: more than debris
+				v &= box[i] & 0xFFFFu;
+				if (v != cur[i]) {
+					grew = true;
+					cur[i] = v;
+					zlo = min(zlo, z);
+					zhi = max(zhi, z);
+					ylo = min(ylo, y);
+					yhi = max(yhi, y);
+				}
+				face |= v & faces;
 			}
-		for (int i = 0; i < 49; i++)
-			cur[i] = nxt[i];
 		settled = !grew;
-		uint face = 0u; // a face reached: dx or dy or dz = +-3
-		for (int k = 0; k < 7; k++)
-			face |= cur[k] | cur[42 + k] | cur[k * 7] | cur[k * 7 + 6];
-		for (int i = 0; i < 49; i++)
-			face |= cur[i] & 0x41u;
-		if (face != 0u)
-			return false;
+		if (face != 0u || zlo == 0 || zhi == B - 1 || ylo == 0 || yhi == B - 1)
+			return false; // a face reached: more than S samples along an axis
 	}
 	if (!settled)
 		return false;
 	uint xs = 0u;
-	int ylo = 7, yhi = -1, zlo = 7, zhi = -1;
-	for (int z = 0; z < 7; z++)
-		for (int y = 0; y < 7; y++) {
-			uint v = cur[z * 7 + y];
-			xs |= v;
-			if (v != 0u) {
-				ylo = min(ylo, y);
-				yhi = max(yhi, y);
-				zlo = min(zlo, z);
-				zhi = max(zhi, z);
-			}
-		}
-	return findMSB(xs) - findLSB(xs) < DEBRIS_SPAN && yhi - ylo < DEBRIS_SPAN && zhi - zlo < DEBRIS_SPAN;
+	for (int z = zlo; z <= zhi; z++)
+		for (int y = ylo; y <= yhi; y++)
+			xs |= cur[z * B + y];
+	return findMSB(xs) - findLSB(xs) < S && yhi - ylo < S && zhi - zlo < S;
 }

@@ -1,20 +1,20 @@
 // isoterra — the debris filter's first pass, between the density pass and
 // classification: the sign bits of the density grid less debris, a
-// component of inside samples that spans at most three samples along each
-// axis (it would float as a speck).  Here: an inside sample none of whose
+// component of inside samples that spans at most DEBRIS_SPAN samples along
+// each axis (abi.h: it would float as a speck or a rock).  Here: an inside sample none of whose
 // six neighbours is inside counts as outside (a speck of eight triangles),
 // and so do two inside neighbours that have no other inside neighbour (a
 // speck of a dozen); an outside sample all of whose six neighbours are
 // inside counts as inside (a bubble in the rock, never seen); a neighbour
 // beyond the grid's samples counts as outside.  The samples that may
-// belong to larger debris are listed for the second pass
+// belong to larger debris (abi.h DEBRIS_SPAN) are listed for the second pass
 // (mc_debris_flood.comp), which grows their components.  One invocation
 // per sign word (32 samples of a z slab, as the density pass wrote them):
 // the word, its two neighbours along the slab (x), two unaligned runs of
 // 32 bits a row away (y) and the words a slab away (z); for a word with a
 // sample that has a single inside neighbour, the eighteen runs two steps
 // away too (that neighbour's own neighbours); for a word with candidates,
-// the runs three steps away that rule them out; word-wide operations, no
+// the runs up to DEBRIS_SPAN steps away that rule them out; word-wide operations, no
 // loop over the samples.  Only classification and the index pass read the
 // bits: an edge that crossed at a flipped sample has both ends on one side
 // now, so the vertex pass (which interpolates the densities of crossing
@@ -60,22 +60,23 @@ void main()
 	uint xm_ok = ~0u, xp_ok = ~0u; // the bits whose neighbour exists
 	for (int j = x == 0 ? 0 : dim.x - x; j < 32; j += dim.x)
 		xm_ok &= ~(1u << uint(j)); // x == 0: no sample at x - 1
-	uint last_next = 0u; // the next word's bits 0 and 1 at a row's last sample
-	for (int j = dim.x - 1 - x; j < 34; j += dim.x) {
+	// the row ends past the word, for the runs along x below: ln bit u = a
+	// row's last sample at bit 32 + u, fp bit 31 - u = a row's first
+	// sample at bit -1 - u (u < DEBRIS_SPAN - 1)
+	uint ln = 0u, fp = 0u;
+	for (int j = dim.x - 1 - x; j < 32 + DEBRIS_SPAN - 1; j += dim.x) {
 		if (j < 32)
 			xp_ok &= ~(1u << uint(j)); // x == dim.x - 1: none at x + 1
 		else
-			last_next |= 1u << uint(j - 32);
+			ln |= 1u << uint(j - 32);
 	}
+	for (int j = (x == 0 ? 0 : dim.x - x) - dim.x; j >= -(DEBRIS_SPAN - 1); j -= dim.x)
+		fp |= 1u << uint(32 + j);
 	xm &= xm_ok;
 	xp &= xp_ok;
-	// the bits with no sample 2 or 3 along the row: a row's last sample at
-	// bit j (~xp_ok) or at the next word's bits 0, 1; its first at bit j
-	// (~xm_ok) or at bit -1, -2
-	uint last = ~xp_ok, first = ~xm_ok, l32 = last_next & 1u, l33 = last_next >> 1;
-	uint f1 = x == 1 ? 1u : 0u, f2 = x == 2 ? 1u : 0u;
-	uint no2p = last | (last >> 1) | (l32 << 31), no3p = no2p | (last >> 2) | (l32 << 30) | (l33 << 31);
-	uint no2m = first | (first << 1) | f1, no3m = no2m | (first << 2) | (f1 << 1) | f2;
+	uint last = ~xp_ok, first = ~xm_ok;
+	// the bits with no sample 2 along the row (a row's end within one)
+	uint no2p = last | (last >> 1) | (ln << 31), no2m = first | (first << 1) | (fp >> 31);
 	// y: a row (dim.x samples) before and after, inside the slab
 	uint ym = b0 >= dim.x ? raw_run32(w0 * 32u + uint(b0 - dim.x))
 	                      : (dim.x - b0 < 32 ? raw_run32(w0 * 32u) << uint(dim.x - b0) : 0u);
@@ -106,26 +107,55 @@ void main()
 		       (n1_ym & ~(ym2 | xmym | xpym | ymzm | ymzp)) | (n1_yp & ~(yp2 | xmyp | xpyp | ypzm | ypzp)) |
 		       (n1_zm & ~(zm2 | xmzm | xpzm | ymzm | ypzm)) | (n1_zp & ~(zp2 | xmzp | xpzp | ymzp | ypzp));
 	}
-	// Larger debris, of up to three samples along each axis (the next
-	// pass, mc_debris_flood.comp, grows their components): an inside
-	// sample left is a candidate when along each of the six directions one
-	// of the next three samples is outside (a run of inside samples that
-	// long would join it to a span of four).  The directions in the order
-	// of their cost, each only while a candidate is left: x from the words
-	// at hand (in rock that rules out every sample), y below (on the ground
-	// that does), then y above and z.  The word's candidates are listed.
+	// Larger debris, of up to S = DEBRIS_SPAN samples along each axis (the
+	// next pass, mc_debris_flood.comp, grows their components): an inside
+	// sample left is a candidate unless along an axis it lies in a run of
+	// S + 1 inside samples (which would make a span of more): a samples
+	// before it and S - a after, for some a.  The axes in the order of
+	// their cost, each only while a candidate is left: x from the words at
+	// hand (in rock that rules out every sample), y (on the ground that
+	// does), then z.  The word's candidates are listed.
+	const int S = DEBRIS_SPAN;
 	uint cand = c & any6 & ~iso2 & valid;
 	if (cand != 0u) {
-		uint xp2 = ((c >> 2) | (next << 30)) & ~no2p, xp3 = ((c >> 3) | (next << 29)) & ~no3p;
-		uint xm2 = ((c << 2) | (prev >> 30)) & ~no2m, xm3 = ((c << 3) | (prev >> 29)) & ~no3m;
-		cand &= ~(xp & xp2 & xp3) & ~(xm & xm2 & xm3);
+		uint rp[S + 1], rm[S + 1], nop = last, nom = first; // rp[k]: inside through k after
+		rp[0] = rm[0] = c;
+		rp[1] = c & xp;
+		rm[1] = c & xm;
+		for (int k = 2; k <= S; k++) {
+			// no sample k along: a row's end within the k - 1 before
+			nop |= (last >> uint(k - 1)) | (ln << uint(33 - k));
+			nom |= (first << uint(k - 1)) | (fp >> uint(33 - k));
+			rp[k] = rp[k - 1] & ((c >> uint(k)) | (next << uint(32 - k))) & ~nop;
+			rm[k] = rm[k - 1] & ((c << uint(k)) | (prev >> uint(32 - k))) & ~nom;
+		}
+		for (int k = 0; k <= S; k++)
+			cand &= ~(rm[k] & rp[S - k]);
 	}
-	if (cand != 0u)
-		cand &= ~(ym & RUN(0, -2, 0, ~0u) & RUN(0, -3, 0, ~0u));
-	if (cand != 0u)
-		cand &= ~(yp & RUN(0, 2, 0, ~0u) & RUN(0, 3, 0, ~0u));
-	if (cand != 0u)
-		cand &= ~(zp & RUN(0, 0, 2, ~0u) & RUN(0, 0, 3, ~0u)) & ~(zm & RUN(0, 0, -2, ~0u) & RUN(0, 0, -3, ~0u));
+	if (cand != 0u) {
+		uint rp[S + 1], rm[S + 1];
+		rp[0] = rm[0] = c;
+		rp[1] = c & yp;
+		rm[1] = c & ym;
+		for (int k = 2; k <= S; k++) {
+			rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & RUN(0, k, 0, ~0u) : 0u;
+			rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & RUN(0, -k, 0, ~0u) : 0u;
+		}
+		for (int k = 0; k <= S; k++)
+			cand &= ~(rm[k] & rp[S - k]);
+	}
+	if (cand != 0u) {
+		uint rp[S + 1], rm[S + 1];
+		rp[0] = rm[0] = c;
+		rp[1] = c & zp;
+		rm[1] = c & zm;
+		for (int k = 2; k <= S; k++) {
+			rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & RUN(0, 0, k, ~0u) : 0u;
+			rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & RUN(0, 0, -k, ~0u) : 0u;
+		}
+		for (int k = 0; k <= S; k++)
+			cand &= ~(rm[k] & rp[S - k]);
+	}
 #undef RUN
 	if (cand != 0u && wi < u_sign_words) { // an entry a word: room for every word
 		uint e = atomicAdd(dl[DL_COUNT], 1u);
@@ -134,6 +164,7 @@ void main()
 		atomicMax(dl[DL_DISPATCH], min(e / uint(WG_SIZE) + 1u, u_max_groups));
 	}
 	if (wi < u_sign_words) {
+		dl[DL_BITS(u_sign_words) + wi] = cand; // every word's: the flood's growth reads them
 		filtered[wi] = ((c & any6 & ~iso2) | (~c & all6)) & valid;
 #ifdef DEBRIS_NEAR
 		// a neighbour beyond the grid is no sign change (no edge leads there)

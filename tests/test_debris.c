@@ -1,17 +1,18 @@
 /* isoterra — no floating debris of a few samples: the default terrain
  * (and more seeds) has, in the GPU's own densities, components of inside
- * samples (6-connected, labelled here on the CPU) that span at most three
- * samples along each axis: single samples, pairs, clumps of up to 3x3x3,
- * each of which would float as a closed speck of 8 to about 60 triangles.
- * The extracted mesh, read back, has no vertex on the grid edges that
- * leave those components' samples, and no component of at most eight
- * triangles apart from pieces cut by the box's sides.  And the filter
- * takes no more: every component that spans four or five samples (as
- * small, and not debris) still has its vertices, every one of them. */
+ * samples (6-connected, labelled here on the CPU) that span at most
+ * DEBRIS_SPAN (abi.h: six) samples along each axis: single samples, pairs,
+ * clumps, each of which would float as a closed speck or rock.  The
+ * extracted mesh, read back, has no vertex on the grid edges that leave
+ * those components' samples, and no component of at most eight triangles
+ * apart from pieces cut by the box's sides.  And the filter takes no
+ * more: every component that spans one or two samples more (as small, and
+ * not debris) still has its vertices, every one of them. */
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
 #include "terrain.h"
+#include "abi.h"
 
 #include <math.h>
 #include <string.h>
@@ -247,10 +248,10 @@ int main(void)
 			if (c[q].edge)
 				continue; /* cut by the box: not all of it is in view of the grid */
 			int sp = span(&c[q]);
-			if (sp <= 3) {
+			if (sp <= DEBRIS_SPAN) {
 				debris[c[q].size == 1 ? 0 : c[q].size == 2 ? 1 : 2]++;
 				left += verts[q];
-			} else if (sp <= 5) {
+			} else if (sp <= DEBRIS_SPAN + 2) {
 				int want = expected_verts(&g, dens, p.iso, lab, q, &c[q]);
 				kept++;
 				if (verts[q] != want && kept_bad++ < 3)
@@ -259,13 +260,15 @@ int main(void)
 			}
 		}
 		int after = specks(&g, &m, 8);
-		printf("seed %5d: debris in the field: %d single samples, %d pairs, %d clumps of 3+ (span <= 3); "
+		printf("seed %5d: debris in the field: %d single samples, %d pairs, %d clumps of 3+ (span <= %d); "
 		       "%d vertices on their edges in the mesh (%u triangles); %d components of <= 8 triangles; "
-		       "%d components spanning 4-5 samples, %d missing vertices\n",
-		       p.seed, debris[0], debris[1], debris[2], left, m.ntris, after, kept, kept_bad);
+		       "%d components spanning %d-%d samples, %d missing vertices\n",
+		       p.seed, debris[0], debris[1], debris[2], DEBRIS_SPAN, left, m.ntris, after, kept, DEBRIS_SPAN + 1,
+		       DEBRIS_SPAN + 2, kept_bad);
 		CHECK(left == 0, "seed %d: the debris left %d vertices", p.seed, left);
 		CHECK(after == 0, "seed %d: %d floating specks left", p.seed, after);
-		CHECK(kept_bad == 0, "seed %d: %d components spanning 4-5 samples lost vertices", p.seed, kept_bad);
+		CHECK(kept_bad == 0, "seed %d: %d components spanning %d-%d samples lost vertices", p.seed, kept_bad,
+		      DEBRIS_SPAN + 1, DEBRIS_SPAN + 2);
 		for (int k = 0; k < 3; k++)
 			by_size[k] += debris[k];
 		kept_total += kept;
@@ -278,7 +281,8 @@ int main(void)
 	CHECK(by_size[0] >= 3, "only %d one-sample islands in the fields: the seeds test nothing", by_size[0]);
 	CHECK(by_size[1] >= 1, "no two-sample island in the fields: the seeds test nothing of the pairs");
 	CHECK(by_size[2] >= 3, "only %d clumps of 3+ samples in the fields: the seeds test little of them", by_size[2]);
-	CHECK(kept_total >= 1, "no component spanning 4-5 samples in the fields: nothing shows the filter keeps them");
+	CHECK(kept_total >= 1, "no component spanning %d-%d samples in the fields: nothing shows the filter keeps them",
+	      DEBRIS_SPAN + 1, DEBRIS_SPAN + 2);
 	platform_close(plat);
 	return tc_done("debris");
 }

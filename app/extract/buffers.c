@@ -126,8 +126,9 @@ int extract_field_buffers(struct pipeline *pl, char *err, size_t errlen)
 	pl->b_cut = extract_buffer((GLsizeiptr)pl->sign_words * 8, NULL, GL_DYNAMIC_COPY);
 	pl->b_refine = extract_buffer((GLsizeiptr)(RF_HEAD + (uint64_t)pl->refine_cap + pl->sign_words) * 4, NULL,
 				      GL_DYNAMIC_COPY);
-	/* the debris filter's candidate list: an entry for each sign word at most */
-	pl->b_debris = extract_buffer((GLsizeiptr)(DL_HEAD + 2 * (uint64_t)pl->sign_words) * 4, NULL, GL_DYNAMIC_COPY);
+	/* the debris filter's candidate list (an entry for each sign word at
+	 * most), then every word's candidate bits */
+	pl->b_debris = extract_buffer((GLsizeiptr)(DL_HEAD + 3 * (uint64_t)pl->sign_words) * 4, NULL, GL_DYNAMIC_COPY);
 	if (gpu_check("the field's buffers") < 0) {
 		snprintf(err, errlen, "cannot allocate the pipeline's field buffers (grid %dx%dx%d)", pl->g.nx, pl->g.ny,
 			 pl->g.nz);

@@ -1,6 +1,7 @@
 /* isoterra — CPU reference Marching Cubes (plain C), same tables, same
  * vertex ownership and output order as the GPU passes. */
 #include "mc.h"
+#include "gpu.h" /* abi.h: DEBRIS_SPAN, DEBRIS_BOX */
 
 #include <math.h>
 #include <stdlib.h>
@@ -29,66 +30,68 @@ static int raw_inside(const struct grid *g, const float *dens, float iso, int x,
 
 static const int nb6[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
 
-#define DEBRIS_SPAN 3 /* shaders/common.glsl */
+#define DEBRIS_ROWS (DEBRIS_BOX * DEBRIS_BOX)
 
-/* Debris (common.glsl's debris_island, which this mirrors): the 6-connected
- * inside component of the sample at the centre of box (7x7x7 samples, row
- * (dz + 3) * 7 + dy + 3 holds dx = -3 .. 3 in bits 0 .. 6), grown within
- * the box, never reaches the box's faces and spans at most DEBRIS_SPAN
- * samples along each axis. */
-static int debris_island(const uint32_t box[49])
+/* Debris (shaders/debris_island.glsl, which this mirrors): the 6-connected
+ * inside component of the sample at the centre of box (DEBRIS_BOX samples
+ * an edge, abi.h; row (dz + S) * B + dy + S holds dx = -S .. S in bits
+ * 0 .. B - 1), grown within the box, never reaches the box's faces and
+ * spans at most DEBRIS_SPAN samples along each axis.  The growth a fixed
+ * point, swept in place as the shader does. */
+static int debris_island(const uint32_t box[DEBRIS_ROWS])
 {
-	uint32_t cur[49] = { 0 };
-	cur[24] = box[24] & 8u;
-	if (!cur[24])
+	enum { B = DEBRIS_BOX, S = DEBRIS_SPAN };
+	const uint32_t faces = 1u | 1u << (B - 1);
+	uint32_t cur[DEBRIS_ROWS] = { 0 };
+	int centre = S * B + S;
+	cur[centre] = box[centre] & 1u << S;
+	if (!cur[centre])
 		return 0; /* an outside centre: no component */
 	int settled = 0;
-	for (int step = 0; step < 28 && !settled; step++) {
-		uint32_t nxt[49];
+	for (int sweep = 0; sweep <= S * S * S && !settled; sweep++) {
 		int grew = 0;
-		for (int z = 0; z < 7; z++)
-			for (int y = 0; y < 7; y++) {
-				int i = z * 7 + y;
-				uint32_t v = cur[i] | (cur[i] << 1) | (cur[i] >> 1);
+		uint32_t face = 0;
+		for (int z = 0; z < B; z++)
+			for (int y = 0; y < B; y++) {
+				int i = z * B + y;
+				uint32_t v = cur[i] | cur[i] << 1 | cur[i] >> 1;
 				if (y > 0)
 					v |= cur[i - 1];
-				if (y < 6)
+				if (y < B - 1)
 					v |= cur[i + 1];
 				if (z > 0)
-					v |= cur[i - 7];
-				if (z < 6)
-					v |= cur[i + 7];
+					v |= cur[i - B];
+				if (z < B - 1)
+					v |= cur[i + B];
 				v &= box[i];
 				grew |= v != cur[i];
-				nxt[i] = v;
+				cur[i] = v;
+				face |= v & faces;
+				if (v && (y == 0 || y == B - 1 || z == 0 || z == B - 1))
+					face = 1;
 			}
-		memcpy(cur, nxt, sizeof(cur));
 		settled = !grew;
-		uint32_t face = 0;
-		for (int k = 0; k < 7; k++)
-			face |= cur[k] | cur[42 + k] | cur[k * 7] | cur[k * 7 + 6];
-		for (int i = 0; i < 49; i++)
-			face |= cur[i] & 0x41u;
 		if (face)
-			return 0;
+			return 0; /* a face reached: more than S samples along an axis */
 	}
 	if (!settled)
 		return 0;
-	int xlo = 7, xhi = -1, ylo = 7, yhi = -1, zlo = 7, zhi = -1;
-	for (int z = 0; z < 7; z++)
-		for (int y = 0; y < 7; y++)
-			for (int x = 0; x < 7; x++)
-				if (cur[z * 7 + y] >> x & 1u) {
+	int xlo = B, xhi = -1, ylo = B, yhi = -1, zlo = B, zhi = -1;
+	for (int z = 0; z < B; z++)
+		for (int y = 0; y < B; y++)
+			for (int x = 0; x < B; x++)
+				if (cur[z * B + y] >> x & 1u) {
 					xlo = x < xlo ? x : xlo, xhi = x > xhi ? x : xhi;
 					ylo = y < ylo ? y : ylo, yhi = y > yhi ? y : yhi;
 					zlo = z < zlo ? z : zlo, zhi = z > zhi ? z : zhi;
 				}
-	return xhi - xlo < DEBRIS_SPAN && yhi - ylo < DEBRIS_SPAN && zhi - zlo < DEBRIS_SPAN;
+	return xhi - xlo < S && yhi - ylo < S && zhi - zlo < S;
 }
 
 /* Inside: above iso, unless its inside component is debris of a few
- * samples, which would float as a speck (a single sample of eight
- * triangles, a pair of sixteen, up to a 3x3x3 clump); or below iso with
+ * samples, which would float as a speck or a rock (a single sample of
+ * eight triangles, a pair of sixteen, up to a clump of DEBRIS_SPAN^3,
+ * abi.h); or below iso with
  * all six neighbours inside (a one-sample bubble, never seen).  The debris
  * filter of shaders/mc_debris.comp, on the raw densities; a sample beyond
  * the stored ones counts as outside. */
@@ -110,13 +113,15 @@ int mc_ref_inside(const struct grid *g, const float *dens, float iso, int x, int
 		if (run)
 			return 1;
 	}
-	uint32_t box[49];
-	for (int dz = 0; dz < 7; dz++)
-		for (int dy = 0; dy < 7; dy++) {
+	uint32_t box[DEBRIS_ROWS];
+	for (int dz = 0; dz < DEBRIS_BOX; dz++)
+		for (int dy = 0; dy < DEBRIS_BOX; dy++) {
 			uint32_t row = 0;
-			for (int dx = 0; dx < 7; dx++)
-				row |= (uint32_t)raw_inside(g, dens, iso, x + dx - 3, y + dy - 3, z + dz - 3) << dx;
-			box[dz * 7 + dy] = row;
+			for (int dx = 0; dx < DEBRIS_BOX; dx++)
+				row |= (uint32_t)raw_inside(g, dens, iso, x + dx - DEBRIS_SPAN, y + dy - DEBRIS_SPAN,
+							    z + dz - DEBRIS_SPAN)
+				       << dx;
+			box[dz * DEBRIS_BOX + dy] = row;
 		}
 	return !debris_island(box);
 }

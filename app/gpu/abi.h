@@ -40,13 +40,20 @@
 
 /* ---- the debris filter's candidate list (BIND_DEBRIS) ----------------------
  * A header, then an entry of two words for each sign word with candidates
- * (samples that may belong to debris spanning three samples or more): its
+ * (samples that may belong to debris of more than two samples): its
  * index and its candidate bits.  A word is listed once: room for all of
- * them (extract/buffers.c sizes it).  mc_debris.comp writes it,
+ * them.  Then, from word DL_HEAD + 2 * u_sign_words on, the candidate bits
+ * of every sign word (DL_BITS): the flood's growth stops at an inside
+ * sample that is no candidate (a debris component's samples all are).
+ * extract/buffers.c sizes it; mc_debris.comp writes it,
  * mc_debris_flood.comp reads it. */
+#define DEBRIS_SPAN 6   /* debris: a component of inside samples spanning at most this many along each axis */
+#define DEBRIS_BOX 13   /* the box its growth runs in: 2 * DEBRIS_SPAN + 1 samples an edge (within a world
+			 * block's density margin of 1 + 6: a decision at a block's last sample reads 6 on) */
 #define DL_DISPATCH 0u /* DispatchIndirectCommand of the flood pass (3 words) */
 #define DL_COUNT 3u    /* entries */
 #define DL_HEAD 4u     /* the header's words */
+#define DL_BITS(sign_words) (DL_HEAD + 2u * (sign_words)) /* the candidate bits' first word */
 
 /* ---- the refine list (BIND_REFINE): the cut samples near the surface ------
  * A header, then u_refine_cap sample entries (a sample's bit index in the
