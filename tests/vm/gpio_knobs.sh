@@ -50,9 +50,22 @@ GUEST_ROOT=$ROOT
 EXPECT_LIBGPIOD=${ISOTERRA_EXPECT_LIBGPIOD:-}
 ENV
 halvm_env "$RES"
-t0=$(date +%s)
-halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" "${ISOTERRA_VM_TIMEOUT:-840}"
-echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none}${ROOT:+, app in $ROOT})"
+# A guest kernel oops is the kernel's fault, not the app's (Debian 12's
+# 6.1 gpiolib can corrupt its slab when a chip is removed with lines still
+# requested, which this test does on purpose: seen once in a CI run, a
+# fault in a later line request's kmalloc): said, and the VM booted once
+# more; a second oops fails the test.
+for try in 1 2; do
+	t0=$(date +%s)
+	halvm_boot "$RES" "$HERE/gpio_knobs_guest.sh" "${ISOTERRA_VM_TIMEOUT:-840}"
+	echo "VM: $(($(date +%s) - t0)) s (kernel $HALVM_REL, TCG, shader cache ${HALVM_MESA_CACHE:-none}${ROOT:+, app in $ROOT})"
+	oops=$(halvm_oops "$RES") || break
+	echo "guest kernel oops (boot $try), not the app's:"
+	echo "$oops" | sed 's/^/  /'
+	[ "$try" = 2 ] && break
+	find "$RES" -mindepth 1 ! -name env.sh -exec rm -rf {} + # the first boot's results
+	echo "booting again"
+done
 pass=$(grep -c '^ok' "$RES/console.log")
 fail=$(grep -c '^FAIL' "$RES/console.log")
 if ! grep -q "HALVM-EXIT 0" "$RES/console.log"; then

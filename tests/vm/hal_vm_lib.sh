@@ -112,13 +112,24 @@ halvm_boot() {
 	fi
 	timeout "$tmo" qemu-system-x86_64 -cpu max -m 2048 -smp 2 -nographic -no-reboot \
 		-kernel "/boot/vmlinuz-$HALVM_REL" -initrd "$HALVM_INITRD" \
-		-append "console=ttyS0 panic=-1 loglevel=3 halvm_script=$script $extra" \
+		-append "console=ttyS0 panic=-1 oops=panic loglevel=3 halvm_script=$script $extra" \
 		-virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
 		-virtfs "local,path=$res,mount_tag=res,security_model=none,multidevs=remap" "$@" \
 		</dev/null >"$res/console.log" 2>&1
 	rc=$?
 	[ $rc -eq 124 ] && echo "VM timed out after $tmo s"
 	return $rc
+}
+
+# halvm_oops RESULTS_DIR: the guest kernel's oops, if its console shows one
+# (its first line and the call trace's first frames; status 0), else
+# status 1.  The boot passes oops=panic: a kernel fault ends the VM at
+# once instead of leaving a guest that hangs until the timeout.
+halvm_oops() {
+	grep -qE '(general protection fault|BUG: |Oops: |kernel BUG at)' "$1/console.log" 2>/dev/null || return 1
+	grep -E -m1 '(general protection fault|BUG: |Oops: |kernel BUG at)' "$1/console.log" | tr -d '\r'
+	grep -A6 -m1 'Call Trace:' "$1/console.log" | tail -6 | tr -d '\r'
+	return 0
 }
 
 # halvm_cores RESULTS_DIR BINARY [ROOT]: the backtrace of each core the
