@@ -38,6 +38,28 @@ uniform uint u_max_groups; // the flood pass's dispatch's largest x
 layout(std430, binding = BIND_CUT) restrict writeonly buffer Near { uint near_out[]; };
 #endif
 
+// cand less the samples of word c (its first sample b0 of slab z) that
+// lie in a run of DEBRIS_SPAN + 1 inside samples along z (dz 1) or y (dz
+// 0): a before it and DEBRIS_SPAN - a after.  p1, m1: the bits one step
+// after and before.  Each step's run loaded only while a candidate needs
+// it.
+uint not_in_run(uint cand, uint c, uint p1, uint m1, int dz, int dy, int z, int b0, int n, uint words)
+{
+	const int S = DEBRIS_SPAN;
+	int r = dens_dims().x;
+	uint rp[S + 1], rm[S + 1]; // rp[k]: inside through k after
+	rp[0] = rm[0] = c;
+	rp[1] = c & p1;
+	rm[1] = c & m1;
+	for (int k = 2; k <= S; k++) {
+		rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & slab_run(z + k * dz, b0 + k * dy * r, n, words) : 0u;
+		rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & slab_run(z - k * dz, b0 - k * dy * r, n, words) : 0u;
+	}
+	for (int k = 0; k <= S; k++)
+		cand &= ~(rm[k] & rp[S - k]);
+	return cand;
+}
+
 void main()
 {
 	ivec3 dim = dens_dims();
@@ -132,30 +154,10 @@ void main()
 		for (int k = 0; k <= S; k++)
 			cand &= ~(rm[k] & rp[S - k]);
 	}
-	if (cand != 0u) {
-		uint rp[S + 1], rm[S + 1];
-		rp[0] = rm[0] = c;
-		rp[1] = c & yp;
-		rm[1] = c & ym;
-		for (int k = 2; k <= S; k++) {
-			rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & RUN(0, k, 0, ~0u) : 0u;
-			rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & RUN(0, -k, 0, ~0u) : 0u;
-		}
-		for (int k = 0; k <= S; k++)
-			cand &= ~(rm[k] & rp[S - k]);
-	}
-	if (cand != 0u) {
-		uint rp[S + 1], rm[S + 1];
-		rp[0] = rm[0] = c;
-		rp[1] = c & zp;
-		rm[1] = c & zm;
-		for (int k = 2; k <= S; k++) {
-			rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & RUN(0, 0, k, ~0u) : 0u;
-			rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & RUN(0, 0, -k, ~0u) : 0u;
-		}
-		for (int k = 0; k <= S; k++)
-			cand &= ~(rm[k] & rp[S - k]);
-	}
+	if (cand != 0u)
+		cand = not_in_run(cand, c, yp, ym, 0, 1, z, b0, n, words);
+	if (cand != 0u)
+		cand = not_in_run(cand, c, zp, zm, 1, 0, z, b0, n, words);
 #undef RUN
 	if (cand != 0u && wi < u_sign_words) { // an entry a word: room for every word
 		uint e = atomicAdd(dl[DL_COUNT], 1u);

@@ -48,8 +48,8 @@
  * extract/buffers.c sizes it; mc_debris.comp writes it,
  * mc_debris_flood.comp reads it. */
 #define DEBRIS_SPAN 6   /* debris: a component of inside samples spanning at most this many along each axis */
-#define DEBRIS_BOX 13   /* the box its growth runs in: 2 * DEBRIS_SPAN + 1 samples an edge (within a world
-			 * block's density margin of 1 + 6: a decision at a block's last sample reads 6 on) */
+#define DEBRIS_BOX (2 * DEBRIS_SPAN + 1) /* the box its growth runs in, samples an edge (within a world block's
+					 * density margin of 1 + 6: a decision at a block's last sample reads 6 on) */
 #define DL_DISPATCH 0u /* DispatchIndirectCommand of the flood pass (3 words) */
 #define DL_COUNT 3u    /* entries */
 #define DL_HEAD 4u     /* the header's words */

@@ -150,7 +150,7 @@ static int sure_steps(const struct governor *g, double held)
 static void decide(struct governor *g, double now_s)
 {
 	double over = g->target_ms * OVER, held = governor_held_ms(g);
-	int sure = g->level > 0 ? sure_steps(g, held) : 0;
+	int sure = sure_steps(g, held);
 	if (held > over) {
 		g->under_since = -1;
 		if (g->over_since < 0)
