@@ -8,8 +8,8 @@
 // linear space, aerial perspective (shade.glsl), tone mapping.  Compiled
 // for the parameters (params_glsl_specialization, app/render/render.c):
 // the shape's and the soil's branches are constants, the marble colour and
-// the shadows are in only when on, the detail only in the variant for
-// meshes near the eye.
+// the shadows are in only when on, the detail only in the variants for
+// meshes near the eye (its finer scale only in the nearest's).
 in vec3 v_pos;
 in vec3 v_nrm;
 in float v_ao;
@@ -117,8 +117,12 @@ void main()
 #if DETAIL_NORMALS
 	// detail at two finer scales (5.1 and 23 times), fading out with
 	// distance: the grain of the rock and the grass close up, where the
-	// base texture's texels would smear (compiled out of the variant for
-	// meshes that stay beyond DETAIL_RANGE: render.c)
+	// base texture's texels would smear.  DETAIL_NORMALS 2: both scales,
+	// 1: the coarser only (the governor's step, and meshes that stay
+	// beyond a quarter of DETAIL_RANGE, where the finer has faded out);
+	// compiled out of the variant for meshes that stay beyond DETAIL_RANGE
+	// (render.c): a software rasterizer runs a branch's texture taps in
+	// every pixel, taken or not
 	float dist = length(v_pos - u_eye);
 	float near = u_detail * clamp(1.0 - dist / DETAIL_RANGE, 0.0, 1.0);
 	float grain = 0.0;
@@ -126,13 +130,17 @@ void main()
 		vec4 d1 = texture(u_surface, c1 * 5.1), d2 = texture(u_surface, c2 * 5.1), d3 = texture(u_surface, c3 * 5.1);
 		vec3 db = vec3(0.0, d1.g - 0.5, d1.b - 0.5) * w.x + vec3(d2.b - 0.5, 0.0, d2.g - 0.5) * w.y +
 			  vec3(d3.g - 0.5, d3.b - 0.5, 0.0) * w.z;
-		float nearer = near * clamp(1.0 - dist / (0.25 * DETAIL_RANGE), 0.0, 1.0);
+		n = n - db * near;
+		grain = ((d1.r * w.x + d2.r * w.y + d3.r * w.z) - 0.5) * near;
+#if DETAIL_NORMALS > 1
+		float nearer = near * clamp(1.0 - dist / (DETAIL_FINE_SHARE * DETAIL_RANGE), 0.0, 1.0);
 		vec4 e1 = texture(u_surface, c1 * 23.0), e2 = texture(u_surface, c2 * 23.0), e3 = texture(u_surface, c3 * 23.0);
 		vec3 eb = vec3(0.0, e1.g - 0.5, e1.b - 0.5) * w.x + vec3(e2.b - 0.5, 0.0, e2.g - 0.5) * w.y +
 			  vec3(e3.g - 0.5, e3.b - 0.5, 0.0) * w.z;
-		n = normalize(n - db * near - eb * (0.6 * nearer));
-		grain = ((d1.r * w.x + d2.r * w.y + d3.r * w.z) - 0.5) * near +
-			((e1.r * w.x + e2.r * w.y + e3.r * w.z) - 0.5) * nearer;
+		n = n - eb * (0.6 * nearer);
+		grain += ((e1.r * w.x + e2.r * w.y + e3.r * w.z) - 0.5) * nearer;
+#endif
+		n = normalize(n);
 	}
 #endif
 	float hgt = t1.a * w.x + t2.a * w.y + t3.a * w.z;

@@ -271,14 +271,14 @@ int main(void)
 	}
 	{
 		struct governor_quality a = governor_level(0), c = governor_level(1);
-		CHECK(a.smoothing == 1.0f && a.detail == 1.0f && c.smoothing == 0.0f && c.detail == 1.0f &&
+		CHECK(a.smoothing == 1.0f && a.detail == 1.0f && c.smoothing == 0.0f && c.detail == 0.5f &&
 			      c.render_scale == 1.0f && c.framing == 1.0f && c.gen_budget == 1.0f && c.ao_rays == 1.0f &&
 			      c.shadow_steps == 1.0f && c.view_distance == 1.0f,
-		      "the first step gives up the edge smoothing alone");
+		      "the first step gives up the edge smoothing and the close-up detail's finer scale alone");
 		struct governor_quality d = governor_level(2);
 		CHECK(d.detail == 0.0f && d.smoothing == 0.0f && d.render_scale == 1.0f && d.framing == 1.0f &&
 			      d.gen_budget == 1.0f && d.ao_rays == 1.0f && d.shadow_steps == 1.0f && d.view_distance == 1.0f,
-		      "the second step gives up the close-up detail alone");
+		      "the second step gives up the rest of the close-up detail alone");
 	}
 	CHECK(governor_level(GOVERNOR_LEVELS - 1).render_scale == 0.5f, "scale floor 0.5");
 	{

@@ -8,11 +8,14 @@
  * (nothing rings), and the upscale is crisper than a bilinear one of that
  * frame computed here (edge energy).
  *
- * Also the terrain's two variants (render.c): a mesh said to stay beyond
- * DETAIL_RANGE is drawn without the detail normals.  Seen from afar (all
- * of the volume beyond that range) both variants give the same frame; from
- * near, they differ (the near variant has the detail), and the governor's
- * step that turns the detail off draws a near mesh as the far variant does.
+ * Also the terrain's three variants (render.c): a mesh said to stay
+ * beyond DETAIL_FINE_SHARE * DETAIL_RANGE is drawn without the finer
+ * detail scale, one beyond DETAIL_RANGE without the detail normals.  Seen
+ * from afar (all of the volume beyond that range) the three give the same
+ * frame; from the middle distance, the one without the finer scale gives
+ * the frame of both scales, and differs from the far one; from near, they
+ * differ, and the governor's two steps draw a near mesh as the variant
+ * without the finer scale and as the far variant do.
  * And the depth
  * pre-pass (render.h): the volume's frame with it is the frame without it,
  * pixel for pixel. */
@@ -131,63 +134,120 @@ static int mesh_frame(struct renderer *r, const struct pipeline_draw *d, const s
 	return renderer_read(r, img);
 }
 
-/* the two variants compared, from near and from afar */
+/* the eye's distance to the volume's box */
+static float eye_box_distance(const struct camera *c, const struct grid *g)
+{
+	float lo[3] = { g->origin[0], g->origin[1], g->origin[2] };
+	float hi[3] = { g->origin[0] + g->cell * g->nx, g->origin[1] + g->cell * g->ny, g->origin[2] + g->cell * g->nz };
+	return camera_box_distance(c, lo, hi);
+}
+
+/* pixels whose colour differs between two frames */
+static int pixels_moved(const unsigned char *a, const unsigned char *b)
+{
+	int moved = 0;
+	for (int i = 0; i < W * H * 4; i += 4)
+		moved += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+	return moved;
+}
+
+/* the same frame from two programs that should draw it alike: within a
+ * rounding of the driver's (pixel for pixel on llvmpipe) */
+static bool frames_alike(const struct image *a, const struct image *b)
+{
+	return psnr(a->rgba, b->rgba) >= 60.0 && pixels_moved(a->rgba, b->rgba) <= W * H / 1000;
+}
+
+/* the three variants compared, from near, from the middle distance (the
+ * finer scale faded out) and from afar (all the detail faded out) */
 static void detail_variants(struct renderer *r, const struct pipeline_draw *d, const struct params *p_in,
 			    const struct grid *g)
 {
 	struct params p = *p_in;
-	for (int afar = 0; afar < 2; afar++) {
-		/* near: the eye close over the terrain (a snow mound within
-		 * DETAIL_RANGE fills half the frame from here) */
-		p.cam_dist = afar ? 1.5f : 0.6f;
+	const float fine = (float)(DETAIL_FINE_SHARE * DETAIL_RANGE);
+	/* near: the eye just over the terrain (the finer scale, within
+	 * DETAIL_FINE_SHARE * DETAIL_RANGE, changes a fifth of the pixels
+	 * from here; from 0.6, where the coarser changes a third, none); the
+	 * middle distance: the first orbit distance from 0.6 on that puts the
+	 * whole volume between the two ranges, where the coarser scale changes
+	 * 1 % of the pixels */
+	float dists[3] = { 0.08f, -1.0f, 1.5f };
+	for (float cd = 0.6f; cd < 1.5f && dists[1] < 0; cd += 0.02f) {
+		struct camera c;
+		p.cam_dist = cd;
+		p.cam_yaw = 35.0f;
+		p.cam_pitch = 17.0f;
+		camera_orbit(&c, &p, g, 0.0f, (float)W / H);
+		float dd = eye_box_distance(&c, g);
+		if (dd >= fine + 0.5f && dd < DETAIL_RANGE - 8.0f)
+			dists[1] = cd;
+	}
+	CHECK(dists[1] > 0, "an orbit distance puts the volume between %.2f and %.2f units", fine, DETAIL_RANGE);
+	for (int view = 0; view < 3; view++) {
+		if (dists[view] < 0)
+			continue;
+		p.cam_dist = dists[view];
 		p.cam_yaw = 35.0f;
 		p.cam_pitch = 17.0f;
 		struct camera c;
 		camera_orbit(&c, &p, g, 0.0f, (float)W / H);
-		/* the eye's distance to the volume's box */
-		float hi[3] = { g->origin[0] + g->cell * g->nx, g->origin[1] + g->cell * g->ny,
-				g->origin[2] + g->cell * g->nz };
-		float dd = 0;
-		for (int a = 0; a < 3; a++) {
-			float e = c.eye[a] < g->origin[a] ? g->origin[a] - c.eye[a] : c.eye[a] > hi[a] ? c.eye[a] - hi[a] : 0;
-			dd += e * e;
-		}
-		dd = sqrtf(dd);
-		struct image a = { 0 }, b = { 0 };
+		float dd = eye_box_distance(&c, g);
+		/* the mesh said to come to 0 (both scales), dd (what the world
+		 * says of it) and never (the far variant) */
+		struct image a = { 0 }, m = { 0 }, b = { 0 };
 		CHECK(mesh_frame(r, d, &p, g, 0.0f, &a) == 0, "near variant frame");
+		CHECK(mesh_frame(r, d, &p, g, dd, &m) == 0, "frame of a mesh %.1f units away", dd);
 		CHECK(mesh_frame(r, d, &p, g, 1e9f, &b) == 0, "far variant frame");
-		if (a.rgba && b.rgba) {
-			double q = psnr(a.rgba, b.rgba);
-			int moved = 0;
-			for (int i = 0; i < W * H * 4; i += 4)
-				moved += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
-			printf("detail variants, eye %.1f units from the volume: near vs far variant %.2f dB, %d pixels differ\n",
-			       dd, q, moved);
-			if (afar) {
+		if (a.rgba && m.rgba && b.rgba) {
+			int am = pixels_moved(a.rgba, m.rgba), ab = pixels_moved(a.rgba, b.rgba),
+			    mb = pixels_moved(m.rgba, b.rgba);
+			printf("detail variants, eye %.1f units from the volume: pixels that differ: both scales vs its "
+			       "own variant %d, vs none %d; its own vs none %d (%.2f dB)\n",
+			       dd, am, ab, mb, psnr(a.rgba, b.rgba));
+			if (view == 2) {
 				CHECK(dd > DETAIL_RANGE, "the far view is beyond the detail range (%.1f)", dd);
-				CHECK(q >= 60.0 && moved <= W * H / 1000,
-				      "from afar the variant without detail draws the same frame (%.2f dB, %d pixels)", q, moved);
+				CHECK(frames_alike(&a, &b) && frames_alike(&m, &b),
+				      "from afar the variant without detail draws the same frame (%d, %d pixels)", ab, mb);
+			} else if (view == 1) {
+				CHECK(dd >= fine && dd < DETAIL_RANGE, "the middle view is between the ranges (%.1f)", dd);
+				CHECK(frames_alike(&a, &m),
+				      "from the middle distance the variant without the finer scale draws the frame of "
+				      "both (%d pixels)", am);
+				CHECK(mb >= W * H / 200, "from the middle distance the coarser scale shows (%d pixels)", mb);
 			} else {
-				CHECK(dd < DETAIL_RANGE, "the near view is within the detail range (%.1f)", dd);
-				CHECK(moved >= W * H / 20, "from near the two variants differ: the detail is in one only (%d pixels)",
-				      moved);
-				/* the governor's detail step: a near mesh drawn with the
-				 * far variant, then the detail back */
-				struct image off = { 0 }, on = { 0 };
-				renderer_set_detail(r, false);
+				CHECK(dd < fine, "the near view is within the finer scale's range (%.1f)", dd);
+				CHECK(ab >= W * H / 20, "from near the detail shows (%d pixels)", ab);
+				/* the governor's two detail steps: a near mesh drawn
+				 * without the finer scale (as by a mesh beyond its
+				 * range: the same program), then with the far
+				 * variant, then the detail back */
+				struct image one = { 0 }, mid = { 0 }, off = { 0 }, on = { 0 };
+				CHECK(mesh_frame(r, d, &p, g, fine, &mid) == 0, "mesh at the finer scale's range");
+				renderer_set_detail(r, 1);
+				CHECK(mesh_frame(r, d, &p, g, 0.0f, &one) == 0, "near mesh, the coarser scale only");
+				renderer_set_detail(r, 0);
 				CHECK(mesh_frame(r, d, &p, g, 0.0f, &off) == 0, "near mesh, detail off");
-				renderer_set_detail(r, true);
+				renderer_set_detail(r, 2);
 				CHECK(mesh_frame(r, d, &p, g, 0.0f, &on) == 0, "near mesh, detail on again");
-				if (off.rgba && on.rgba) {
+				if (one.rgba && mid.rgba && off.rgba && on.rgba) {
+					int fine_px = pixels_moved(a.rgba, one.rgba);
+					printf("  the finer scale: %d pixels\n", fine_px);
+					CHECK(fine_px >= W * H / 50, "from near the finer scale shows (%d pixels)", fine_px);
+					CHECK(!memcmp(one.rgba, mid.rgba, (size_t)W * H * 4),
+					      "the coarser scale only: a near mesh is drawn as one beyond the finer "
+					      "scale's range, pixel for pixel");
 					CHECK(!memcmp(off.rgba, b.rgba, (size_t)W * H * 4),
 					      "detail off: a near mesh is drawn as a far one, pixel for pixel");
 					CHECK(!memcmp(on.rgba, a.rgba, (size_t)W * H * 4), "detail on again: the near frame back");
 				}
+				free(one.rgba);
+				free(mid.rgba);
 				free(off.rgba);
 				free(on.rgba);
 			}
 		}
 		free(a.rgba);
+		free(m.rgba);
 		free(b.rgba);
 	}
 }

@@ -106,6 +106,8 @@
 /* ---- shading ------------------------------------------------------------ */
 #define DETAIL_RANGE 25.0  /* world units: the detail normals fade out there (render.frag); farther meshes
 			    * are drawn by the variant without them (render.c) */
+#define DETAIL_FINE_SHARE 0.25 /* the finer of the two detail scales fades out at this share of DETAIL_RANGE;
+				* farther meshes are drawn by the variant without it (render.c) */
 
 /* ---- the status block (BIND_STATUS): indirect commands + counters --------- */
 #define ST_DRAW_ELEMENTS 0   /* DrawElementsIndirectCommand: count, instances, first, baseVertex, baseInstance */

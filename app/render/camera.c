@@ -89,6 +89,16 @@ void camera_look_up(struct camera *c, const float eye[3], const float at[3], con
 	mat4_mul(c->viewproj, c->proj, c->view);
 }
 
+float camera_box_distance(const struct camera *c, const float lo[3], const float hi[3])
+{
+	float d2 = 0;
+	for (int a = 0; a < 3; a++) {
+		float v = c->eye[a] < lo[a] ? lo[a] - c->eye[a] : c->eye[a] > hi[a] ? c->eye[a] - hi[a] : 0.0f;
+		d2 += v * v;
+	}
+	return sqrtf(d2);
+}
+
 void camera_window(struct camera *c, const struct wall_view *v)
 {
 	if (!v || !v->on)

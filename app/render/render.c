@@ -19,11 +19,13 @@ struct terrain_prog {
 	GLint l_viewproj, l_eye, l_fog, l_sink;
 };
 
-/* the terrain's two variants: with the detail normals (meshes that come
- * within DETAIL_RANGE of the eye) and without (the rest: the detail has
- * faded out there, and a software rasterizer would still pay for its
- * texture taps in every pixel, both sides of a branch being run) */
-enum { PROG_NEAR, PROG_FAR, PROG_COUNT };
+/* the terrain's three variants: with the detail normals at both scales
+ * (meshes that come within DETAIL_FINE_SHARE * DETAIL_RANGE of the eye),
+ * at the coarser scale only (those within DETAIL_RANGE; the finer has
+ * faded out there), and without (the rest: the detail has faded out
+ * there).  A software rasterizer would still pay for the taps of a detail
+ * faded out in every pixel, both sides of a branch being run. */
+enum { PROG_NEAR, PROG_NEAR1, PROG_FAR, PROG_COUNT };
 
 struct renderer {
 	int w, h, samples;
@@ -46,7 +48,8 @@ struct renderer {
 	bool draw_sky;
 	bool sky_due;     /* the sky of the frame begun, not drawn yet (sky_pass) */
 	bool smooth_off;  /* the governor turned the filter after the frame off */
-	bool detail_off;  /* ... and the close-up detail: every mesh drawn with PROG_FAR */
+	int detail;       /* ... and the close-up detail's scales: 2, 1 (every near mesh drawn with
+			   * PROG_NEAR1), 0 (every mesh with PROG_FAR) */
 	struct camera cam;       /* this frame's, for a variant made mid-frame */
 	const struct params *par; /* this frame's parameters (renderer_begin's) */
 	float clear[3];
@@ -85,6 +88,7 @@ struct renderer *renderer_create(int width, int height, int antialias, char *err
 	}
 	r->w = r->sw = width;
 	r->h = r->sh = height;
+	r->detail = 2;
 	r->scale = 1.0f;
 	r->clear[0] = 0.62f;
 	r->clear[1] = 0.74f;
@@ -203,7 +207,8 @@ void renderer_destroy(struct renderer *r)
 static GLuint terrain_variant(const char *key, int variant)
 {
 	char full[RENDER_KEY_MAX + 64], err[512];
-	snprintf(full, sizeof(full), "%s#define DETAIL_NORMALS %d\n", key, variant == PROG_NEAR);
+	snprintf(full, sizeof(full), "%s#define DETAIL_NORMALS %d\n", key,
+		 variant == PROG_NEAR ? 2 : variant == PROG_NEAR1 ? 1 : 0);
 	GLuint prog = gpu_graphics_program("render.vert", "render.frag", full, err, sizeof(err));
 	if (!prog)
 		log_error("terrain program: %s", err);
@@ -252,8 +257,8 @@ void renderer_set_road_map(struct renderer *r, GLuint tex, const float origin[2]
  * the shape's and soil's branches folded, the marble colour compiled only
  * when on; a software rasterizer runs a uniform branch's both sides),
  * made again when a live knob changes the key, the old ones deleted (the
- * program binary cache keeps switching back cheap).  The variant without
- * detail normals is made when a far mesh first asks for it.  0, or -1
+ * program binary cache keeps switching back cheap).  The variants with
+ * less detail are made when a mesh first asks for one.  0, or -1
  * (logged). */
 static int terrain_program(struct renderer *r, const struct params *p)
 {
@@ -277,6 +282,18 @@ static int terrain_program(struct renderer *r, const struct params *p)
 	r->tp[PROG_NEAR].prog = prog;
 	snprintf(r->key, sizeof(r->key), "%s", key);
 	return 0;
+}
+
+/* The frame's uniforms of variant i (renderer_begin's camera and
+ * parameters): also of one made mid-frame, when a mesh first asks for it. */
+static void variant_uniforms(struct renderer *r, int i)
+{
+	terrain_uniforms(&r->tp[i], &r->cam, r->par);
+	if (r->road_tex) {
+		GLuint pr = r->tp[i].prog;
+		glProgramUniform4f(pr, gpu_uniform(pr, "u_road_rect"), r->road[0], r->road[1], r->road[2], r->road[3]);
+		glProgramUniform2f(pr, gpu_uniform(pr, "u_road_y"), r->road[4], r->road[5]);
+	}
 }
 
 int renderer_prepare(struct renderer *r, const struct params *p)
@@ -314,24 +331,17 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	}
 
 	/* a far variant made on an earlier frame gets its uniforms too */
-	for (int i = PROG_COUNT - 1; i >= 0; i--)
-		if (r->tp[i].prog)
-			terrain_uniforms(&r->tp[i], c, p);
-	r->cur = PROG_NEAR;
 	r->cam = *c;
 	r->par = p;
+	for (int i = PROG_COUNT - 1; i >= 0; i--)
+		if (r->tp[i].prog)
+			variant_uniforms(r, i);
+	r->cur = PROG_NEAR;
 	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
 	if (r->road_tex) {
 		glActiveTexture(GL_TEXTURE0 + TEX_ROADS);
 		glBindTexture(GL_TEXTURE_2D, r->road_tex);
-		for (int i = 0; i < PROG_COUNT; i++)
-			if (r->tp[i].prog) {
-				GLuint pr = r->tp[i].prog;
-				glProgramUniform4f(pr, gpu_uniform(pr, "u_road_rect"), r->road[0], r->road[1], r->road[2],
-						   r->road[3]);
-				glProgramUniform2f(pr, gpu_uniform(pr, "u_road_y"), r->road[4], r->road[5]);
-			}
 	}
 	glActiveTexture(GL_TEXTURE0);
 	glBindVertexArray(r->vao);
@@ -377,14 +387,14 @@ static void draw_indirect(GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offs
 /* renderer_draw's mesh: one draw of its indirect command, or its parts
  * (render_int.h), each rasterized before the next is binned; shaded by
  * the terrain's program, or by the program in use (the depth pre-pass). */
-static void draw_mesh(struct renderer *r, const struct pipeline_draw *d, uint32_t parts, bool shaded)
+static void draw_mesh(struct renderer *r, const struct pipeline_draw *d, uint32_t parts, bool shaded, float dist)
 {
 	GLuint ibo = d->indexed ? d->ibo : 0;
 	GLuint cmd = parts ? r->pt.buf : d->indirect;
 	for (uint32_t i = 0; i < (parts ? parts : 1); i++) {
 		GLintptr at = parts ? (GLintptr)i * PART_BYTES : d->indirect_offset;
 		if (shaded)
-			renderer_draw_mesh(r, d->vbo, ibo, cmd, at, 0.0f, 0.0f);
+			renderer_draw_mesh(r, d->vbo, ibo, cmd, at, 0.0f, dist);
 		else
 			draw_indirect(d->vbo, ibo, cmd, at);
 		if (parts)
@@ -412,7 +422,7 @@ static int depth_pass(struct renderer *r, const struct pipeline_draw *d, uint32_
 	glUniformMatrix4fv(gpu_uniform(r->depth_prog, "u_viewproj"), 1, GL_FALSE, c->viewproj);
 	glUniform1f(gpu_uniform(r->depth_prog, "u_sink"), 0.0f);
 	glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-	draw_mesh(r, d, parts, false);
+	draw_mesh(r, d, parts, false, 0.0f);
 	glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 	if (!parts) /* parts are finished one by one */
 		glFinish();
@@ -424,11 +434,13 @@ static int depth_pass(struct renderer *r, const struct pipeline_draw *d, uint32_
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
 			float dist)
 {
-	int want = dist >= DETAIL_RANGE || r->detail_off ? PROG_FAR : PROG_NEAR;
-	if (want == PROG_FAR && !r->tp[PROG_FAR].prog) {
-		r->tp[PROG_FAR].prog = terrain_variant(r->key, PROG_FAR);
-		if (r->tp[PROG_FAR].prog)
-			terrain_uniforms(&r->tp[PROG_FAR], &r->cam, r->par);
+	int want = dist >= DETAIL_RANGE || r->detail <= 0		      ? PROG_FAR
+		   : dist >= DETAIL_FINE_SHARE * DETAIL_RANGE || r->detail == 1 ? PROG_NEAR1
+										 : PROG_NEAR;
+	if (want != PROG_NEAR && !r->tp[want].prog) {
+		r->tp[want].prog = terrain_variant(r->key, want);
+		if (r->tp[want].prog)
+			variant_uniforms(r, want);
 	}
 	if (!r->tp[want].prog) /* logged: the near one draws it */
 		want = PROG_NEAR;
@@ -567,9 +579,9 @@ void renderer_set_smoothing(struct renderer *r, bool on)
 	r->smooth_off = !on;
 }
 
-void renderer_set_detail(struct renderer *r, bool on)
+void renderer_set_detail(struct renderer *r, int scales)
 {
-	r->detail_off = !on;
+	r->detail = scales < 0 ? 0 : scales > 2 ? 2 : scales;
 }
 
 int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen)
@@ -636,12 +648,18 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 		   (r->prepass == PREPASS_BY_SIZE && (uint64_t)r->w * (uint64_t)r->h * 3 >= d->capacity);
 	if (pre && depth_pass(r, d, parts, c) < 0)
 		return -1;
-	draw_mesh(r, d, parts, true);
+	/* the mesh lies in the grid's box: from afar it is shaded by the
+	 * variant for its distance (the default picture's eye is 40 units
+	 * from it: no detail normals, which have faded out there) */
+	struct grid g;
+	grid_from_params(&g, p);
+	float lo[3] = { g.origin[0], g.origin[1], g.origin[2] };
+	float hi[3] = { g.origin[0] + g.cell * (float)g.nx, g.origin[1] + g.cell * (float)g.ny,
+			g.origin[2] + g.cell * (float)g.nz };
+	draw_mesh(r, d, parts, true, camera_box_distance(c, lo, hi));
 	/* water inside the volume only, below its top: on the procedural
 	 * terrain and on heightmaps (a georeferenced one's sea level, set by
 	 * heightmap_fit) */
-	struct grid g;
-	grid_from_params(&g, p);
 	float rect[4] = { g.origin[0], g.origin[2], g.origin[0] + g.cell * (float)g.nx, g.origin[2] + g.cell * (float)g.nz };
 	if ((p->field == FIELD_TERRAIN || p->field == FIELD_HEIGHTMAP) &&
 	    ((p->field == FIELD_TERRAIN && p->shape == SHAPE_PLANET) ||

@@ -28,6 +28,9 @@ void camera_look(struct camera *c, const float eye[3], const float at[3], float 
 void camera_look_up(struct camera *c, const float eye[3], const float at[3], const float up[3], float fov, float aspect,
 		    float zn, float zf);
 
+/* The eye's distance to the box lo .. hi (0 inside it). */
+float camera_box_distance(const struct camera *c, const float lo[3], const float hi[3]);
+
 /* The generated surface texture (albedo variation, bump slopes, height). */
 GLuint surface_texture_create(void);
 
@@ -48,7 +51,8 @@ int renderer_prepare(struct renderer *r, const struct params *p);
  * drawn with their indirect commands (sink > 0 draws the mesh moved that
  * many world units along its normals into the rock: a level of detail
  * fading in or out hides behind the coarser one; dist: how near to the
- * eye the mesh comes, world units — from DETAIL_RANGE on it is shaded
+ * eye the mesh comes, world units — from DETAIL_FINE_SHARE * DETAIL_RANGE
+ * on it is shaded without the finer detail scale, from DETAIL_RANGE on
  * without the detail normals, which have faded out there), end. */
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p);
 void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indirect, GLintptr offset, float sink,
@@ -90,10 +94,12 @@ int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen
  * software rasterizer) on or off from the next frame (the governor's first
  * step); multisampling is not touched.  On by default. */
 void renderer_set_smoothing(struct renderer *r, bool on);
-/* The close-up detail (render.frag's DETAIL_NORMALS) on or off from the
- * next mesh drawn (the governor's second step): off, every mesh is drawn
- * with the program of those beyond DETAIL_RANGE.  On by default. */
-void renderer_set_detail(struct renderer *r, bool on);
+/* The close-up detail's scales (render.frag's DETAIL_NORMALS) from the
+ * next mesh drawn: 2 (the default), 1 (the governor's second step: the
+ * finer scale left out, every near mesh drawn with the program of those
+ * beyond DETAIL_FINE_SHARE * DETAIL_RANGE) or 0 (its third: every mesh
+ * drawn with the program of those beyond DETAIL_RANGE). */
+void renderer_set_detail(struct renderer *r, int scales);
 /* Paint on the ground: an RGBA16F texture over the XZ rectangle origin ..
  * origin + size, per texel (paint weight, surface ROAD_SURFACE_*, height
  * less y0); a fragment within tol of that height takes the surface's

@@ -4,13 +4,19 @@
 #include <math.h>
 
 /* The ladder: each row one step down from the one before, in the order
- * the user notices least: first the edge smoothing after the frame (the
- * filter a software rasterizer runs instead of multisampling: about a
- * tenth of a 640x480 world frame on llvmpipe; on a GPU, which
- * multisamples, the step changes nothing), then the close-up detail (the
- * near meshes drawn with the far ones' program: the grain of the rock and
- * the grass within 25 units, faint at the flight's height, gone; 12-14 %
- * of a full-quality world frame on llvmpipe), then how fast new blocks
+ * the user notices least: first what is finer than a few pixels, the
+ * edge smoothing after the frame (the filter a software rasterizer runs
+ * instead of multisampling: about a tenth of a 640x480 world frame on
+ * llvmpipe; on a GPU, which multisamples, it changes nothing) and the
+ * close-up detail's finer scale (the grain within 6.25 units: the meshes
+ * beyond that are drawn without it whatever the level, so it saves its
+ * texture taps only where a mesh comes that close, the flight skimming
+ * the ground; a step of its own saved nothing in a flight, and cost the
+ * heavy views a step more to come down, render.c), then the
+ * rest of the close-up detail (the near meshes drawn with the far ones'
+ * program: the grain of the rock and the grass within 25 units, faint at
+ * the flight's height, gone; about 8 % of a 640x480 world frame on llvmpipe),
+ * then how fast new blocks
  * arrive (half, a quarter of the budget: the finer levels come in later,
  * the coarser ones stand in meanwhile; before the scale, whose steps
  * down cost the whole picture and could never be taken back while the
@@ -26,7 +32,7 @@
 static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 	/* scale, budget, AO, shadows, far octaves dropped, view, framing, smoothing, detail, level */
 	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 1.00f, 1.00f, 0 },
-	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 1.00f, 1 },
+	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.50f, 1 },
 	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.00f, 2 },
 	{ 1.00f, 0.50f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.00f, 3 },
 	{ 1.00f, 0.25f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 0.00f, 0.00f, 4 },

@@ -1,6 +1,6 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
- * quality, in a fixed order (the edge smoothing after the frame, the
- * close-up detail, the block generation budget, the render scale and with
+ * quality, in a fixed order (the edge smoothing after the frame and the
+ * close-up detail's finer scale, the rest of the close-up detail, the block generation budget, the render scale and with
  * its first step the composed start's view, then AO rays, sun shadow
  * steps, far-LOD octaves, view distance), and gives it back when there is
  * headroom.  It only sees frame times and a clock, so a test
@@ -45,8 +45,9 @@ struct governor_quality {
 	                       * land); 0: the cruise's tilt, whose frames draw half the terrain */
 	float smoothing;      /* 1: the edge smoothing after the frame as configured (--antialias:
 	                       * the filter on a software rasterizer); 0: none */
-	float detail;         /* 1: the close-up detail of the near meshes (render.frag's DETAIL_NORMALS);
-	                       * 0: every mesh drawn with the far meshes' program */
+	float detail;         /* 1: the close-up detail of the near meshes at both scales (render.frag's
+	                       * DETAIL_NORMALS); 0.5: at the coarser only; 0: every mesh drawn with
+	                       * the far meshes' program */
 	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
 };
 

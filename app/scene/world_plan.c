@@ -153,16 +153,6 @@ static bool aabb_visible(float pl[6][4], const float lo[3], const float hi[3])
 	return true;
 }
 
-static float aabb_distance(const float eye[3], const float lo[3], const float hi[3])
-{
-	float d2 = 0;
-	for (int a = 0; a < 3; a++) {
-		float v = eye[a] < lo[a] ? lo[a] - eye[a] : eye[a] > hi[a] ? eye[a] - hi[a] : 0.0f;
-		d2 += v * v;
-	}
-	return sqrtf(d2);
-}
-
 float lod_range(const struct params *p, int lod)
 {
 	if (lod == p->lod_levels - 1)
@@ -283,7 +273,7 @@ int plan_blocks(struct world *w, const struct params *p, const struct camera *c)
 					int k[4] = { x, y, z, lod };
 					float blo[3], bhi[3];
 					block_aabb(p, k, blo, bhi);
-					float d = aabb_distance(c->eye, blo, bhi);
+					float d = camera_box_distance(c, blo, bhi);
 					if (d > range || !aabb_visible(wide, blo, bhi))
 						continue;
 					int b = find_block(w, k, true);
