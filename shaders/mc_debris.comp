@@ -14,7 +14,7 @@
 // 32 bits a row away (y) and the words a slab away (z); for a word with a
 // sample that has a single inside neighbour, the eighteen runs two steps
 // away too (that neighbour's own neighbours); for a word with candidates,
-// the runs up to DEBRIS_SPAN steps away that rule them out; word-wide operations, no
+// the rows up to DEBRIS_SPAN steps away that rule them out; word-wide operations, no
 // loop over the samples.  Only classification and the index pass read the
 // bits: an edge that crossed at a flipped sample has both ends on one side
 // now, so the vertex pass (which interpolates the densities of crossing
@@ -39,11 +39,10 @@ layout(std430, binding = BIND_CUT) restrict writeonly buffer Near { uint near_ou
 #endif
 
 // cand less the samples of word c (its first sample b0 of slab z) that
-// lie in a run of DEBRIS_SPAN + 1 inside samples along z (dz 1) or y (dz
-// 0): a before it and DEBRIS_SPAN - a after.  p1, m1: the bits one step
-// after and before.  Each step's run loaded only while a candidate needs
-// it.
-uint not_in_run(uint cand, uint c, uint p1, uint m1, int dz, int dy, int z, int b0, int n, uint words)
+// lie in a run of DEBRIS_SPAN + 1 inside samples along y: a before it and
+// DEBRIS_SPAN - a after.  p1, m1: the bits a row after and before.  Each
+// step's run loaded only while a candidate needs it.
+uint not_in_y_run(uint cand, uint c, uint p1, uint m1, int z, int b0, int n, uint words)
 {
 	const int S = DEBRIS_SPAN;
 	int r = dens_dims().x;
@@ -52,8 +51,8 @@ uint not_in_run(uint cand, uint c, uint p1, uint m1, int dz, int dy, int z, int 
 	rp[1] = c & p1;
 	rm[1] = c & m1;
 	for (int k = 2; k <= S; k++) {
-		rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & slab_run(z + k * dz, b0 + k * dy * r, n, words) : 0u;
-		rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & slab_run(z - k * dz, b0 - k * dy * r, n, words) : 0u;
+		rp[k] = (rp[k - 1] & cand) != 0u ? rp[k - 1] & slab_run(z, b0 + k * r, n, words) : 0u;
+		rm[k] = (rm[k - 1] & cand) != 0u ? rm[k - 1] & slab_run(z, b0 - k * r, n, words) : 0u;
 	}
 	for (int k = 0; k <= S; k++)
 		cand &= ~(rm[k] & rp[S - k]);
@@ -131,12 +130,14 @@ void main()
 	}
 	// Larger debris, of up to S = DEBRIS_SPAN samples along each axis (the
 	// next pass, mc_debris_flood.comp, grows their components): an inside
-	// sample left is a candidate unless along an axis it lies in a run of
+	// sample left is a candidate unless along x or y it lies in a run of
 	// S + 1 inside samples (which would make a span of more): a samples
-	// before it and S - a after, for some a.  The axes in the order of
-	// their cost, each only while a candidate is left: x from the words at
-	// hand (in rock that rules out every sample), y (on the ground that
-	// does), then z.  The word's candidates are listed.
+	// before it and S - a after, for some a.  x from the words at hand (in
+	// rock that rules out every sample), then y while a candidate is left
+	// (on the ground that does).  Not z: on terrain the samples a z run
+	// would rule out are few (rods lying along z), and its loads cost more
+	// than the flood's growth they would save (docs/PIPELINE.md).  The
+	// word's candidates are listed.
 	const int S = DEBRIS_SPAN;
 	uint cand = c & any6 & ~iso2 & valid;
 	if (cand != 0u) {
@@ -155,9 +156,7 @@ void main()
 			cand &= ~(rm[k] & rp[S - k]);
 	}
 	if (cand != 0u)
-		cand = not_in_run(cand, c, yp, ym, 0, 1, z, b0, n, words);
-	if (cand != 0u)
-		cand = not_in_run(cand, c, zp, zm, 1, 0, z, b0, n, words);
+		cand = not_in_y_run(cand, c, yp, ym, z, b0, n, words);
 #undef RUN
 	if (cand != 0u && wi < u_sign_words) { // an entry a word: room for every word
 		uint e = atomicAdd(dl[DL_COUNT], 1u);
