@@ -330,9 +330,9 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 		glDisable(GL_CULL_FACE);
 	}
 
-	/* a far variant made on an earlier frame gets its uniforms too */
 	r->cam = *c;
 	r->par = p;
+	/* a variant made on an earlier frame gets its uniforms too */
 	for (int i = PROG_COUNT - 1; i >= 0; i--)
 		if (r->tp[i].prog)
 			variant_uniforms(r, i);

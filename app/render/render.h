@@ -95,10 +95,11 @@ int renderer_set_scale(struct renderer *r, float scale, char *err, size_t errlen
  * step); multisampling is not touched.  On by default. */
 void renderer_set_smoothing(struct renderer *r, bool on);
 /* The close-up detail's scales (render.frag's DETAIL_NORMALS) from the
- * next mesh drawn: 2 (the default), 1 (the governor's second step: the
- * finer scale left out, every near mesh drawn with the program of those
- * beyond DETAIL_FINE_SHARE * DETAIL_RANGE) or 0 (its third: every mesh
- * drawn with the program of those beyond DETAIL_RANGE). */
+ * next mesh drawn: 2 (the default), 1 (the governor's first step, with
+ * the edge smoothing: the finer scale left out, every near mesh drawn
+ * with the program of those beyond DETAIL_FINE_SHARE * DETAIL_RANGE) or 0
+ * (its second: every mesh drawn with the program of those beyond
+ * DETAIL_RANGE). */
 void renderer_set_detail(struct renderer *r, int scales);
 /* Paint on the ground: an RGBA16F texture over the XZ rectangle origin ..
  * origin + size, per texel (paint weight, surface ROAD_SURFACE_*, height

@@ -3,32 +3,30 @@
 
 #include <math.h>
 
-/* The ladder: each row one step down from the one before, in the order
- * the user notices least: first what is finer than a few pixels, the
- * edge smoothing after the frame (the filter a software rasterizer runs
- * instead of multisampling: about a tenth of a 640x480 world frame on
- * llvmpipe; on a GPU, which multisamples, it changes nothing) and the
- * close-up detail's finer scale (the grain within 6.25 units: the meshes
- * beyond that are drawn without it whatever the level, so it saves its
- * texture taps only where a mesh comes that close, the flight skimming
- * the ground; a step of its own saved nothing in a flight, and cost the
- * heavy views a step more to come down, render.c), then the
- * rest of the close-up detail (the near meshes drawn with the far ones'
- * program: the grain of the rock and the grass within 25 units, faint at
- * the flight's height, gone; about 8 % of a 640x480 world frame on llvmpipe),
- * then how fast new blocks
- * arrive (half, a quarter of the budget: the finer levels come in later,
- * the coarser ones stand in meanwhile; before the scale, whose steps
- * down cost the whole picture and could never be taken back while the
- * budget, below them, had to come back first), then resolution
- * (upscaled with a filter that keeps edges; the upscale replaces the
- * smoothing), and with its first step the autopilot's composed start (the
- * view tilted down onto the land for a flight's first seconds: land
- * filling the frame is the frame's whole cost on a software rasterizer),
- * then the blocks' AO, then their sun shadows (half the steps, then
- * none), then the far blocks' finest octaves, and only then how far one
- * sees.  AO and shadows are baked into new blocks: what they save is
- * generation time. */
+/* The ladder: each row one step down from the one before, in the order the
+ * user notices least: first what is finer than a few pixels, the edge
+ * smoothing after the frame (the filter a software rasterizer runs instead
+ * of multisampling: about a tenth of a 640x480 world frame on llvmpipe; on
+ * a GPU, which multisamples, it changes nothing) and the close-up detail's
+ * finer scale (the grain within 6.25 units: the meshes beyond that are
+ * drawn without it whatever the level, so it saves its texture taps only
+ * where a mesh comes that close, the flight skimming the ground; a step of
+ * its own saved nothing in a flight, and cost the heavy views a step more
+ * to come down, render.c), then the rest of the close-up detail (the near
+ * meshes drawn with the far ones' program: the grain of the rock and the
+ * grass within 25 units, faint at the flight's height, gone; about 8 % of
+ * a 640x480 world frame on llvmpipe), then how fast new blocks arrive
+ * (half, a quarter of the budget: the finer levels come in later, the
+ * coarser ones stand in meanwhile; before the scale, whose steps down cost
+ * the whole picture and could never be taken back while the budget, below
+ * them, had to come back first), then resolution (upscaled with a filter
+ * that keeps edges; the upscale replaces the smoothing), and with its
+ * first step the autopilot's composed start (the view tilted down onto the
+ * land for a flight's first seconds: land filling the frame is the frame's
+ * whole cost on a software rasterizer), then the blocks' AO, then their
+ * sun shadows (half the steps, then none), then the far blocks' finest
+ * octaves, and only then how far one sees.  AO and shadows are baked into
+ * new blocks: what they save is generation time. */
 static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 	/* scale, budget, AO, shadows, far octaves dropped, view, framing, smoothing, detail, level */
 	{ 1.00f, 1.00f, 1.00f, 1.00f, 0, 1.00f, 1.00f, 1.00f, 1.00f, 0 },

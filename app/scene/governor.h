@@ -1,8 +1,9 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
  * quality, in a fixed order (the edge smoothing after the frame and the
- * close-up detail's finer scale, the rest of the close-up detail, the block generation budget, the render scale and with
- * its first step the composed start's view, then AO rays, sun shadow
- * steps, far-LOD octaves, view distance), and gives it back when there is
+ * close-up detail's finer scale, the rest of the close-up detail, the
+ * block generation budget, the render scale and with its first step the
+ * composed start's view, then AO rays, sun shadow steps, far-LOD octaves,
+ * view distance), and gives it back when there is
  * headroom.  It only sees frame times and a clock, so a test
  * drives it with a fake clock and a synthetic load.
  *
