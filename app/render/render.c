@@ -24,7 +24,10 @@ struct terrain_prog {
  * at the coarser scale only (those within DETAIL_RANGE; the finer has
  * faded out there), and without (the rest: the detail has faded out
  * there).  A software rasterizer would still pay for the taps of a detail
- * faded out in every pixel, both sides of a branch being run. */
+ * faded out in every pixel, both sides of a branch being run.  PROG_FAR,
+ * the shortest, is the base: made with the key (a program that does not
+ * build fails the frame), the others when a mesh first asks for one (the
+ * no-flag picture, seen from beyond DETAIL_RANGE, compiles no other). */
 enum { PROG_NEAR, PROG_NEAR1, PROG_FAR, PROG_COUNT };
 
 struct renderer {
@@ -42,7 +45,7 @@ struct renderer {
 	 * bins hold a whole draw); 0 = one draw */
 	uint32_t part_tris;
 	struct draw_parts pt;
-	struct terrain_prog tp[PROG_COUNT]; /* the terrain's, for key (PROG_FAR made when first needed) */
+	struct terrain_prog tp[PROG_COUNT]; /* the terrain's, for key (all but PROG_FAR made when first needed) */
 	int cur;                            /* the variant in use this frame */
 	char key[RENDER_KEY_MAX];
 	bool draw_sky;
@@ -257,9 +260,9 @@ void renderer_set_road_map(struct renderer *r, GLuint tex, const float origin[2]
  * the shape's and soil's branches folded, the marble colour compiled only
  * when on; a software rasterizer runs a uniform branch's both sides),
  * made again when a live knob changes the key, the old ones deleted (the
- * program binary cache keeps switching back cheap).  The variants with
- * less detail are made when a mesh first asks for one.  0, or -1
- * (logged). */
+ * program binary cache keeps switching back cheap).  The base variant
+ * (PROG_FAR) is made here, the others when a mesh first asks for one.
+ * 0, or -1 (logged). */
 static int terrain_program(struct renderer *r, const struct params *p)
 {
 	char key[RENDER_KEY_MAX];
@@ -270,16 +273,16 @@ static int terrain_program(struct renderer *r, const struct params *p)
 	}
 	if (r->road_tex)
 		strcat(key, "#define ROAD_MAP 1\n");
-	if (r->tp[PROG_NEAR].prog && !strcmp(key, r->key))
+	if (r->tp[PROG_FAR].prog && !strcmp(key, r->key))
 		return 0;
-	GLuint prog = terrain_variant(key, PROG_NEAR);
+	GLuint prog = terrain_variant(key, PROG_FAR);
 	if (!prog)
 		return -1;
 	for (int i = 0; i < PROG_COUNT; i++)
 		if (r->tp[i].prog)
 			glDeleteProgram(r->tp[i].prog);
 	memset(r->tp, 0, sizeof(r->tp));
-	r->tp[PROG_NEAR].prog = prog;
+	r->tp[PROG_FAR].prog = prog;
 	snprintf(r->key, sizeof(r->key), "%s", key);
 	return 0;
 }
@@ -298,7 +301,12 @@ static void variant_uniforms(struct renderer *r, int i)
 
 int renderer_prepare(struct renderer *r, const struct params *p)
 {
-	return terrain_program(r, p);
+	if (terrain_program(r, p) < 0)
+		return -1;
+	/* the variant with the most in it too: a frame would make it later */
+	if (!r->tp[PROG_NEAR].prog && !(r->tp[PROG_NEAR].prog = terrain_variant(r->key, PROG_NEAR)))
+		return -1;
+	return 0;
 }
 
 int renderer_begin(struct renderer *r, const struct camera *c, const struct params *p)
@@ -333,10 +341,11 @@ int renderer_begin(struct renderer *r, const struct camera *c, const struct para
 	r->cam = *c;
 	r->par = p;
 	/* a variant made on an earlier frame gets its uniforms too */
-	for (int i = PROG_COUNT - 1; i >= 0; i--)
+	for (int i = 0; i < PROG_COUNT; i++)
 		if (r->tp[i].prog)
 			variant_uniforms(r, i);
-	r->cur = PROG_NEAR;
+	r->cur = PROG_FAR;
+	glUseProgram(r->tp[PROG_FAR].prog);
 	glActiveTexture(GL_TEXTURE0 + TEX_SURFACE);
 	glBindTexture(GL_TEXTURE_2D, r->surface);
 	if (r->road_tex) {
@@ -437,13 +446,13 @@ void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indir
 	int want = dist >= DETAIL_RANGE || r->detail <= 0		      ? PROG_FAR
 		   : dist >= DETAIL_FINE_SHARE * DETAIL_RANGE || r->detail == 1 ? PROG_NEAR1
 										 : PROG_NEAR;
-	if (want != PROG_NEAR && !r->tp[want].prog) {
+	if (!r->tp[want].prog) {
 		r->tp[want].prog = terrain_variant(r->key, want);
 		if (r->tp[want].prog)
 			variant_uniforms(r, want);
 	}
-	if (!r->tp[want].prog) /* logged: the near one draws it */
-		want = PROG_NEAR;
+	if (!r->tp[want].prog) /* logged: the base one draws it, without the detail */
+		want = PROG_FAR;
 	if (want != r->cur) {
 		glUseProgram(r->tp[want].prog);
 		r->cur = want;

@@ -43,9 +43,10 @@ void renderer_destroy(struct renderer *r);
 /* The edge smoothing it uses (never ANTIALIAS_AUTO): a renderer made again
  * at another size (a window resized) keeps it. */
 int renderer_antialias(const struct renderer *r);
-/* The terrain's program for p built now (renderer_begin builds it on the
- * first frame otherwise): --probe checks it against the GL limits with
- * the other programs of the job.  0, or -1 (logged). */
+/* The terrain's program for p built now, its base variant and the one
+ * with the most in it (renderer_begin builds the base on the first frame
+ * otherwise, a mesh the others when it asks): --probe checks them against
+ * the GL limits with the other programs of the job.  0, or -1 (logged). */
 int renderer_prepare(struct renderer *r, const struct params *p);
 /* A frame in parts: begin (clear, program, camera), any number of meshes
  * drawn with their indirect commands (sink > 0 draws the mesh moved that
