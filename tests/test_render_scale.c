@@ -137,8 +137,8 @@ static int mesh_frame(struct renderer *r, const struct pipeline_draw *d, const s
 /* the eye's distance to the volume's box */
 static float eye_box_distance(const struct camera *c, const struct grid *g)
 {
-	float lo[3] = { g->origin[0], g->origin[1], g->origin[2] };
-	float hi[3] = { g->origin[0] + g->cell * g->nx, g->origin[1] + g->cell * g->ny, g->origin[2] + g->cell * g->nz };
+	float lo[3], hi[3];
+	grid_box(g, lo, hi);
 	return camera_box_distance(c, lo, hi);
 }
 

@@ -15,6 +15,16 @@ struct grid {
 
 static inline int grid_margin(const struct grid *g) { return 1 + g->margin_extra; }
 
+/* The world box of the grid's cells: corner (0,0,0) .. (nx,ny,nz). */
+static inline void grid_box(const struct grid *g, float lo[3], float hi[3])
+{
+	const int n[3] = { g->nx, g->ny, g->nz };
+	for (int a = 0; a < 3; a++) {
+		lo[a] = g->origin[a] + g->cell * (float)g->base[a];
+		hi[a] = lo[a] + g->cell * (float)n[a];
+	}
+}
+
 /* Densities are stored with a margin of m = grid_margin() samples:
  * (nx+1+2m)*(ny+1+2m)*(nz+1+2m) values, x fastest; sample (i,j,k) (corner
  * indices, -m..n+m) lives at grid_dens_index().  With the default margin

@@ -16,6 +16,7 @@
 /* a terrain program and its per-frame uniforms */
 struct terrain_prog {
 	GLuint prog;
+	bool failed; /* did not build for the key: not tried again until the key changes */
 	GLint l_viewproj, l_eye, l_fog, l_sink;
 };
 
@@ -446,8 +447,9 @@ void renderer_draw_mesh(struct renderer *r, GLuint vbo, GLuint ibo, GLuint indir
 	int want = dist >= DETAIL_RANGE || r->detail <= 0		      ? PROG_FAR
 		   : dist >= DETAIL_FINE_SHARE * DETAIL_RANGE || r->detail == 1 ? PROG_NEAR1
 										 : PROG_NEAR;
-	if (!r->tp[want].prog) {
+	if (!r->tp[want].prog && !r->tp[want].failed) {
 		r->tp[want].prog = terrain_variant(r->key, want);
+		r->tp[want].failed = !r->tp[want].prog;
 		if (r->tp[want].prog)
 			variant_uniforms(r, want);
 	}
@@ -661,18 +663,17 @@ int renderer_draw(struct renderer *r, const struct pipeline_draw *d, const struc
 	 * variant for its distance (the default picture's eye is 40 units
 	 * from it: no detail normals, which have faded out there) */
 	struct grid g;
+	float lo[3], hi[3];
 	grid_from_params(&g, p);
-	float lo[3] = { g.origin[0], g.origin[1], g.origin[2] };
-	float hi[3] = { g.origin[0] + g.cell * (float)g.nx, g.origin[1] + g.cell * (float)g.ny,
-			g.origin[2] + g.cell * (float)g.nz };
+	grid_box(&g, lo, hi);
 	draw_mesh(r, d, parts, true, camera_box_distance(c, lo, hi));
 	/* water inside the volume only, below its top: on the procedural
 	 * terrain and on heightmaps (a georeferenced one's sea level, set by
 	 * heightmap_fit) */
-	float rect[4] = { g.origin[0], g.origin[2], g.origin[0] + g.cell * (float)g.nx, g.origin[2] + g.cell * (float)g.nz };
+	float rect[4] = { lo[0], lo[2], hi[0], hi[2] };
 	if ((p->field == FIELD_TERRAIN || p->field == FIELD_HEIGHTMAP) &&
 	    ((p->field == FIELD_TERRAIN && p->shape == SHAPE_PLANET) ||
-	     (p->water_level > g.origin[1] && p->water_level < g.origin[1] + g.cell * (float)g.ny)))
+	     (p->water_level > lo[1] && p->water_level < hi[1])))
 		renderer_water(r, c, p, rect);
 	renderer_lakes(r, c, p, rect);
 	return renderer_end(r);

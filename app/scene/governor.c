@@ -63,6 +63,11 @@ static const struct governor_quality ladder[GOVERNOR_LEVELS] = {
 #define SURE_S 0.25      /* a sure climb (sure_steps) waits this long under its line */
 #define SMOOTH 0.2       /* weight of the newest frame in the averages */
 
+int governor_detail_scales(const struct governor_quality *q)
+{
+	return q->detail > 0.75f ? 2 : q->detail > 0.25f ? 1 : 0;
+}
+
 struct governor_quality governor_level(int level)
 {
 	if (level < 0)

@@ -80,6 +80,8 @@ void governor_init(struct governor *g, double target_ms);
 /* One finished frame that took frame_ms, at clock now_s (seconds, any
  * origin, never decreasing); the quality for the next frame. */
 struct governor_quality governor_update(struct governor *g, double frame_ms, double now_s);
+/* The close-up detail's scales q holds (renderer_set_detail): 2, 1 or 0. */
+int governor_detail_scales(const struct governor_quality *q);
 /* The quality of a level (0 .. GOVERNOR_LEVELS - 1). */
 struct governor_quality governor_level(int level);
 /* The parameters a frame runs with under quality q (the render scale is

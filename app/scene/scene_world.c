@@ -92,7 +92,7 @@ static void world_status(struct scene *s, char *line, size_t len)
 		 "governor %.1f ms held of %.1f (last %.1f): level %d, smoothing %s, detail %s, scale %.2f, budget x%.2f, "
 		 "AO x%.2f, shadows x%.2f, far -%d oct, view x%.2f",
 		 governor_held_ms(&ws->gov), ws->gov.target_ms, ws->last_work_ms, q.level, q.smoothing > 0.5f ? "on" : "off",
-		 q.detail > 0.75f ? "on" : q.detail > 0.25f ? "coarse" : "off", q.render_scale, q.gen_budget, q.ao_rays,
+		 (const char *[]){ "off", "coarse", "on" }[governor_detail_scales(&q)], q.render_scale, q.gen_budget, q.ao_rays,
 		 q.shadow_steps, q.far_octaves_drop, q.view_distance);
 }
 

@@ -308,7 +308,7 @@ int world_hold_quality(struct world *w, struct renderer *r, const struct governo
 	governor_apply(q, p, eff);
 	world_set_far_octaves_drop(w, q->far_octaves_drop);
 	renderer_set_smoothing(r, q->smoothing > 0.5f);
-	renderer_set_detail(r, q->detail > 0.75f ? 2 : q->detail > 0.25f ? 1 : 0);
+	renderer_set_detail(r, governor_detail_scales(q));
 	return renderer_set_scale(r, q->render_scale, err, errlen);
 }
 
