@@ -195,6 +195,10 @@ struct scene *scene_volume_create(const struct params *p, char *err, size_t errl
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
+	/* a software rasterizer's bins, freed after each part of the mesh
+	 * (render_int.h) and after each frame, kept in the heap for the next
+	 * (heap.c), not handed back and faulted in again */
+	heap_policy();
 	vs->base.ops = &volume_ops;
 	vs->t0 = p->time;
 	grid_from_params(&vs->g, p);
