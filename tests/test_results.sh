@@ -2,7 +2,9 @@
 # isoterra — the results file (--results, app/output/sink_results.c) read
 # back by Python's json module: the fields a dashboard reads, frame counts
 # equal to --count, ordered percentiles, the renderer the run logs, the
-# world's block counts, the frames after the first second (the hitches:
+# world's block counts, the volume's extractions (a static field's first
+# frame only, a scrolling one's every frame), the frames after the first
+# second (the hitches:
 # null for a run shorter than that, else within the whole run's figures); a run that fails leaves an earlier results file as
 # it was; --results - with --out - is refused; --fps-report works headless.
 BIN=${1:-${ISOTERRA_BIN:-./build/isoterra}}
@@ -13,7 +15,7 @@ cd "$T" || exit 1
 
 check_json() { # file count scene
 	python3 - "$1" "$2" "$3" <<'PY'
-import json, sys
+import json, os, sys
 path, count, scene = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 r = json.load(open(path))
 bad = []
@@ -37,6 +39,10 @@ if scene == "world":
          (r["blocks_skipped"], r["blocks_probed"]))
 else:
     need(r["triangles"] > 0, "volume triangles %s" % r["triangles"])
+    # a static field is extracted by the first frame only; a scrolling
+    # one by every frame (the caller says which: EXTRACTIONS)
+    want = int(os.environ.get("EXTRACTIONS", "1"))
+    need(r["extractions"] == want, "volume extracted %s times in %d frames, want %d" % (r["extractions"], count, want))
 h = r["after_first_second"]
 run_s = (r["frame_ms"]["mean"] * (count - 1)) / 1e3  # the frames after the first
 if h is None:
@@ -63,6 +69,12 @@ if "$BIN" --grid 24 --size 96x64 --count 4 --out v.png --results v.json --verbos
 	if grep -qF "$ren" log; then ok; else bad "the results name renderer '$ren', the log does not"; fi
 else
 	bad "volume run with --results failed: $(cat log)"
+fi
+# a scrolling field changes with time: every frame extracts it
+if "$BIN" --grid 24 --size 96x64 --count 3 --scroll-speed 2 --out s.png --results s.json 2>log; then
+	if msg=$(EXTRACTIONS=3 check_json s.json 3 volume); then ok; else bad "scrolling volume results: $msg"; fi
+else
+	bad "scrolling volume run with --results failed: $(cat log)"
 fi
 if "$BIN" --scene world --size 96x64 --count 3 --out w.png --results - >w.json 2>log; then
 	if msg=$(check_json w.json 3 world); then ok; else bad "world results to stdout: $msg"; fi

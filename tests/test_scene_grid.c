@@ -1,22 +1,42 @@
 /* isoterra — a knob that turns --grid: the volume scene extracts at the new
  * grid, the same mesh a scene made at that grid extracts (not the old
- * grid's mesh under the new name). */
+ * grid's mesh under the new name).  And the scene extracts again only when
+ * what the mesh is made of changes: a later frame of a static field keeps
+ * the mesh (time passing, the camera orbiting), a knob turning a term of
+ * the field extracts the mesh a scene made with it would. */
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
 
 #include <string.h>
 
-/* One frame of scene s at p's grid; its mesh into *m. */
-static int frame_mesh(struct scene *s, struct params *p, struct renderer *r, struct mesh *m)
+/* One frame of scene s at p's grid, at time t; its mesh into *m. */
+static int frame_mesh_at(struct scene *s, struct params *p, struct renderer *r, struct mesh *m, float t)
 {
 	char err[512] = "";
-	struct scene_frame sf = { .index = 0, .r = r, .w = 64, .h = 64 };
+	struct scene_frame sf = { .index = 0, .r = r, .w = 64, .h = 64, .frame_time = t, .clock_time = t };
 	if (s->ops->frame(s, p, &sf, err, sizeof(err)) < 0) {
 		fprintf(stderr, "frame: %s\n", err);
 		return -1;
 	}
 	return s->ops->read_mesh(s, m);
+}
+
+static int frame_mesh(struct scene *s, struct params *p, struct renderer *r, struct mesh *m)
+{
+	return frame_mesh_at(s, p, r, m, 0.0f);
+}
+
+static bool same_mesh(const struct mesh *a, const struct mesh *b)
+{
+	return a->ntris == b->ntris && a->nverts == b->nverts && !memcmp(a->pos, b->pos, sizeof(float) * 3 * a->nverts) &&
+	       !memcmp(a->idx, b->idx, sizeof(uint32_t) * 3 * a->ntris);
+}
+
+static unsigned long long extractions(struct scene *s)
+{
+	struct scene_counts c = { 0 };
+	return s->ops->counts(s, &c) == 0 ? c.extractions : 0;
 }
 
 int main(void)
@@ -41,6 +61,34 @@ int main(void)
 		      !memcmp(m37.pos, ref.pos, sizeof(float) * 3 * ref.nverts) &&
 		      !memcmp(m37.idx, ref.idx, sizeof(uint32_t) * 3 * ref.ntris),
 	      "turned to 37 extracts what a grid-37 scene does");
+
+	/* later frames of the same field: time passes (the camera orbits), the
+	 * field does not scroll: no extraction, the same mesh */
+	unsigned long long n0 = extractions(s);
+	struct mesh later, amp, amp_ref;
+	CHECK(frame_mesh_at(s, &p, r, &later, 2.5f) == 0, "a later frame");
+	CHECK(extractions(s) == n0, "a later frame of a static field extracts nothing (%llu -> %llu extractions)", n0,
+	      extractions(s));
+	CHECK(same_mesh(&later, &m37), "a later frame keeps the mesh");
+	/* a knob turns a term of the field: extracted again, as a scene made
+	 * with it extracts */
+	p.noise_amp *= 1.5f;
+	CHECK(frame_mesh_at(s, &p, r, &amp, 3.0f) == 0, "noise_amp turned");
+	CHECK(extractions(s) == n0 + 1, "a turned term extracts again (%llu -> %llu extractions)", n0, extractions(s));
+	struct scene *fresh_amp = scene_create(&p, err, sizeof(err));
+	CHECK(fresh_amp && frame_mesh_at(fresh_amp, &p, r, &amp_ref, 3.0f) == 0, "a scene made with it: %s", err);
+	printf("  noise_amp x1.5: %u triangles (was %u), a scene made with it %u\n", amp.ntris, m37.ntris, amp_ref.ntris);
+	CHECK(!same_mesh(&amp, &m37), "the mesh changed with the term");
+	CHECK(same_mesh(&amp, &amp_ref), "turned, it extracts what a scene made with it does");
+	/* a scrolling field moves with time: every frame extracts */
+	p.scroll_speed = 1.0f;
+	CHECK(frame_mesh_at(s, &p, r, &later, 3.0f) == 0 && frame_mesh_at(s, &p, r, &later, 4.0f) == 0, "scrolling");
+	CHECK(extractions(s) == n0 + 3, "a scrolling field extracts every frame (%llu extractions, want %llu)",
+	      extractions(s), n0 + 3);
+	mesh_free(&later);
+	mesh_free(&amp);
+	mesh_free(&amp_ref);
+	scene_destroy(fresh_amp);
 	mesh_free(&m32);
 	mesh_free(&m37);
 	mesh_free(&ref);

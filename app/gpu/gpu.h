@@ -62,6 +62,9 @@ void shader_watch_close(struct shader_watch *w); /* NULL is fine */
  * The number rebuilt, or -1 with the first failure's "file:line: message"
  * in msg (the others still rebuilt).  NULL w: 0. */
 int shader_watch_poll(struct shader_watch *w, char *msg, size_t msglen);
+/* Programs rebuilt in place so far (shader_watch_poll): what was made with
+ * them before is stale once this changes. */
+unsigned long gpu_programs_rebuilt(void);
 /* Sets every u_<name> uniform the program uses from the parameter table. */
 void gpu_set_param_uniforms(GLuint prog, const struct params *p);
 /* glGetUniformLocation, looked up once per program (app/gpu/uniform_cache.c):

@@ -35,6 +35,13 @@ struct shader_watch {
 /* The open watcher the loader notes its programs with (as the loader's
  * directory, one per process: programs are built through plain calls). */
 static struct shader_watch *current;
+/* programs rebuilt in place since the start (gpu_programs_rebuilt) */
+static unsigned long rebuilt_total;
+
+unsigned long gpu_programs_rebuilt(void)
+{
+	return rebuilt_total;
+}
 
 struct shader_watch *shader_watch_open(const char *dir, char *err, size_t errlen)
 {
@@ -287,6 +294,7 @@ int shader_watch_poll(struct shader_watch *w, char *msg, size_t msglen)
 		}
 		rebuilt++;
 	}
+	rebuilt_total += (unsigned long)rebuilt;
 	if (rebuilt)
 		log_info("live shader editing: %d program(s) rebuilt", rebuilt);
 	return failed ? -1 : rebuilt;

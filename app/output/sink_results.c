@@ -230,8 +230,9 @@ static void write_json(struct results_sink *rs, FILE *f, const struct sink_end *
 	json_dist(f, "update_ms", rs->up + first, n);
 	fputs(",\n", f);
 	json_dist(f, "draw_ms", rs->dr + first, n);
-	fprintf(f, ",\n  \"triangles\": %llu, \"blocks_generated\": %llu, \"blocks_evicted\": %llu, \"blocks_drawn\": %d,\n",
-		c.triangles, c.blocks_generated, c.blocks_evicted, c.blocks_drawn);
+	fprintf(f, ",\n  \"triangles\": %llu, \"extractions\": %llu, \"blocks_generated\": %llu, \"blocks_evicted\": %llu, "
+		   "\"blocks_drawn\": %d,\n",
+		c.triangles, c.extractions, c.blocks_generated, c.blocks_evicted, c.blocks_drawn);
 	fprintf(f, "  \"blocks_probed\": %llu, \"blocks_skipped\": %llu,\n", c.blocks_probed, c.blocks_skipped);
 	fputs("  \"governor\": ", f);
 	json_str(f, rs->status);

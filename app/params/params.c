@@ -5,6 +5,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -337,6 +338,23 @@ bool params_same_blocks(const struct params *a, const struct params *b)
 		const struct param_info *pi = &param_table[i];
 		if ((pi->flags & (P_SHADER | P_DRAW)) == P_SHADER && params_get_number(a, pi) != params_get_number(b, pi))
 			return false;
+	}
+	return true;
+}
+
+bool params_same_extraction(const struct params *a, const struct params *b)
+{
+	bool scrolls = a->scroll_speed != 0.0f || b->scroll_speed != 0.0f;
+	for (size_t i = 0; i < param_count; i++) {
+		const struct param_info *pi = &param_table[i];
+		if ((pi->flags & P_DRAW) || (!scrolls && pi->offset == offsetof(struct params, time)))
+			continue;
+		if (pi->type == PT_STRING) {
+			if (strcmp((const char *)a + pi->offset, (const char *)b + pi->offset) != 0)
+				return false;
+		} else if (params_get_number(a, pi) != params_get_number(b, pi)) {
+			return false;
+		}
 	}
 	return true;
 }

@@ -100,6 +100,11 @@ bool params_same_terrain(const struct params *a, const struct params *b);
  * the surface's colours, snow, fog, water, the AO's strength; a sun
  * direction is baked into the vertices' shadows and counts). */
 bool params_same_blocks(const struct params *a, const struct params *b);
+/* True when the volume scene's extraction of a and of b is the same mesh:
+ * every entry equal (numbers and strings) but the P_DRAW ones, and time
+ * too unless the field scrolls (scroll_speed, the one term time moves).
+ * The camera's entries count: conservative, they change rarely. */
+bool params_same_extraction(const struct params *a, const struct params *b);
 
 /* Presets: named key=value lists applied over the defaults. */
 struct preset {

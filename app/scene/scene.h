@@ -62,6 +62,8 @@ static inline float scene_frame_aspect(const struct scene_frame *fr)
 /* What a scene counts, for the results file. */
 struct scene_counts {
 	unsigned long long triangles;        /* the volume's mesh (0 for the world) */
+	unsigned long long extractions;      /* the volume's frames that extracted the field
+	                                      * (a static one: the first only; 0 for the world) */
 	unsigned long long blocks_generated; /* the world's (0 for the volume) */
 	unsigned long long blocks_evicted;
 	int blocks_drawn;
