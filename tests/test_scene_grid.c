@@ -3,12 +3,16 @@
  * grid's mesh under the new name).  And the scene extracts again only when
  * what the mesh is made of changes: a later frame of a static field keeps
  * the mesh (time passing, the camera orbiting), a knob turning a term of
- * the field extracts the mesh a scene made with it would. */
+ * the field or an edit file rewritten extracts the mesh a scene made with
+ * it would, a scrolling field extracts every frame. */
 #include "app.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* One frame of scene s at p's grid, at time t; its mesh into *m. */
 static int frame_mesh_at(struct scene *s, struct params *p, struct renderer *r, struct mesh *m, float t)
@@ -31,6 +35,21 @@ static bool same_mesh(const struct mesh *a, const struct mesh *b)
 {
 	return a->ntris == b->ntris && a->nverts == b->nverts && !memcmp(a->pos, b->pos, sizeof(float) * 3 * a->nverts) &&
 	       !memcmp(a->idx, b->idx, sizeof(uint32_t) * 3 * a->ntris);
+}
+
+/* A road across the default volume at height y0 + dy (the file a byte
+ * longer when dy is not 0).  0 or -1. */
+static int write_road(const char *path, float dy)
+{
+	FILE *f = fopen(path, "w");
+	if (!f)
+		return -1;
+	fprintf(f, "path,x,y,z,kind,width,falloff\n");
+	for (int i = 0; i < 5; i++)
+		fprintf(f, "road,%d,%.2f,%d,road,4,3\n", -20 + 10 * i, -2.0 + dy, -6 + 3 * i);
+	if (dy != 0.0f)
+		fputc('\n', f);
+	return fclose(f) == 0 ? 0 : -1;
 }
 
 static unsigned long long extractions(struct scene *s)
@@ -85,6 +104,36 @@ int main(void)
 	CHECK(frame_mesh_at(s, &p, r, &later, 3.0f) == 0 && frame_mesh_at(s, &p, r, &later, 4.0f) == 0, "scrolling");
 	CHECK(extractions(s) == n0 + 3, "a scrolling field extracts every frame (%llu extractions, want %llu)",
 	      extractions(s), n0 + 3);
+	/* an edit file rewritten between frames (a road moved, the file a
+	 * byte longer: its key changes within the same second): reloaded and
+	 * extracted again, the mesh a scene made with the new file extracts */
+	p.scroll_speed = 0.0f;
+	char dir[] = "/tmp/isoterra-scene-grid-XXXXXX", csv[96];
+	CHECK(mkdtemp(dir) != NULL, "temporary directory");
+	snprintf(csv, sizeof(csv), "%s/road.csv", dir);
+	struct mesh road1, road2, road_ref;
+	memset(&road2, 0, sizeof(road2));
+	memset(&road_ref, 0, sizeof(road_ref));
+	CHECK(write_road(csv, 0.0f) == 0, "write %s", csv);
+	snprintf(p.curves, sizeof(p.curves), "%s", csv);
+	CHECK(frame_mesh_at(s, &p, r, &road1, 5.0f) == 0, "with the road");
+	unsigned long long n1 = extractions(s);
+	CHECK(write_road(csv, 1.25f) == 0, "rewrite %s", csv);
+	CHECK(frame_mesh_at(s, &p, r, &road2, 5.5f) == 0, "the road moved");
+	CHECK(extractions(s) == n1 + 1, "a rewritten edit file extracts again (%llu -> %llu extractions)", n1,
+	      extractions(s));
+	struct scene *fresh_road = scene_create(&p, err, sizeof(err));
+	CHECK(fresh_road && frame_mesh_at(fresh_road, &p, r, &road_ref, 5.5f) == 0, "a scene made with it: %s", err);
+	printf("  the road moved: %u triangles (was %u), a scene made with the new file %u\n", road2.ntris, road1.ntris,
+	       road_ref.ntris);
+	CHECK(!same_mesh(&road2, &road1), "the mesh changed with the file");
+	CHECK(same_mesh(&road2, &road_ref), "reloaded, it extracts what a scene made with the new file does");
+	scene_destroy(fresh_road);
+	mesh_free(&road1);
+	mesh_free(&road2);
+	mesh_free(&road_ref);
+	unlink(csv);
+	rmdir(dir);
 	mesh_free(&later);
 	mesh_free(&amp);
 	mesh_free(&amp_ref);
