@@ -322,32 +322,16 @@ int params_glsl_specialization(const struct params *p, char *buf, size_t len)
 	return (int)used;
 }
 
-bool params_same_terrain(const struct params *a, const struct params *b)
+/* Every entry with all of the flags `with` and none of `without` equal in
+ * a and b (numbers by value, strings by their text), time left out where
+ * skip_time. */
+static bool same_entries(const struct params *a, const struct params *b, unsigned with, unsigned without,
+			 bool skip_time)
 {
 	for (size_t i = 0; i < param_count; i++) {
 		const struct param_info *pi = &param_table[i];
-		if ((pi->flags & P_SHADER) && params_get_number(a, pi) != params_get_number(b, pi))
-			return false;
-	}
-	return true;
-}
-
-bool params_same_blocks(const struct params *a, const struct params *b)
-{
-	for (size_t i = 0; i < param_count; i++) {
-		const struct param_info *pi = &param_table[i];
-		if ((pi->flags & (P_SHADER | P_DRAW)) == P_SHADER && params_get_number(a, pi) != params_get_number(b, pi))
-			return false;
-	}
-	return true;
-}
-
-bool params_same_extraction(const struct params *a, const struct params *b)
-{
-	bool scrolls = a->scroll_speed != 0.0f || b->scroll_speed != 0.0f;
-	for (size_t i = 0; i < param_count; i++) {
-		const struct param_info *pi = &param_table[i];
-		if ((pi->flags & P_DRAW) || (!scrolls && pi->offset == offsetof(struct params, time)))
+		if ((pi->flags & with) != with || (pi->flags & without) ||
+		    (skip_time && pi->offset == offsetof(struct params, time)))
 			continue;
 		if (pi->type == PT_STRING) {
 			if (strcmp((const char *)a + pi->offset, (const char *)b + pi->offset) != 0)
@@ -357,6 +341,21 @@ bool params_same_extraction(const struct params *a, const struct params *b)
 		}
 	}
 	return true;
+}
+
+bool params_same_terrain(const struct params *a, const struct params *b)
+{
+	return same_entries(a, b, P_SHADER, 0, false);
+}
+
+bool params_same_blocks(const struct params *a, const struct params *b)
+{
+	return same_entries(a, b, P_SHADER, P_DRAW, false);
+}
+
+bool params_same_extraction(const struct params *a, const struct params *b)
+{
+	return same_entries(a, b, 0, P_DRAW, a->scroll_speed == 0.0f && b->scroll_speed == 0.0f);
 }
 
 /* ---- presets ------------------------------------------------------------ */

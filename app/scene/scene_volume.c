@@ -109,9 +109,9 @@ static int follow_grid(struct volume_scene *vs, const struct params *p, char *er
 }
 
 /* The field extracted again unless the mesh already is of it: a static
- * field seen by the orbiting camera is extracted once (at 128^3 on a
- * software rasterizer, 45 of a frame's 125 ms at 1280x720).  0 or -1 with
- * err. */
+ * field seen by the orbiting camera is extracted once (the no-flag run on
+ * a software rasterizer: 49-51 ms of a 1280x720 frame's 124-140).  0 or
+ * -1 with err. */
 static int extract(struct volume_scene *vs, const struct params *p, char *err, size_t errlen)
 {
 	/* the edit files reloaded where they changed (as a run's program
