@@ -44,7 +44,7 @@ command -v python3 >/dev/null || halvm_skip "python3 missing"
 # cache folder (the first build: a minute); in a subshell, as its missing
 # prerequisites end the shell (halvm_skip): then the knob checks fail, the
 # rest runs
-GPIOSIM=$HALVM_CACHE/gpio-sim-$HALVM_REL/gpio-sim-oot.ko
+GPIOSIM=$(halvm_gpio_sim_path)
 if ! why=$(halvm_gpio_sim 2>&1) || [ ! -s "$GPIOSIM" ]; then
 	bad "gpio-sim for the knobs: $(echo "$why" | tail -3)"
 	GPIOSIM=
