@@ -4,7 +4,8 @@
  * (stay within one second's travel, or 10 units at high speed, of where the
  * window began: the size of a cave chamber it may turn around in).  CPU only:
  * the flights are independent and fly on one thread per CPU, their verdicts
- * printed and checked in order afterwards. */
+ * printed and checked in order afterwards.  --seed-from S flies seeds
+ * S..S+3 instead (a sweep by hand, docs/WORLD.md). */
 #include "density_ref.h"
 #include "noise.h"
 #include "params.h"
@@ -115,7 +116,7 @@ static void preset_params(size_t i, struct params *p)
 
 int main(int argc, char **argv)
 {
-	static const int seeds[] = { 10, 1, 77, 12345 };
+	static int seeds[] = { 10, 1, 77, 12345 };
 	static const float speeds[] = { 3.0f, 12.0f, 40.0f }; /* the default (fly_speed) first: --speeds 1 */
 	int flights = 0, bad = 0;
 	size_t nseeds = sizeof(seeds) / sizeof(seeds[0]), nspeeds = sizeof(speeds) / sizeof(speeds[0]);
@@ -126,6 +127,10 @@ int main(int argc, char **argv)
 			CHECK(k >= 1 && (size_t)k <= nseeds, "--seeds %s: want 1..%zu", argv[a], nseeds);
 			if (k >= 1 && (size_t)k <= nseeds)
 				nseeds = (size_t)k;
+		} else if (!strcmp(argv[a], "--seed-from") && a + 1 < argc) { /* seeds S..S+3 instead (a sweep, by hand) */
+			int s0 = atoi(argv[++a]);
+			for (size_t k = 0; k < sizeof(seeds) / sizeof(seeds[0]); k++)
+				seeds[k] = s0 + (int)k;
 		} else if (!strcmp(argv[a], "--speeds") && a + 1 < argc) { /* the first N speeds (sanitizer builds) */
 			int k = atoi(argv[++a]);
 			CHECK(k >= 1 && (size_t)k <= nspeeds, "--speeds %s: want 1..%zu", argv[a], nspeeds);
