@@ -173,18 +173,16 @@ static int label(const struct grid *g, const float *dens, float iso, int32_t *la
 static int edge_ends(const struct grid *g, const float *p, int ends[2][3])
 {
 	int at[3], along = -1;
-	float off = 1e-5f; /* under this, on a sample */
+	float u[3], off = 1e-5f; /* under this, on a sample */
 	for (int a = 0; a < 3; a++) {
-		float u = (p[a] - g->origin[a]) / g->cell;
-		float d = fabsf(u - roundf(u));
-		if (d > off)
-			off = d, along = a;
+		u[a] = (p[a] - g->origin[a]) / g->cell;
+		if (fabsf(u[a] - roundf(u[a])) > off)
+			off = fabsf(u[a] - roundf(u[a])), along = a;
 	}
 	for (int a = 0; a < 3; a++) {
-		float u = (p[a] - g->origin[a]) / g->cell;
-		if (a != along && fabsf(u - roundf(u)) >= 1e-3f)
+		if (a != along && fabsf(u[a] - roundf(u[a])) >= 1e-3f)
 			return 0; /* on no grid edge */
-		at[a] = a == along ? (int)floorf(u) : (int)roundf(u);
+		at[a] = a == along ? (int)floorf(u[a]) : (int)roundf(u[a]);
 	}
 	int m = grid_margin(g), n3[3] = { g->nx, g->ny, g->nz };
 	for (int e = 0; e < (along < 0 ? 1 : 2); e++) {
@@ -289,8 +287,8 @@ int main(void)
 				int32_t q = lab[grid_dens_index(&g, at[e][0], at[e][1], at[e][2])];
 				if (q < 0)
 					continue;
-				const int *o = at[1 - e];
-				if (ne == 2 && !c[q].edge && span(&c[q]) <= DEBRIS_SPAN && bubble(&g, dens, p.iso, o[0], o[1], o[2]))
+				if (ne == 2 && !c[q].edge && span(&c[q]) <= DEBRIS_SPAN &&
+				    bubble(&g, dens, p.iso, at[1 - e][0], at[1 - e][1], at[1 - e][2]))
 					continue;
 				verts[q]++;
 			}
