@@ -21,8 +21,11 @@
  * changed, no edge smoothing, no water).  For each pixel the CPU finds the
  * surface point it shows (the pixel's ray through the GPU's stored
  * densities, trilinear, in quarter cells, then bisected: where the mesh
- * is; not within two cells of the box's sides, where the open volume's
- * mesh is cut) and judges that point's sun ray through the CPU field as
+ * is; a surface with no vertex of the mesh within a cell is passed, the
+ * debris filter having left that island of rock out of the mesh, so the
+ * picture shows what is behind it; none within two cells of the box's
+ * sides, where the open volume's mesh is cut) and judges that point's sun
+ * ray through the CPU field as
  * above, where the sun faces it (its normal from the field's gradient,
  * n.l >= 0.3) and adds 8 levels of 255 or more to the pixel's luminance
  * (the picture without shadows less the one without the sun).  Blocked:
@@ -163,9 +166,52 @@ static float luma(const struct image *im, int x, int y)
 	return 0.2126f * q[0] + 0.7152f * q[1] + 0.0722f * q[2];
 }
 
+/* Cells within one cell of a vertex of the mesh m: where a surface point
+ * of the field is one the mesh has (the debris filter leaves small islands
+ * of rock out of it; docs/PIPELINE.md). */
+static unsigned char *mesh_cells(const struct grid *g, const struct mesh *m)
+{
+	unsigned char *near = calloc((size_t)g->nx * (size_t)g->ny * (size_t)g->nz, 1);
+	for (uint32_t v = 0; near && v < m->nverts; v++) {
+		int c[3], n[3] = { g->nx, g->ny, g->nz };
+		for (int a = 0; a < 3; a++)
+			c[a] = (int)floorf((m->pos[3 * v + a] - g->origin[a]) / g->cell);
+		for (int dz = -1; dz <= 1; dz++)
+			for (int dy = -1; dy <= 1; dy++)
+				for (int dx = -1; dx <= 1; dx++) {
+					int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
+					if (x >= 0 && y >= 0 && z >= 0 && x < n[0] && y < n[1] && z < n[2])
+						near[((size_t)z * (size_t)n[1] + (size_t)y) * (size_t)n[0] + (size_t)x] = 1;
+				}
+	}
+	return near;
+}
+
+static bool near_mesh(const struct grid *g, const unsigned char *near, const float x[3])
+{
+	int c[3], n[3] = { g->nx, g->ny, g->nz };
+	for (int a = 0; a < 3; a++) {
+		c[a] = (int)floorf((x[a] - g->origin[a]) / g->cell);
+		if (c[a] < 0 || c[a] >= n[a])
+			return false;
+	}
+	return near[((size_t)c[2] * (size_t)n[1] + (size_t)c[1]) * (size_t)n[0] + (size_t)c[0]] != 0;
+}
+
+/* Within two cells of the box's sides, where the open volume's mesh is cut:
+ * what a pixel shows there may be the rock's inside. */
+static bool near_sides(const struct grid *g, const float x[3])
+{
+	int n[3] = { g->nx, g->ny, g->nz };
+	for (int a = 0; a < 3; a++)
+		if (x[a] < g->origin[a] + 2.0f * g->cell || x[a] > g->origin[a] + (float)(n[a] - 2) * g->cell)
+			return true;
+	return false;
+}
+
 /* The picture with and without shadows, judged pixel by pixel (above). */
 static void per_pixel(const char *what, struct params p, const struct grid *g, const float *dens,
-		      const struct noise_set *ns)
+		      const struct noise_set *ns, const struct mesh *m)
 {
 	char err[512] = "";
 	int w = 160, h = 120;
@@ -190,11 +236,14 @@ static void per_pixel(const char *what, struct params p, const struct grid *g, c
 	camera_orbit(&cam, &p, g, 0.0f, (float)w / (float)h);
 	CHECK(mat4_invert(inv, cam.viewproj) == 0, "%s: the camera's matrix has no inverse", what);
 	sun_dir(&p, l);
-	unsigned blocked = 0, blocked_bad = 0, open = 0, open_bad = 0, between = 0, sky = 0, edge = 0, faint = 0;
+	unsigned blocked = 0, blocked_bad = 0, open = 0, open_bad = 0, between = 0, sky = 0, edge = 0, faint = 0,
+		 skipped = 0;
+	unsigned char *near = mesh_cells(g, m);
 	double dark_sum = 0.0;
 	signed char *cls = malloc((size_t)w * (size_t)h); /* -2 not judged, else classify()'s */
-	CHECK(cls != NULL, "out of memory");
-	if (!cls) {
+	CHECK(cls != NULL && near != NULL, "out of memory");
+	if (!cls || !near) {
+		free(cls), free(near);
 		image_free(&on), image_free(&off), image_free(&dark_sky);
 		return;
 	}
@@ -215,50 +264,56 @@ static void per_pixel(const char *what, struct params p, const struct grid *g, c
 			for (int i = 0; i < 3; i++)
 				dir[i] = e[1][i] - e[0][i], len += dir[i] * dir[i];
 			len = sqrtf(len);
-			float step = 0.25f * g->cell, prev_t = -1.0f, hit_t = -1.0f;
-			bool was_in = false, entered = false;
-			for (float t = 0.0f; t < len; t += step) {
-				float pt[3] = { e[0][0] + dir[0] / len * t, e[0][1] + dir[1] / len * t, e[0][2] + dir[2] / len * t }, d;
-				if (!dens_at(g, dens, pt, &d)) {
+			/* the first surface on the pixel's ray that the mesh has (the
+			 * stored densities hold the debris the filter took out of the
+			 * mesh: the picture shows what is behind it) */
+			float step = 0.25f * g->cell, prev_t = -1.0f, lo = 0.0f, pt[3];
+			bool entered = false, in_rock = false, found = false;
+			for (float t = 0.0f; t < len && !found; t += step) {
+				float at[3] = { e[0][0] + dir[0] / len * t, e[0][1] + dir[1] / len * t,
+						e[0][2] + dir[2] / len * t },
+				      d;
+				if (!dens_at(g, dens, at, &d)) {
 					if (entered)
 						break; /* out of the volume again */
 					continue;
 				}
 				if (!entered) {
 					entered = true;
-					was_in = d > p.iso; /* entering through rock: the box's cut, not a surface */
+					if (d > p.iso)
+						break; /* entering through rock: the box's cut, not a surface */
 				}
-				if (d > p.iso) {
-					hit_t = t;
-					break;
+				if (d <= p.iso) {
+					in_rock = false;
+					prev_t = t;
+					continue;
 				}
-				prev_t = t;
-			}
-			if (hit_t < 0.0f || was_in || prev_t < 0.0f) {
-				sky++;
-				continue;
-			}
-			float lo = prev_t, hi = hit_t, pt[3];
-			for (int it = 0; it < 12; it++) {
-				float mid = 0.5f * (lo + hi), d = p.iso;
+				if (in_rock)
+					continue;
+				in_rock = true;
+				float hi = t;
+				lo = prev_t;
+				for (int it = 0; it < 12; it++) {
+					float mid = 0.5f * (lo + hi), dm = p.iso;
+					for (int i = 0; i < 3; i++)
+						pt[i] = e[0][i] + dir[i] / len * mid;
+					dens_at(g, dens, pt, &dm);
+					if (dm > p.iso)
+						hi = mid;
+					else
+						lo = mid;
+				}
 				for (int i = 0; i < 3; i++)
-					pt[i] = e[0][i] + dir[i] / len * mid;
-				dens_at(g, dens, pt, &d);
-				if (d > p.iso)
-					hi = mid;
-				else
-					lo = mid;
+					pt[i] = e[0][i] + dir[i] / len * lo;
+				/* near the box's sides the mesh is cut open (an open
+				 * volume): what the pixel shows there may be the rock's
+				 * inside */
+				if (near_sides(g, pt))
+					break;
+				found = near_mesh(g, near, pt);
+				skipped += !found;
 			}
-			for (int i = 0; i < 3; i++)
-				pt[i] = e[0][i] + dir[i] / len * lo;
-			/* near the box's sides the mesh is cut open (an open volume):
-			 * what the pixel shows there may be the rock's inside */
-			bool near_side = false;
-			int nn[3] = { g->nx, g->ny, g->nz };
-			for (int a = 0; a < 3; a++)
-				near_side = near_side || pt[a] < g->origin[a] + 2.0f * g->cell ||
-					    pt[a] > g->origin[a] + (float)(nn[a] - 2) * g->cell;
-			if (near_side) {
+			if (!found) {
 				sky++;
 				continue;
 			}
@@ -321,11 +376,13 @@ static void per_pixel(const char *what, struct params p, const struct grid *g, c
 			}
 		}
 	free(cls);
+	free(near);
 	printf("%s, per pixel (%dx%d): %u blocked (%u losing less than half the sun's light, mean loss %.2f of it), "
 	       "%u open (%u changed by more than 0.15 of it + 2), %u between, %u near the other class (within %d pixels), "
-	       "%u where the sun adds under 8 levels, %u sky or near the box's sides\n",
+	       "%u where the sun adds under 8 levels, %u sky or near the box's sides; %u surfaces passed that the mesh "
+	       "has not (debris)\n",
 	       what, w, h, blocked, blocked_bad, blocked ? dark_sum / blocked : 0.0, open, open_bad, between, edge, RADIUS,
-	       faint, sky);
+	       faint, sky, skipped);
 	CHECK(blocked >= 200, "%s: only %u pixels the CPU finds in shadow: the case tests little", what, blocked);
 	CHECK(open >= 500, "%s: only %u pixels in open sun", what, open);
 	CHECK(blocked_bad <= blocked / 20, "%s: %u of %u pixels the CPU finds in shadow are not darker", what,
@@ -381,12 +438,12 @@ int main(void)
 		struct tally t;
 		if (m.vis)
 			judge(what, &p, &ns, &g, &m, &t);
-		mesh_free(&m);
 		float *dens = malloc(sizeof(float) * (size_t)grid_dens_count(&g));
 		CHECK(dens && pipeline_read_density(ft.pl, dens) == 0, "%s: read density", what);
 		if (dens)
-			per_pixel(what, p, &g, dens, &ns);
+			per_pixel(what, p, &g, dens, &ns, &m);
 		free(dens);
+		mesh_free(&m);
 		if (c == 0) {
 			struct params q = p;
 			q.shadows = 0.0f;
