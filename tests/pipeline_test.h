@@ -24,9 +24,14 @@
  *    level is on the same side of it on both (|gpu - cpu| <= max error <
  *    bound; 1 x would do, 2 x is the margin); the max error itself is held
  *    to 1e-5 x the field's scale + 1e-6 by the density check;
+ *  - a sample is near the iso level when its reference density is within
+ *    the bound, or its own (the GPU's) is on the iso level to the mesh's
+ *    float precision: the vertices of two of its edges would round onto
+ *    its corner (t under 4 x FLT_EPSILON x the coordinates in cells) and
+ *    meet there;
  *  - a corner's inside bit depends on its sign and its six neighbours' (the
  *    debris filter, mc_ref.c): it is certain when none of the seven is
- *    within the bound;
+ *    near the iso level;
  *  - a cell with its eight corners certain ("certain cell") has exactly the
  *    reference's triangles: the same edges, in the same order; a vertex on
  *    an edge with both ends certain is on both meshes, within
@@ -39,13 +44,14 @@
  *    samples on the iso level: sin(k pi)), not bounded: the bound is;
  *  - the GPU mesh itself: no index past its vertices, no repeated index, no
  *    triangle of zero area in a certain cell (two vertices can meet only at
- *    a corner on the iso level: an ambiguous one), and watertight
+ *    a corner on the iso level, to float precision: an ambiguous one), and
+ *    watertight
  *    (mesh_topology, test_pipeline.c). */
 #define BOUND_K 2.0
 
 struct mesh_cmp {
 	double bound;                /* per sample: |reference - iso| <= bound may flip */
-	uint64_t near_samples;       /* samples within the bound */
+	uint64_t near_samples;       /* samples within the bound, or on the iso level to float precision */
 	uint64_t surface_cells;      /* cells the surface crosses (either mesh) */
 	uint64_t ambiguous_cells;    /* of those, cells with a corner not certain */
 	uint64_t ambiguous_differ;   /* of those, cells whose triangles differ */
