@@ -1,7 +1,7 @@
 /* isoterra — the frame-time governor (app/scene/governor.c) under a fake
  * clock and a synthetic load whose cost follows the quality it is given:
- * a light load keeps full quality; a heavy one is brought under the target
- * within seconds, without oscillating; when it goes away full quality
+ * a light load keeps full quality; a heavy one (three times the target)
+ * is brought under the target within 6 s, without oscillating; when it goes away full quality
  * comes back; a load between two steps does not make it flip back and
  * forth; hitches and broken clocks do not throw it; a load whose mean is
  * under the target while every third frame is far over it is not held
@@ -23,7 +23,7 @@ struct load {
 	double detail; /* the close-up detail, while it is on */
 };
 
-static uint32_t rng = 12345;
+static uint32_t rng; /* the jitter sequence's state (main) */
 static double jitter(void) /* +-5 %, deterministic */
 {
 	rng = rng * 1664525u + 1013904223u;
@@ -68,7 +68,8 @@ static void fly(struct run *r, const struct load *l, double secs, double tail)
 	}
 }
 
-int main(void)
+/* The dynamic cases, under the jitter sequence rng holds. */
+static void cases(void)
 {
 	const double target = 1000.0 / 30;
 	struct run r = { .now = 100.0 };
@@ -87,6 +88,10 @@ int main(void)
 	printf("heavy: level %d, scale %.2f, mean %.1f ms, worst %.1f ms, %u changes in the last 4 s\n", r.q.level,
 	       r.q.render_scale, mean, r.worst_ms, r.changes);
 	CHECK(mean <= target, "heavy load: mean frame %.1f ms over the target %.1f after 10 s", mean, target);
+	/* settled within 6 s: several levels at a time while the mean is far
+	 * over (one at a time, ten steps of 0.75 s, it settled at 7.5-7.8 s
+	 * and the last 4 s held 32.7-33.6 ms) */
+	CHECK(r.changes == 0, "heavy load: still stepping after 6 s (%u changes in the last 4 s)", r.changes);
 	CHECK(r.q.level > 0 && r.q.render_scale < 1, "heavy load: quality lowered (level %d)", r.q.level);
 	CHECK(r.q.view_distance == 1.0f, "heavy load: the view distance is the last thing given up (%.2f)", r.q.view_distance);
 	int held = r.q.level;
@@ -191,16 +196,18 @@ int main(void)
 
 	/* a heavy stretch of the flight, then a lighter one that sits over
 	 * the fixed line (0.75 of the target) at every level but whose steps
-	 * cost little: 26 ms of fixed work and 4 of pixels (27-30 ms, held
-	 * about 1 more).  The steps' costs measured on the way down (by the
+	 * cost little: 25 ms of fixed work and 4 of pixels (26-29 ms, held
+	 * about 0.8 more).  The steps' costs measured on the way down (by the
 	 * load's formula the level above 1.0-1.03 times the one below, clamped
 	 * to 1.02 at least) let it climb back to
 	 * where the next step does not fit; with the fixed line alone it would
-	 * stay at the floor. */
+	 * stay at the floor.  (26 ms of fixed work put scale 0.75's prediction
+	 * within 1 % of the line, 29.1 x 1.02 against 30.0 ms: a quarter of
+	 * the jitter sequences stayed there.) */
 	struct run cl = { .now = 0 };
 	governor_init(&cl.g, target);
 	cl.q = governor_level(0);
-	const struct load heavy_view = { 40, 4, 0, 0, 0, 0, 0, 0 }, light_view = { 26, 4, 0, 0, 0, 0, 0, 0 };
+	const struct load heavy_view = { 40, 4, 0, 0, 0, 0, 0, 0 }, light_view = { 25, 4, 0, 0, 0, 0, 0, 0 };
 	fly(&cl, &heavy_view, 40, 40);
 	int floor_level = cl.q.level;
 	fly(&cl, &light_view, 90, 30);
@@ -253,6 +260,20 @@ int main(void)
 	CHECK(sky_changes == 0, "sky: settled at full quality (%u changes)", sky_changes);
 	CHECK(heavy_sum / heavy_n <= target, "sky: the heavy stretches held under the target (mean %.1f ms)",
 	      heavy_sum / heavy_n);
+
+}
+
+int main(void)
+{
+	/* every dynamic case under several jitter sequences: its checks hold
+	 * for the governor, not for one sequence (one of them alone let a case
+	 * on the edge of a line pass: the climb's, below) */
+	static const uint32_t seqs[] = { 12345, 1, 2, 3, 4, 5, 6, 7 };
+	for (size_t i = 0; i < sizeof(seqs) / sizeof(seqs[0]); i++) {
+		rng = seqs[i];
+		printf("-- jitter sequence %u\n", seqs[i]);
+		cases();
+	}
 
 	/* the ladder: monotone, in the documented order */
 	for (int i = 1; i < GOVERNOR_LEVELS; i++) {

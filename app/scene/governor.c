@@ -156,6 +156,24 @@ static int sure_steps(const struct governor *g, double held)
 	return k;
 }
 
+/* How many levels down a frame far over the target takes at once: while
+ * the mean frame (not the deviation: a hitch's) is over LEARN_MAX times the
+ * target, a level each, each assumed to save what the fixed line assumes
+ * (FIT / UNDER).  Those steps would learn no cost (learn: LEARN_MAX), and
+ * one at a time they left a view three times the target over it for 7-8 s
+ * (test_governor's heavy load: ten steps, 0.75 s each); the last steps,
+ * nearer the target, are taken one at a time and learnt. */
+static int far_steps(const struct governor *g)
+{
+	double line = FIT / UNDER, x = g->smooth_ms;
+	int k = 0;
+	while (g->level + k < GOVERNOR_LEVELS - 1 && x > LEARN_MAX * g->target_ms) {
+		k++;
+		x /= line;
+	}
+	return k > 1 ? k : 1;
+}
+
 static void decide(struct governor *g, double now_s)
 {
 	double over = g->target_ms * OVER, held = governor_held_ms(g);
@@ -165,7 +183,7 @@ static void decide(struct governor *g, double now_s)
 		if (g->over_since < 0)
 			g->over_since = now_s;
 		if (now_s - g->over_since >= OVER_FOR_S && g->level < GOVERNOR_LEVELS - 1)
-			step(g, +1, now_s);
+			step(g, far_steps(g), now_s);
 	} else if (g->level > 0 && (sure > 0 || above_fits(g, held))) {
 		g->over_since = -1;
 		if (g->under_since < 0)
