@@ -125,8 +125,10 @@ static void check_sized_to_need(const struct params *p)
 	 * evicted here): at most twice the meshes plus one chunk, and well
 	 * under the worst case (the view, tilted down at the ground, holds
 	 * about a fifth of it) */
-	CHECK(a.st.evicted == 0 && a.st.arena_bytes <= 2 * a.st.arena_used + a.st.arena_chunk &&
-		      a.st.arena_bytes < a.st.arena_max / 2,
+	CHECK(a.st.evicted == 0, "the view's blocks do not fit the pool of %d slots (%llu evicted): the case tests "
+				 "the arena's growth without evictions",
+	      p->block_pool, (unsigned long long)a.st.evicted);
+	CHECK(a.st.arena_bytes <= 2 * a.st.arena_used + a.st.arena_chunk && a.st.arena_bytes < a.st.arena_max / 2,
 	      "arena of %lld KB for %lld KB of meshes: not sized to need (worst case %lld KB)", a.st.arena_bytes >> 10,
 	      a.st.arena_used >> 10, a.st.arena_max >> 10);
 	CHECK(a.faults == 0 && b.faults == 0, "pool faults: %d, %d", a.faults, b.faults);
