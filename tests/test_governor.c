@@ -1,8 +1,8 @@
 /* isoterra — the frame-time governor (app/scene/governor.c) under a fake
  * clock and a synthetic load whose cost follows the quality it is given:
  * a light load keeps full quality; a heavy one (three times the target)
- * is brought under the target within 6 s, without oscillating; when it goes away full quality
- * comes back; a load between two steps does not make it flip back and
+ * is brought under the target within 6 s, without oscillating; when it
+ * goes away full quality comes back; a load between two steps does not make it flip back and
  * forth; hitches and broken clocks do not throw it; a load whose mean is
  * under the target while every third frame is far over it is not held
  * there (what the governor holds is the mean plus one deviation); after a
@@ -260,7 +260,6 @@ static void cases(void)
 	CHECK(sky_changes == 0, "sky: settled at full quality (%u changes)", sky_changes);
 	CHECK(heavy_sum / heavy_n <= target, "sky: the heavy stretches held under the target (mean %.1f ms)",
 	      heavy_sum / heavy_n);
-
 }
 
 int main(void)

@@ -125,6 +125,14 @@ void cmp_print(const char *what, const struct mesh_cmp *r)
 		       (unsigned long long)r->zero_area_ambiguous, (unsigned long long)r->uncertain_vert_alone);
 }
 
+/* Whether sample q (corner indices) is one of the stored densities, the
+ * margin included. */
+static bool stored(const struct grid *g, const int q[3])
+{
+	int m = grid_margin(g);
+	return q[0] >= -m && q[1] >= -m && q[2] >= -m && q[0] <= g->nx + m && q[1] <= g->ny + m && q[2] <= g->nz + m;
+}
+
 /* The GPU mesh gm (made from the GPU's densities dg) against the reference
  * cm (made from dc), within bound: fills r.  -1 when out of memory. */
 int mesh_vs_reference(const struct grid *g, float iso, const float *dg, const struct mesh *gm, const float *dc,
@@ -180,8 +188,7 @@ int mesh_vs_reference(const struct grid *g, float iso, const float *dg, const st
 				int onto = 0;
 				for (int k = 1; k < 7 && !near[i]; k++) {
 					int q[3] = { x + nb[k][0], y + nb[k][1], z + nb[k][2] };
-					if (q[0] < -m || q[1] < -m || q[2] < -m || q[0] > g->nx + m || q[1] > g->ny + m ||
-					    q[2] > g->nz + m)
+					if (!stored(g, q))
 						continue;
 					double e = (double)dg[grid_dens_index(g, q[0], q[1], q[2])];
 					onto += (d > iso) != (e > iso) && fabs(d - iso) <= tround * fabs(e - d);
@@ -196,8 +203,7 @@ int mesh_vs_reference(const struct grid *g, float iso, const float *dg, const st
 			for (int x = 0; x < lg.ox; x++)
 				for (int k = 0; k < 7; k++) {
 					int q[3] = { x + nb[k][0], y + nb[k][1], z + nb[k][2] };
-					if (q[0] < -m || q[1] < -m || q[2] < -m || q[0] > g->nx + m || q[1] > g->ny + m ||
-					    q[2] > g->nz + m)
+					if (!stored(g, q))
 						continue;
 					if (near[grid_dens_index(g, q[0], q[1], q[2])])
 						unsure[x + (size_t)lg.ox * (y + (size_t)lg.oy * z)] = 1;

@@ -13,8 +13,9 @@
  *
  * Hysteresis: it steps down when that is over the target for a short
  * while (several levels at once while the mean frame is over 1.5
- * targets: governor.c far_steps), up only when the level above is predicted to fit for longer,
- * waits after every step for the frame time to settle, and each step up
+ * targets: governor.c far_steps), up only when the level above is
+ * predicted to fit for longer, waits after every step for the frame time
+ * to settle, and each step up
  * that has to be taken back doubles the wait before the next try (so a
  * load that sits between two steps does not make it oscillate), a step up
  * that holds halves it again.  The prediction: what it holds now times
