@@ -176,8 +176,9 @@ static int edge_ends(const struct grid *g, const float *p, int ends[2][3])
 	float u[3], off = 1e-5f; /* under this, on a sample */
 	for (int a = 0; a < 3; a++) {
 		u[a] = (p[a] - g->origin[a]) / g->cell;
-		if (fabsf(u[a] - roundf(u[a])) > off)
-			off = fabsf(u[a] - roundf(u[a])), along = a;
+		float d = fabsf(u[a] - roundf(u[a]));
+		if (d > off)
+			off = d, along = a;
 	}
 	for (int a = 0; a < 3; a++) {
 		if (a != along && fabsf(u[a] - roundf(u[a])) >= 1e-3f)

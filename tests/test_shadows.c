@@ -166,36 +166,40 @@ static float luma(const struct image *im, int x, int y)
 	return 0.2126f * q[0] + 0.7152f * q[1] + 0.0722f * q[2];
 }
 
+/* The cell of g holding world point x, as its index in a byte per cell;
+ * -1 outside the cells. */
+static long cell_at(const struct grid *g, const float x[3], const int d[3])
+{
+	int n[3] = { g->nx, g->ny, g->nz }, c[3];
+	for (int a = 0; a < 3; a++) {
+		c[a] = (int)floorf((x[a] - g->origin[a]) / g->cell) + d[a];
+		if (c[a] < 0 || c[a] >= n[a])
+			return -1;
+	}
+	return ((long)c[2] * n[1] + c[1]) * n[0] + c[0];
+}
+
 /* Cells within one cell of a vertex of the mesh m: where a surface point
  * of the field is one the mesh has (the debris filter leaves small islands
  * of rock out of it; docs/PIPELINE.md). */
 static unsigned char *mesh_cells(const struct grid *g, const struct mesh *m)
 {
 	unsigned char *near = calloc((size_t)g->nx * (size_t)g->ny * (size_t)g->nz, 1);
-	for (uint32_t v = 0; near && v < m->nverts; v++) {
-		int c[3], n[3] = { g->nx, g->ny, g->nz };
-		for (int a = 0; a < 3; a++)
-			c[a] = (int)floorf((m->pos[3 * v + a] - g->origin[a]) / g->cell);
-		for (int dz = -1; dz <= 1; dz++)
-			for (int dy = -1; dy <= 1; dy++)
-				for (int dx = -1; dx <= 1; dx++) {
-					int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-					if (x >= 0 && y >= 0 && z >= 0 && x < n[0] && y < n[1] && z < n[2])
-						near[((size_t)z * (size_t)n[1] + (size_t)y) * (size_t)n[0] + (size_t)x] = 1;
-				}
-	}
+	for (uint32_t v = 0; near && v < m->nverts; v++)
+		for (int k = 0; k < 27; k++) {
+			int d[3] = { k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1 };
+			long c = cell_at(g, m->pos + 3 * v, d);
+			if (c >= 0)
+				near[c] = 1;
+		}
 	return near;
 }
 
 static bool near_mesh(const struct grid *g, const unsigned char *near, const float x[3])
 {
-	int c[3], n[3] = { g->nx, g->ny, g->nz };
-	for (int a = 0; a < 3; a++) {
-		c[a] = (int)floorf((x[a] - g->origin[a]) / g->cell);
-		if (c[a] < 0 || c[a] >= n[a])
-			return false;
-	}
-	return near[((size_t)c[2] * (size_t)n[1] + (size_t)c[1]) * (size_t)n[0] + (size_t)c[0]] != 0;
+	static const int here[3] = { 0, 0, 0 };
+	long c = cell_at(g, x, here);
+	return c >= 0 && near[c];
 }
 
 /* Within two cells of the box's sides, where the open volume's mesh is cut:
