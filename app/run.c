@@ -309,7 +309,7 @@ static int open_gpu(struct run *rn, char *err, size_t errlen)
 {
 	const struct params *p = &rn->p;
 	struct platform_options po = { .name = p->platform, .width = rn->w, .height = rn->h, .debug = p->verbose,
-		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .drm_device = p->drm_device,
+		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .x11_present = p->x11_present, .drm_device = p->drm_device,
 		.mode = p->mode, .kms_legacy = p->kms_legacy, .device = p->device, .rotate = (int)p->rotate };
 	sink_display_outputs(p, &po); /* --outputs: the connectors and their layout */
 	rn->plat = platform_open(&po, err, errlen);

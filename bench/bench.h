@@ -168,11 +168,12 @@ static inline void bench_print_machine(const struct gpu_caps *caps)
 /* The GL context every benchmark runs in: the platform (auto, device,
  * surfaceless, or a display at w x h), GLES 3.1 checked, the machine line
  * printed.  NULL after one line on stderr. */
-static inline struct platform *bench_open(const char *plat_name, int w, int h)
+/* x11_present: how frames reach an X11 window (PLATFORM_X11_PRESENT_*). */
+static inline struct platform *bench_open_present(const char *plat_name, int w, int h, int x11_present)
 {
 	char err[512];
 	log_set_level(LOG_WARN);
-	struct platform_options po = { .name = plat_name, .width = w, .height = h };
+	struct platform_options po = { .name = plat_name, .width = w, .height = h, .x11_present = x11_present };
 	struct platform *plat = platform_open(&po, err, sizeof(err));
 	struct gpu_caps caps;
 	if (plat && gpu_init(&caps, false, err, sizeof(err)) == 0) {
@@ -182,6 +183,11 @@ static inline struct platform *bench_open(const char *plat_name, int w, int h)
 	fprintf(stderr, "bench: %s\n", err);
 	platform_close(plat);
 	return NULL;
+}
+
+static inline struct platform *bench_open(const char *plat_name, int w, int h)
+{
+	return bench_open_present(plat_name, w, h, PLATFORM_X11_PRESENT_AUTO);
 }
 
 #endif

@@ -9,8 +9,11 @@
  * The three steps alternate in rounds of --frames frames (so a load change
  * on a shared machine hits all three alike); the median round is reported.
  * Ratios are to the baseline of the same run; the machine is printed.
+ * On X11, --x11-present shm|swap chooses how a frame reaches the window
+ * (the program's option; auto by default): run it once with each,
+ * alternated, to compare the two.
  * usage: bench_display [--platform NAME] [--size WxH] [--frames N]
- *                      [--rounds N] [--grid N] */
+ *                      [--rounds N] [--grid N] [--x11-present auto|shm|swap] */
 #include "app.h"
 #include "bench.h"
 #include "terrain.h"
@@ -44,7 +47,7 @@ static double run(struct platform *plat, struct renderer *r, const struct pipeli
 
 struct options {
 	const char *plat_name, *size;
-	int frames, rounds, grid;
+	int frames, rounds, grid, x11_present;
 };
 
 static int parse_args(int argc, char **argv, struct options *o)
@@ -61,9 +64,15 @@ static int parse_args(int argc, char **argv, struct options *o)
 			o->rounds = atoi(argv[++i]);
 		else if (!strcmp(argv[i], "--grid") && i + 1 < argc)
 			o->grid = atoi(argv[++i]);
+		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "shm"))
+			o->x11_present = PLATFORM_X11_PRESENT_SHM, i++;
+		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "swap"))
+			o->x11_present = PLATFORM_X11_PRESENT_SWAP, i++;
+		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "auto"))
+			o->x11_present = PLATFORM_X11_PRESENT_AUTO, i++;
 		else {
-			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--rounds N] [--grid N]\n",
-				argv[0]);
+			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--rounds N] [--grid N] "
+				"[--x11-present auto|shm|swap]\n", argv[0]);
 			return -1;
 		}
 	}
@@ -107,7 +116,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "bench_display: bad --size, --frames, --rounds or --grid\n");
 		return 2;
 	}
-	struct platform *plat = bench_open(o.plat_name, w, h);
+	struct platform *plat = bench_open_present(o.plat_name, w, h, o.x11_present);
 	if (!plat)
 		return 1;
 	char err[512];
@@ -119,8 +128,9 @@ int main(int argc, char **argv)
 	}
 	w = plat->width;
 	h = plat->height;
-	printf("platform %s (%s), %dx%d, grid %d^3, %d rounds of %d frames per step\n", plat->backend->name,
-	       plat->device_desc, w, h, o.grid, o.rounds, o.frames);
+	printf("platform %s (%s), %dx%d, grid %d^3, %d rounds of %d frames per step%s%s\n", plat->backend->name,
+	       plat->device_desc, w, h, o.grid, o.rounds, o.frames, plat->present_how ? ", present: " : "",
+	       plat->present_how ? plat->present_how : "");
 	struct params p;
 	params_defaults(&p);
 	p.grid = o.grid;

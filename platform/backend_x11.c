@@ -1,18 +1,22 @@
 /* isoterra — X11 display backend: an xcb window (through Xlib's display
  * for EGL_KHR_platform_x11, which is what Mesa 22 offers), WM_DELETE_WINDOW
  * closes, ConfigureNotify resizes, _NET_WM_STATE_FULLSCREEN (and, with no
- * window manager, a window the size of the screen), optional hidden cursor. */
+ * window manager, a window the size of the screen), optional hidden cursor.
+ * Frames reach the window through eglSwapBuffers or, for a software
+ * renderer, drawn into a pbuffer and put through MIT-SHM (x11_shm.c). */
 #include "platform.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <GLES3/gl31.h>
 #include <X11/Xlib.h>
 #include <X11/Xlib-xcb.h>
 #include <xcb/xcb.h>
 
 #include "platform_util.h"
+#include "x11_shm.h"
 
 struct x11_state {
 	Display *xdpy;
@@ -24,6 +28,10 @@ struct x11_state {
 	xcb_cursor_t cursor;
 	xcb_atom_t wm_protocols, wm_delete;
 	bool mapped;
+	/* the MIT-SHM present: frames drawn into a pbuffer of pb_w x pb_h */
+	struct x11_shm *shm;
+	int pb_w, pb_h;
+	bool debug;
 };
 
 static bool x11_probe(void)
@@ -41,13 +49,17 @@ static xcb_atom_t intern(xcb_connection_t *c, const char *name)
 	return a;
 }
 
-static uint8_t visual_depth(const xcb_screen_t *s, xcb_visualid_t v)
+/* Visual v of the screen and its depth (NULL, 0 when not there). */
+static const xcb_visualtype_t *find_visual(const xcb_screen_t *s, xcb_visualid_t v, uint8_t *depth)
 {
 	for (xcb_depth_iterator_t d = xcb_screen_allowed_depths_iterator(s); d.rem; xcb_depth_next(&d))
 		for (xcb_visualtype_iterator_t vi = xcb_depth_visuals_iterator(d.data); vi.rem; xcb_visualtype_next(&vi))
-			if (vi.data->visual_id == v)
-				return d.data->depth;
-	return 0;
+			if (vi.data->visual_id == v) {
+				*depth = d.data->depth;
+				return vi.data;
+			}
+	*depth = 0;
+	return NULL;
 }
 
 /* Handles one event; 1 when the window was asked to close. */
@@ -95,12 +107,27 @@ static int x11_dispatch(struct platform *p)
 		plog_error("x11: connection to the X server lost");
 		return -1;
 	}
+	if (x->shm && (p->width != x->pb_w || p->height != x->pb_h)) {
+		/* the next frame is drawn at the window's new size */
+		char err[256];
+		struct platform_options o = { .debug = x->debug };
+		if (egl_common_make_pbuffer_context(p, &o, p->width, p->height, err, sizeof(err)) < 0) {
+			plog_error("x11: a %dx%d frame for the resized window: %s", p->width, p->height, err);
+			return -1;
+		}
+		x->pb_w = p->width;
+		x->pb_h = p->height;
+	}
 	return quit;
 }
 
 static void x11_close(struct platform *p)
 {
 	struct x11_state *x = p->priv;
+	if (x) {
+		x11_shm_close(x->shm);
+		x->shm = NULL;
+	}
 	egl_common_release(p);
 	if (!x)
 		return;
@@ -159,7 +186,7 @@ static int x11_connect(struct x11_state *x, char *err, size_t errlen)
 
 /* The EGL display and config; the X visual of that config and its depth. */
 static int x11_egl_visual(struct platform *p, struct x11_state *x, const struct platform_options *opt, EGLint *vid,
-                          uint8_t *depth, char *err, size_t errlen)
+                          const xcb_visualtype_t **vis, uint8_t *depth, char *err, size_t errlen)
 {
 	if (egl_common_open_display(p, EGL_PLATFORM_X11_KHR, x->xdpy, err, errlen) < 0 ||
 	    egl_common_make_window_context(p, opt, 0, NULL, err, errlen) < 0)
@@ -169,8 +196,8 @@ static int x11_egl_visual(struct platform *p, struct x11_state *x, const struct 
 		snprintf(err, errlen, "the EGLConfig has no X visual");
 		return -1;
 	}
-	*depth = visual_depth(x->screen, (xcb_visualid_t)*vid);
-	if (!*depth) {
+	*vis = find_visual(x->screen, (xcb_visualid_t)*vid, depth);
+	if (!*vis) {
 		snprintf(err, errlen, "X visual 0x%x of the EGLConfig is not on the screen", (unsigned)*vid);
 		return -1;
 	}
@@ -259,6 +286,59 @@ static int x11_map(struct platform *p, struct x11_state *x, int w, int h, char *
 	return 0;
 }
 
+/* The MIT-SHM present on a pbuffer of the window's size: 0, or -1 with
+ * the reason in why (nothing of it left then but, perhaps, the context). */
+static int x11_shm_start(struct platform *p, struct x11_state *x, const struct platform_options *opt,
+                         const xcb_visualtype_t *vis, uint8_t depth, char *why, size_t whylen)
+{
+	x->shm = x11_shm_open(x->conn, x->win, depth, vis, why, whylen);
+	if (!x->shm)
+		return -1;
+	if (egl_common_make_pbuffer_context(p, opt, p->width, p->height, why, whylen) == 0) {
+		const char *gl_exts = (const char *)glGetString(GL_EXTENSIONS);
+		if (egl_common_has_ext(gl_exts, "GL_EXT_read_format_bgra")) {
+			x->pb_w = p->width;
+			x->pb_h = p->height;
+			return 0;
+		}
+		snprintf(why, whylen, "the GL cannot read a frame back as BGRA (no GL_EXT_read_format_bgra)");
+	}
+	x11_shm_close(x->shm);
+	x->shm = NULL;
+	return -1;
+}
+
+/* How frames reach the window (opt->x11_present), and the context current
+ * on the surface that takes them. */
+static int x11_start_present(struct platform *p, struct x11_state *x, const struct platform_options *opt,
+                             const xcb_visualtype_t *vis, uint8_t depth, char *err, size_t errlen)
+{
+	char why[256] = "--x11-present swap";
+	int mode = opt->x11_present;
+	bool software = platform_display_software(p->dpy);
+	if (mode == PLATFORM_X11_PRESENT_AUTO && !software)
+		snprintf(why, sizeof(why), "the renderer is a GPU");
+	else if (mode != PLATFORM_X11_PRESENT_SWAP && x11_shm_start(p, x, opt, vis, depth, why, sizeof(why)) == 0) {
+		plog_info("x11: frames put through MIT-SHM (%s: read back into memory the X server shares)",
+			  software ? "a software renderer" : "asked for");
+		p->present_how = "MIT-SHM";
+		return 0;
+	}
+	if (mode == PLATFORM_X11_PRESENT_SHM) {
+		snprintf(err, errlen, "--x11-present shm: %s", why);
+		return -1;
+	}
+	x->native = (Window)x->win;
+	if (egl_common_make_window_context(p, opt, 0, &x->native, err, errlen) < 0)
+		return -1;
+	p->present_how = "eglSwapBuffers";
+	if (software)
+		plog_info("x11: frames presented with eglSwapBuffers (%s)", why);
+	else
+		plog_debug("x11: frames presented with eglSwapBuffers (%s)", why);
+	return 0;
+}
+
 static int x11_open(struct platform *p, const struct platform_options *opt, char *err, size_t errlen)
 {
 	if (!x11_probe()) {
@@ -271,9 +351,11 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 		return -1;
 	}
 	p->priv = x;
+	x->debug = opt->debug;
 	EGLint vid;
 	uint8_t depth;
-	if (x11_connect(x, err, errlen) < 0 || x11_egl_visual(p, x, opt, &vid, &depth, err, errlen) < 0)
+	const xcb_visualtype_t *vis;
+	if (x11_connect(x, err, errlen) < 0 || x11_egl_visual(p, x, opt, &vid, &vis, &depth, err, errlen) < 0)
 		goto fail;
 	int w = opt->width, h = opt->height;
 	if (opt->fullscreen) {
@@ -284,8 +366,7 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 	if (x11_create_window(x, opt, vid, depth, w, h, err, errlen) < 0 || x11_set_properties(x, opt, err, errlen) < 0 ||
 	    x11_map(p, x, w, h, err, errlen) < 0)
 		goto fail;
-	x->native = (Window)x->win;
-	if (egl_common_make_window_context(p, opt, vid, &x->native, err, errlen) < 0)
+	if (x11_start_present(p, x, opt, vis, depth, err, errlen) < 0)
 		goto fail;
 	plog_debug("x11: window 0x%x %dx%d, visual 0x%x depth %u%s", (unsigned)x->win, p->width, p->height,
 	          (unsigned)vid, depth, opt->fullscreen ? ", fullscreen" : "");
@@ -297,6 +378,13 @@ fail:
 
 static int x11_present(struct platform *p)
 {
+	struct x11_state *x = p->priv;
+	if (x->shm) {
+		if (x11_shm_present(x->shm, x->pb_w, x->pb_h) < 0)
+			return -1;
+		p->shown++;
+		return 0;
+	}
 	if (!eglSwapBuffers(p->dpy, p->surface)) {
 		plog_error("x11: eglSwapBuffers failed: %s", egl_common_error_name(eglGetError()));
 		return -1;

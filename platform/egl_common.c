@@ -371,8 +371,8 @@ static int choose_window_config(struct platform *p, EGLint renderable, EGLint vi
 	return 0;
 }
 
-int egl_common_make_window_context(struct platform *p, const struct platform_options *opt,
-                                   EGLint visual, void *native_window, char *err, size_t errlen)
+/* EGL 1.5, EGL_KHR_create_context: how a GLES 3 context is asked for. */
+static int context_kind(struct platform *p, bool *egl15, bool *khr_cc, char *err, size_t errlen)
 {
 	EGLint major = 1, minor = 0;
 	const char *ver = eglQueryString(p->dpy, EGL_VERSION);
@@ -381,8 +381,82 @@ int egl_common_make_window_context(struct platform *p, const struct platform_opt
 		egl_fail(err, errlen, "eglQueryString");
 		return -1;
 	}
-	bool egl15 = major > 1 || (major == 1 && minor >= 5);
-	bool khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
+	*egl15 = major > 1 || (major == 1 && minor >= 5);
+	*khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
+	return 0;
+}
+
+/* Makes `surface` current with the context (creating the context first
+ * when there is none, then checking GL_VERSION) and destroys the surface
+ * it replaces.  0, or -1 with err (surface then destroyed). */
+static int make_current_on(struct platform *p, const struct platform_options *opt, EGLSurface surface, bool egl15,
+                           bool khr_cc, char *err, size_t errlen)
+{
+	bool new_ctx = p->ctx == EGL_NO_CONTEXT;
+	if (new_ctx && make_context(p, egl15, khr_cc, opt->debug, err, errlen) < 0) {
+		eglDestroySurface(p->dpy, surface);
+		return -1;
+	}
+	last_error_clear();
+	if (!eglMakeCurrent(p->dpy, surface, surface, p->ctx)) {
+		egl_fail(err, errlen, "eglMakeCurrent");
+		eglDestroySurface(p->dpy, surface);
+		return -1;
+	}
+	if (p->surface != EGL_NO_SURFACE && !eglDestroySurface(p->dpy, p->surface))
+		plog_warn("eglDestroySurface (the surface replaced) failed: %s", egl_common_error_name(eglGetError()));
+	p->surface = surface;
+	p->headless = false;
+	return new_ctx ? check_gl_version(p, err, errlen) : 0;
+}
+
+int egl_common_make_pbuffer_context(struct platform *p, const struct platform_options *opt, int w, int h,
+                                    char *err, size_t errlen)
+{
+	bool egl15, khr_cc;
+	EGLint type = 0;
+	if (context_kind(p, &egl15, &khr_cc, err, errlen) < 0)
+		return -1;
+	if (!eglGetConfigAttrib(p->dpy, p->config, EGL_SURFACE_TYPE, &type) || !(type & EGL_PBUFFER_BIT)) {
+		snprintf(err, errlen, "the window's EGLConfig has no pbuffers");
+		return -1;
+	}
+	const EGLint pb[] = { EGL_WIDTH, w, EGL_HEIGHT, h, EGL_NONE };
+	last_error_clear();
+	EGLSurface s = eglCreatePbufferSurface(p->dpy, p->config, pb);
+	if (s == EGL_NO_SURFACE) {
+		egl_fail(err, errlen, "eglCreatePbufferSurface");
+		return -1;
+	}
+	return make_current_on(p, opt, s, egl15, khr_cc, err, errlen);
+}
+
+bool platform_display_software(EGLDisplay dpy)
+{
+	const char *client = egl_common_client_exts();
+	if (dpy == EGL_NO_DISPLAY ||
+	    (!egl_common_has_ext(client, "EGL_EXT_device_query") && !egl_common_has_ext(client, "EGL_EXT_device_base")))
+		return false;
+	PFNEGLQUERYDISPLAYATTRIBEXTPROC query_display =
+		(PFNEGLQUERYDISPLAYATTRIBEXTPROC)eglGetProcAddress("eglQueryDisplayAttribEXT");
+	PFNEGLQUERYDEVICESTRINGEXTPROC query_device =
+		(PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+	EGLAttrib dev = 0;
+	if (!query_display || !query_device || !query_display(dpy, EGL_DEVICE_EXT, &dev) || !dev) {
+		(void)eglGetError();
+		return false;
+	}
+	const char *exts = query_device((EGLDeviceEXT)dev, EGL_EXTENSIONS);
+	(void)eglGetError();
+	return egl_common_has_ext(exts, "EGL_MESA_device_software");
+}
+
+int egl_common_make_window_context(struct platform *p, const struct platform_options *opt,
+                                   EGLint visual, void *native_window, char *err, size_t errlen)
+{
+	bool egl15, khr_cc;
+	if (context_kind(p, &egl15, &khr_cc, err, errlen) < 0)
+		return -1;
 	if (!p->config) {
 		last_error_clear();
 		if (!eglBindAPI(EGL_OPENGL_ES_API)) {
@@ -396,8 +470,6 @@ int egl_common_make_window_context(struct platform *p, const struct platform_opt
 	if (!native_window)
 		return 0;
 
-	if (make_context(p, egl15, khr_cc, opt->debug, err, errlen) < 0)
-		return -1;
 	PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC create_surface =
 		(PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC)eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT");
 	if (!create_surface) {
@@ -405,22 +477,18 @@ int egl_common_make_window_context(struct platform *p, const struct platform_opt
 		return -1;
 	}
 	last_error_clear();
-	p->surface = create_surface(p->dpy, p->config, native_window, NULL);
-	if (p->surface == EGL_NO_SURFACE) {
+	EGLSurface s = create_surface(p->dpy, p->config, native_window, NULL);
+	if (s == EGL_NO_SURFACE) {
 		egl_fail(err, errlen, "eglCreatePlatformWindowSurfaceEXT");
 		return -1;
 	}
-	last_error_clear();
-	if (!eglMakeCurrent(p->dpy, p->surface, p->surface, p->ctx)) {
-		egl_fail(err, errlen, "eglMakeCurrent");
+	if (make_current_on(p, opt, s, egl15, khr_cc, err, errlen) < 0)
 		return -1;
-	}
 	/* vsync where the window system has it (a no-op on GBM: the backend
 	 * waits for page flips itself) */
 	if (!eglSwapInterval(p->dpy, 1))
 		plog_debug("eglSwapInterval(1): %s", egl_common_error_name(eglGetError()));
-	p->headless = false;
-	return check_gl_version(p, err, errlen);
+	return 0;
 }
 
 void egl_common_release(struct platform *p)

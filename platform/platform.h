@@ -30,6 +30,11 @@ struct platform_options {
 	/* display backends (gbm, wayland, x11) */
 	bool fullscreen;         /* wayland/x11: fullscreen window (gbm: always) */
 	bool hide_cursor;        /* x11: no pointer over the window (gbm: always hidden) */
+	/* x11: how a frame reaches the window (PLATFORM_X11_PRESENT_*): auto
+	 * puts it through MIT-SHM where the renderer is software (whose
+	 * eglSwapBuffers sends every pixel over the X connection) and the X
+	 * server can share memory with us, else swaps */
+	int x11_present;
 	const char *drm_device;  /* gbm: "/dev/dri/cardN"; NULL or "" = first card with a connected output */
 	const char *mode;        /* gbm: "WxH" or "WxH@Hz"; NULL or "" = the connector's preferred mode */
 	bool kms_legacy;         /* gbm: legacy SetCrtc/PageFlip even where atomic works */
@@ -59,6 +64,8 @@ struct platform_options {
 	 * selects the device backend. */
 	const char *device;
 };
+
+enum { PLATFORM_X11_PRESENT_AUTO, PLATFORM_X11_PRESENT_SHM, PLATFORM_X11_PRESENT_SWAP };
 
 struct platform_backend {
 	const char *name;
@@ -109,6 +116,7 @@ struct platform {
 	 * the upright picture (its size turned back), drawn unturned */
 	int rotated;
 	char device_desc[128];/* e.g. "llvmpipe (LLVM 15.0.6, 256 bits)" / DRM node */
+	const char *present_how; /* x11: "MIT-SHM" or "eglSwapBuffers"; NULL elsewhere */
 	void *priv;           /* backend state */
 };
 
@@ -131,6 +139,10 @@ int platform_list_devices(FILE *f, char *err, size_t errlen);
 /* The current context's GL_VERSION when it is OpenGL ES 3.1 or later, else
  * NULL with err (one check for the platform's contexts and gpu_init). */
 const char *platform_check_gles31(char *err, size_t errlen);
+/* A capability, not a name: whether display dpy's EGL device renders on
+ * the CPU (EGL_MESA_device_software: llvmpipe, softpipe, lavapipe under
+ * zink).  A display whose device cannot be queried counts as hardware. */
+bool platform_display_software(EGLDisplay dpy);
 /* A device option's form: "" (none), a decimal index or an absolute path.
  * 0, or -1 with err (which device it names is only known at open). */
 int platform_device_check(const char *spec, char *err, size_t errlen);
@@ -174,6 +186,12 @@ int egl_common_make_context(struct platform *p, const struct platform_options *o
  * caller reads p->config to create its window, then calls again). */
 int egl_common_make_window_context(struct platform *p, const struct platform_options *opt,
                                    EGLint visual, void *native_window, char *err, size_t errlen);
+/* Display backends that present by reading the frame back (x11 through
+ * MIT-SHM): the GLES 3.1 context on p->config (created when there is
+ * none) current on a w x h pbuffer; called again, a new pbuffer (the
+ * window's new size) replaces the surface, as a window surface then can. */
+int egl_common_make_pbuffer_context(struct platform *p, const struct platform_options *opt, int w, int h,
+                                    char *err, size_t errlen);
 /* Releases whatever egl_common_* created (safe on partial state). */
 void egl_common_release(struct platform *p);
 /* enable: route EGL_KHR_debug messages to the platform's log (verbose: also warnings and

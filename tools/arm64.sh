@@ -84,7 +84,7 @@ GRID=32
 # the reference build in build-d13/root (tools/debian13.sh installs these and
 # more); the cross chroot's packages beyond debian/control's Build-Depends
 NATIVE="gcc libc6-dev meson ninja-build pkgconf libegl-dev libgles-dev libpng-dev libexpat1-dev libegl-mesa0 libgbm-dev libdrm-dev
-	libgpiod-dev libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev"
+	libgpiod-dev libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev libxcb-shm0-dev"
 CROSS="crossbuild-essential-arm64 qemu-user libegl-mesa0:arm64"
 
 MODE=${1:-suite}

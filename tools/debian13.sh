@@ -35,7 +35,7 @@ HAL_GPIOD2=${ISOTERRA_D13_HAL_GPIOD2:-1}
 # the build dependencies of tools/deps.sh, Debian 13 names
 PACKAGES="gcc libc6-dev meson ninja-build pkgconf libegl-dev libgles-dev libpng-dev libexpat1-dev
 	libegl-mesa0 libgbm-dev libdrm-dev libgpiod-dev
-	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev libsystemd-dev libudev-dev"
+	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev libxcb-shm0-dev libsystemd-dev libudev-dev"
 
 if [ "${1:-}" = clean ]; then
 	d13_need_root "$@"

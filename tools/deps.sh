@@ -38,7 +38,7 @@ $SUDO apt-get install -y -q --no-install-recommends clang libclang-rt-dev
 $SUDO apt-get install -y -q --no-install-recommends libgdal-dev
 # the display backends (meson options -Dgbm/-Dwayland/-Dx11, auto)
 $SUDO apt-get install -y -q --no-install-recommends \
-	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev
+	libwayland-dev wayland-protocols libx11-dev libx11-xcb-dev libxcb1-dev libxcb-shm0-dev
 # the display tests: X11 in Xvfb, Wayland in Weston, KMS in a real kernel
 # under QEMU (tests/display, tests/vm)
 $SUDO apt-get install -y -q --no-install-recommends \

@@ -98,10 +98,7 @@ int gpu_check(const char *what)
 	return -1;
 }
 
-/* A capability, not a name: the current display's EGL device says whether
- * it renders on the CPU (EGL_MESA_device_software: llvmpipe, softpipe,
- * lavapipe under zink).  A display whose device cannot be queried counts as
- * hardware.  Asked once per display. */
+/* Asked once per display (platform_display_software). */
 bool gpu_software_rasterizer(void)
 {
 	static EGLDisplay asked = EGL_NO_DISPLAY;
@@ -110,21 +107,7 @@ bool gpu_software_rasterizer(void)
 	if (dpy == EGL_NO_DISPLAY || dpy == asked)
 		return dpy != EGL_NO_DISPLAY && software;
 	asked = dpy;
-	software = false;
-	const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-	if (!has_ext(client, "EGL_EXT_device_query") && !has_ext(client, "EGL_EXT_device_base"))
-		return false;
-	PFNEGLQUERYDISPLAYATTRIBEXTPROC query_display =
-		(PFNEGLQUERYDISPLAYATTRIBEXTPROC)eglGetProcAddress("eglQueryDisplayAttribEXT");
-	PFNEGLQUERYDEVICESTRINGEXTPROC query_device =
-		(PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
-	EGLAttrib dev = 0;
-	if (!query_display || !query_device || !query_display(dpy, EGL_DEVICE_EXT, &dev) || !dev) {
-		(void)eglGetError();
-		return false;
-	}
-	const char *exts = query_device((EGLDeviceEXT)dev, EGL_EXTENSIONS);
-	software = has_ext(exts, "EGL_MESA_device_software");
+	software = platform_display_software(dpy);
 	log_debug("EGL device of this display: %s", software ? "software (EGL_MESA_device_software)" : "hardware");
 	return software;
 }

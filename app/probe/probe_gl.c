@@ -131,7 +131,7 @@ void probe_gl(struct probe_report *r, const struct params *p)
 	shader_set_dir(p->shader_dir);
 	gpu_program_cache_config(p->program_cache, NULL);
 	struct platform_options po = { .name = p->platform, .width = w, .height = h, .debug = p->verbose,
-		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .drm_device = p->drm_device,
+		.fullscreen = p->fullscreen, .hide_cursor = p->hide_cursor, .x11_present = p->x11_present, .drm_device = p->drm_device,
 		.mode = p->mode, .kms_legacy = p->kms_legacy, .device = p->device };
 	struct platform *plat = platform_open(&po, err, sizeof(err));
 	if (!plat) {

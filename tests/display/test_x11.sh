@@ -5,7 +5,9 @@
 # --fullscreen fills the screen; --count N exits by itself; --rotate 90
 # turns the picture in the window; paused, the app idles (CPU time); the
 # governed world's results say the quality it held; a missing X server is
-# one clear error.
+# one clear error; frames reach the window through MIT-SHM (a software
+# renderer) or eglSwapBuffers, the same picture, and a server without
+# MIT-SHM gets the swap.
 . "$(dirname "$0")/lib.sh"
 need Xvfb xwd "${X11POKE:-x11poke}"
 scratch # $T; kills $APID and $SERVER_PID on exit
@@ -210,6 +212,61 @@ if [ $rc -ne 0 ] && grep -q "cannot connect to the X server ':4097'" "$T/nox.log
 	ok "no X server: exit $rc, '$(cat "$T/nox.log")'"
 else
 	bad "no X server: exit $rc, $(cat "$T/nox.log")"
+fi
+# 6. how frames reach the window (--x11-present).  A software renderer on
+#    a server with MIT-SHM: auto reads each frame back into memory it
+#    shares with the X server and puts it from there (the windows above);
+#    swap is eglSwapBuffers, the same picture.  A server without MIT-SHM:
+#    auto swaps, the same picture; shm is one clear error.
+if grep -q 'x11: frames put through MIT-SHM (a software renderer' "$T/app1.log"; then
+	ok "auto, a software renderer: frames put through MIT-SHM (the windows compared above)"
+elif grep -q 'x11: frames presented with eglSwapBuffers' "$T/app1.log"; then
+	echo "skip: MIT-SHM: the renderer is not a software one here, auto swaps: $(grep -m1 eglSwapBuffers "$T/app1.log")"
+else
+	bad "auto: no line says how frames reach the window: $(head -3 "$T/app1.log")"
+fi
+# window W REF LOG ARGS...: a 240x160 window of this run matches the
+# headless REF (the app stopped after); its log in LOG
+window() {
+	_what=$1 _ref=$2 _log=$3
+	shift 3
+	"$BIN" --platform x11 --size 240x160 $ARGS --count 0 --fps-report 0.2 "$@" >"$_log" 2>&1 &
+	APID=$!
+	if wait_frames "$_log" 3 60 "$APID"; then
+		xwd -display "$DISPLAY" -name isoterra -out "$T/w.xwd" 2>"$T/xwd.log" || bad "xwd: $(cat "$T/xwd.log")"
+		compare "$_what" "$T/w.xwd" "$_ref"
+	else
+		bad "$_what: no frames: $(cat "$_log")"
+	fi
+	stop "$APID"
+	APID=
+}
+headless "$T/ref-p.png" 240x160 $ARGS
+window "x11 --x11-present swap vs headless" "$T/ref-p.png" "$T/swap.log" --x11-present swap
+grep -q 'x11: frames presented with eglSwapBuffers (--x11-present swap)' "$T/swap.log" &&
+	ok "--x11-present swap: eglSwapBuffers" || bad "--x11-present swap: $(head -3 "$T/swap.log")"
+kill -TERM "$SERVER_PID" 2>/dev/null
+wait "$SERVER_PID" 2>/dev/null
+Xvfb -displayfd 3 -nolisten tcp -extension MIT-SHM -screen 0 ${SCREEN}x24 3>"$T/display2" >"$T/xvfb2.log" 2>&1 &
+SERVER_PID=$!
+if wait_for "$T/display2" '^[0-9]+$' 20 "$SERVER_PID"; then
+	DISPLAY=:$(cat "$T/display2")
+	window "x11 without MIT-SHM (auto) vs headless" "$T/ref-p.png" "$T/noshm.log"
+	if grep -q 'x11: frames put through MIT-SHM' "$T/noshm.log"; then
+		bad "a server without MIT-SHM: auto says it puts frames through it"
+	else
+		ok "a server without MIT-SHM: auto swaps ($(grep -m1 -o 'x11: frames presented.*' "$T/noshm.log"))"
+	fi
+	"$BIN" --platform x11 --size 96x64 --grid 8 --count 1 --out "$T/shm.png" --x11-present shm >"$T/shm.log" 2>&1
+	rc=$?
+	if [ $rc -ne 0 ] && grep -q -- "--x11-present shm: the X server has no MIT-SHM" "$T/shm.log" &&
+		[ "$(grep -c . "$T/shm.log")" -le 2 ] && [ ! -e "$T/shm.png" ]; then
+		ok "--x11-present shm without MIT-SHM: exit $rc, '$(cat "$T/shm.log")', no picture written"
+	else
+		bad "--x11-present shm without MIT-SHM: exit $rc, $(cat "$T/shm.log")"
+	fi
+else
+	bad "Xvfb without MIT-SHM did not start: $(cat "$T/xvfb2.log")"
 fi
 echo "x11 display test: $(($(date +%s) - t0)) s"
 echo "$pass passed, $fail failed"
