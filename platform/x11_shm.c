@@ -5,8 +5,10 @@
  * the present for a software rasterizer, where eglSwapBuffers (Mesa 22's
  * EGL on X11) writes the whole frame into the socket and the server reads
  * it out again.  GL's rows run bottom-up and X's top-down: one put request
- * per row, each a few bytes.  A round trip sent after the last row tells
- * the next present that the server has read the segment. */
+ * per row, each a few bytes.  The segment holds two frames, used in turn,
+ * so that the server's copy of one overlaps the drawing of the next; a
+ * round trip sent after a frame's last row tells the present two frames
+ * on that the server has read it. */
 #define _GNU_SOURCE /* memfd_create */
 #include "x11_shm.h"
 
@@ -31,9 +33,11 @@ struct x11_shm {
 	uint8_t depth;
 	xcb_shm_seg_t seg; /* 0: none attached yet */
 	uint8_t *map;
-	size_t size;
-	bool pending; /* a frame was put; fence answers once the server read it */
-	xcb_get_input_focus_cookie_t fence;
+	size_t size, half; /* two frames of at most `half` bytes */
+	unsigned next;     /* the half the next frame goes to */
+	/* per half: a frame was put from it; fence answers once the server read it */
+	bool pending[2];
+	xcb_get_input_focus_cookie_t fence[2];
 };
 
 /* The pixmap format of this depth: 32 bits a pixel, rows padded to 32 bits. */
@@ -93,14 +97,15 @@ struct x11_shm *x11_shm_open(xcb_connection_t *conn, xcb_window_t win, uint8_t d
 	return s;
 }
 
-/* Waits for the server to have read the frame put last (its requests run
- * in order: the reply to the round trip sent after them says so). */
-static int wait_read(struct x11_shm *s)
+/* Waits for the server to have read the frame put from half k (its
+ * requests run in order: the reply to the round trip sent after them says
+ * so). */
+static int wait_read(struct x11_shm *s, unsigned k)
 {
-	if (!s->pending)
+	if (!s->pending[k])
 		return 0;
-	s->pending = false;
-	xcb_get_input_focus_reply_t *r = xcb_get_input_focus_reply(s->conn, s->fence, NULL);
+	s->pending[k] = false;
+	xcb_get_input_focus_reply_t *r = xcb_get_input_focus_reply(s->conn, s->fence[k], NULL);
 	if (!r) {
 		plog_error("x11: the X server did not answer (connection lost?)");
 		return -1;
@@ -118,17 +123,20 @@ static void detach(struct x11_shm *s)
 	if (s->map && munmap(s->map, s->size) != 0)
 		plog_warn("x11: munmap of the shared frame: %s", strerror(errno));
 	s->map = NULL;
-	s->size = 0;
+	s->size = s->half = 0;
 }
 
-/* A segment of at least `need` bytes, shared with the server (read-only
- * there).  0, or -1 logged. */
+/* A segment of two frames of at least `need` bytes, shared with the
+ * server (read-only there); the server done with the old one.  0, or -1
+ * logged. */
 static int attach(struct x11_shm *s, size_t need)
 {
-	if (need <= s->size)
+	if (need <= s->half)
 		return 0;
+	if (wait_read(s, 0) < 0 || wait_read(s, 1) < 0)
+		return -1;
 	detach(s);
-	size_t size = (need + 65535) & ~(size_t)65535;
+	size_t half = (need + 65535) & ~(size_t)65535, size = 2 * half;
 	int fd = memfd_create("isoterra-x11-frame", MFD_CLOEXEC);
 	if (fd < 0) {
 		plog_error("x11: memfd_create for the shared frame: %s", strerror(errno));
@@ -157,6 +165,7 @@ static int attach(struct x11_shm *s, size_t need)
 	s->seg = seg;
 	s->map = map;
 	s->size = size;
+	s->half = half;
 	plog_debug("x11: shared frame of %zu KiB attached", size >> 10);
 	return 0;
 }
@@ -199,13 +208,17 @@ int x11_shm_present(struct x11_shm *s, int w, int h)
 		plog_error("x11: a frame of %dx%d cannot be put", w, h);
 		return -1;
 	}
-	if (wait_read(s) < 0 || attach(s, (size_t)w * (size_t)h * 4) < 0 || read_frame(w, h, s->map) < 0)
+	unsigned k = s->next;
+	if (attach(s, (size_t)w * (size_t)h * 4) < 0 || wait_read(s, k) < 0 ||
+	    read_frame(w, h, s->map + k * s->half) < 0)
 		return -1;
 	for (int y = 0; y < h; y++)
 		xcb_shm_put_image(s->conn, s->win, s->gc, (uint16_t)w, (uint16_t)h, 0, (uint16_t)(h - 1 - y), (uint16_t)w,
-				  1, 0, (int16_t)y, s->depth, XCB_IMAGE_FORMAT_Z_PIXMAP, 0, s->seg, 0);
-	s->fence = xcb_get_input_focus(s->conn);
-	s->pending = true;
+				  1, 0, (int16_t)y, s->depth, XCB_IMAGE_FORMAT_Z_PIXMAP, 0, s->seg,
+				  (uint32_t)(k * s->half));
+	s->fence[k] = xcb_get_input_focus(s->conn);
+	s->pending[k] = true;
+	s->next = k ^ 1;
 	if (xcb_flush(s->conn) <= 0) {
 		plog_error("x11: sending the frame failed (connection lost?)");
 		return -1;
@@ -218,7 +231,8 @@ void x11_shm_close(struct x11_shm *s)
 	if (!s)
 		return;
 	if (!xcb_connection_has_error(s->conn)) {
-		(void)wait_read(s);
+		(void)wait_read(s, 0);
+		(void)wait_read(s, 1);
 		detach(s);
 		xcb_free_gc(s->conn, s->gc);
 		xcb_flush(s->conn);
