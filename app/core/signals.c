@@ -3,14 +3,25 @@
 
 #include <signal.h>
 #include <string.h>
+#include <time.h>
 
 static volatile sig_atomic_t quit_signal, report_request, reload_request;
+static volatile sig_atomic_t quit_at; /* CLOCK_MONOTONIC seconds of the first */
 static struct sigaction old_int, old_term, old_usr1, old_pipe, old_hup;
 static bool installed, watching;
 
+/* Async-signal-safe: clock_gettime, signal, raise. */
 static void on_quit(int sig)
 {
-	quit_signal = sig;
+	struct timespec now;
+	sig_atomic_t t = clock_gettime(CLOCK_MONOTONIC, &now) == 0 ? (sig_atomic_t)now.tv_sec : 0;
+	if (!quit_signal) {
+		quit_signal = sig;
+		quit_at = t;
+	} else if (t - quit_at >= 2) { /* whole seconds: at least one apart */
+		signal(sig, SIG_DFL);
+		raise(sig);
+	}
 }
 
 static void on_usr1(int sig)
@@ -28,13 +39,13 @@ static void on_hup(int sig)
 int signals_install(void)
 {
 	quit_signal = 0;
+	quit_at = 0;
 	report_request = 0;
 	reload_request = 0;
 	struct sigaction sa;
 	memset(&sa, 0, sizeof(sa));
 	sigemptyset(&sa.sa_mask);
 	sa.sa_handler = on_quit;
-	sa.sa_flags = SA_RESETHAND;
 	struct sigaction *keep_int = installed ? NULL : &old_int, *keep_term = installed ? NULL : &old_term;
 	if (sigaction(SIGINT, &sa, keep_int) != 0 || sigaction(SIGTERM, &sa, keep_term) != 0)
 		return -1;

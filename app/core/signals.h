@@ -1,7 +1,11 @@
 /* isoterra — the one owner of the process's signals.
  *
  * SIGINT and SIGTERM ask the frame loop to stop cleanly (files closed, the
- * display restored); a second one kills at once (SA_RESETHAND).  SIGUSR1
+ * display restored); one more a second or later after the first kills at
+ * once (the user insists).  One sooner is the same request: `timeout`
+ * sends its signal to the program and again to its process group, and the
+ * second often arrived after the first's handler (with SA_RESETHAND, one
+ * run in six of a plain program died uncleanly under `timeout`).  SIGUSR1
  * asks a display for a frame-rate report.  SIGHUP asks for the
  * configuration to be read again (app/kiosk.c).  SIGPIPE is ignored while the
  * handlers are installed: a closed pipe is a write error (EPIPE).  The handlers only set flags; the
