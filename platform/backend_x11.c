@@ -294,6 +294,7 @@ static int x11_shm_start(struct platform *p, struct x11_state *x, const struct p
 	x->shm = x11_shm_open(x->conn, x->win, depth, vis, why, whylen);
 	if (!x->shm)
 		return -1;
+	EGLConfig window_config = p->config;
 	if (egl_common_make_pbuffer_context(p, opt, p->width, p->height, why, whylen) == 0) {
 		const char *gl_exts = (const char *)glGetString(GL_EXTENSIONS);
 		if (egl_common_has_ext(gl_exts, "GL_EXT_read_format_bgra")) {
@@ -303,6 +304,9 @@ static int x11_shm_start(struct platform *p, struct x11_state *x, const struct p
 		}
 		snprintf(why, whylen, "the GL cannot read a frame back as BGRA (no GL_EXT_read_format_bgra)");
 	}
+	/* the window's config for its surface and a context of that config */
+	egl_common_drop_context(p);
+	p->config = window_config;
 	x11_shm_close(x->shm);
 	x->shm = NULL;
 	return -1;

@@ -410,6 +410,33 @@ static int make_current_on(struct platform *p, const struct platform_options *op
 	return new_ctx ? check_gl_version(p, err, errlen) : 0;
 }
 
+/* A config of exactly 8-bit red, green, blue and alpha with pbuffers, or
+ * NULL.  Its pixels are what a BGRA read-back asks for: the read is a copy
+ * (llvmpipe: 0.1-0.2 ms at 1280x720 against 0.7-0.9 from an xRGB one). */
+static EGLConfig rgba_pbuffer_config(struct platform *p, EGLint renderable)
+{
+	const EGLint attribs[] = {
+		EGL_RENDERABLE_TYPE, renderable, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+		EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
+		EGL_NONE,
+	};
+	EGLConfig configs[MAX_CONFIGS];
+	EGLint n = 0;
+	if (!eglChooseConfig(p->dpy, attribs, configs, MAX_CONFIGS, &n)) {
+		(void)eglGetError();
+		return NULL;
+	}
+	for (EGLint i = 0; i < n; i++) {
+		EGLint r = 0, g = 0, b = 0, a = 0;
+		if (eglGetConfigAttrib(p->dpy, configs[i], EGL_RED_SIZE, &r) &&
+		    eglGetConfigAttrib(p->dpy, configs[i], EGL_GREEN_SIZE, &g) &&
+		    eglGetConfigAttrib(p->dpy, configs[i], EGL_BLUE_SIZE, &b) &&
+		    eglGetConfigAttrib(p->dpy, configs[i], EGL_ALPHA_SIZE, &a) && r == 8 && g == 8 && b == 8 && a == 8)
+			return configs[i];
+	}
+	return NULL;
+}
+
 int egl_common_make_pbuffer_context(struct platform *p, const struct platform_options *opt, int w, int h,
                                     char *err, size_t errlen)
 {
@@ -417,8 +444,14 @@ int egl_common_make_pbuffer_context(struct platform *p, const struct platform_op
 	EGLint type = 0;
 	if (context_kind(p, &egl15, &khr_cc, err, errlen) < 0)
 		return -1;
+	if (p->ctx == EGL_NO_CONTEXT) {
+		EGLConfig rgba = rgba_pbuffer_config(p, egl15 || khr_cc ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_ES2_BIT);
+		if (rgba)
+			p->config = rgba;
+		plog_debug("pbuffer config: %s", rgba ? "8-bit RGBA" : "the window's (no 8-bit RGBA one has pbuffers)");
+	}
 	if (!eglGetConfigAttrib(p->dpy, p->config, EGL_SURFACE_TYPE, &type) || !(type & EGL_PBUFFER_BIT)) {
-		snprintf(err, errlen, "the window's EGLConfig has no pbuffers");
+		snprintf(err, errlen, "no EGLConfig for pbuffers");
 		return -1;
 	}
 	const EGLint pb[] = { EGL_WIDTH, w, EGL_HEIGHT, h, EGL_NONE };
@@ -429,6 +462,18 @@ int egl_common_make_pbuffer_context(struct platform *p, const struct platform_op
 		return -1;
 	}
 	return make_current_on(p, opt, s, egl15, khr_cc, err, errlen);
+}
+
+void egl_common_drop_context(struct platform *p)
+{
+	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
+		plog_warn("eglMakeCurrent(none) failed: %s", egl_common_error_name(eglGetError()));
+	if (p->ctx != EGL_NO_CONTEXT && !eglDestroyContext(p->dpy, p->ctx))
+		plog_warn("eglDestroyContext failed: %s", egl_common_error_name(eglGetError()));
+	if (p->surface != EGL_NO_SURFACE && !eglDestroySurface(p->dpy, p->surface))
+		plog_warn("eglDestroySurface failed: %s", egl_common_error_name(eglGetError()));
+	p->ctx = EGL_NO_CONTEXT;
+	p->surface = EGL_NO_SURFACE;
 }
 
 bool platform_display_software(EGLDisplay dpy)
@@ -495,12 +540,7 @@ void egl_common_release(struct platform *p)
 {
 	if (p->dpy == EGL_NO_DISPLAY)
 		return;
-	if (!eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
-		plog_warn("eglMakeCurrent(none) failed: %s", egl_common_error_name(eglGetError()));
-	if (p->ctx != EGL_NO_CONTEXT && !eglDestroyContext(p->dpy, p->ctx))
-		plog_warn("eglDestroyContext failed: %s", egl_common_error_name(eglGetError()));
-	if (p->surface != EGL_NO_SURFACE && !eglDestroySurface(p->dpy, p->surface))
-		plog_warn("eglDestroySurface failed: %s", egl_common_error_name(eglGetError()));
+	egl_common_drop_context(p);
 	if (!eglTerminate(p->dpy))
 		plog_warn("eglTerminate failed: %s", egl_common_error_name(eglGetError()));
 	if (!eglReleaseThread())

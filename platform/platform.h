@@ -187,11 +187,16 @@ int egl_common_make_context(struct platform *p, const struct platform_options *o
 int egl_common_make_window_context(struct platform *p, const struct platform_options *opt,
                                    EGLint visual, void *native_window, char *err, size_t errlen);
 /* Display backends that present by reading the frame back (x11 through
- * MIT-SHM): the GLES 3.1 context on p->config (created when there is
- * none) current on a w x h pbuffer; called again, a new pbuffer (the
- * window's new size) replaces the surface, as a window surface then can. */
+ * MIT-SHM): the GLES 3.1 context current on a w x h pbuffer.  With no
+ * context yet, p->config becomes an 8-bit RGBA config with pbuffers where
+ * there is one (its frame reads back as BGRA by a copy), and the context
+ * is made on it.  Called again, a new pbuffer (the window's new size)
+ * replaces the surface, as a window surface then can. */
 int egl_common_make_pbuffer_context(struct platform *p, const struct platform_options *opt, int w, int h,
                                     char *err, size_t errlen);
+/* The context and surface gone (the display and config kept): a backend
+ * that tried one kind of surface and goes on with another config. */
+void egl_common_drop_context(struct platform *p);
 /* Releases whatever egl_common_* created (safe on partial state). */
 void egl_common_release(struct platform *p);
 /* enable: route EGL_KHR_debug messages to the platform's log (verbose: also warnings and
