@@ -33,18 +33,27 @@
 #endif
 
 /* The local X server's pid (SO_PEERCRED of a connection of our own), 0
- * when there is none (no DISPLAY, a server over TCP, no x11 built in). */
+ * when there is none (no DISPLAY, a server over TCP, no x11 built in).
+ * The connection stays open until the benchmark ends: an X server without
+ * -noreset resets when its last client leaves, and refuses connections
+ * meanwhile (a platform opened just after another closed: one xcb_connect
+ * in five failed in a tight loop on Xvfb). */
 static int x_server_pid(void)
 {
 	int pid = 0;
 #ifdef ISOTERRA_HAVE_X11
+	static xcb_connection_t *held;
 	xcb_connection_t *c = xcb_connect(NULL, NULL);
 	struct ucred cred;
 	socklen_t len = sizeof(cred);
 	if (!xcb_connection_has_error(c) &&
 	    getsockopt(xcb_get_file_descriptor(c), SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 && cred.pid > 0)
 		pid = (int)cred.pid;
-	xcb_disconnect(c);
+	if (pid > 0)
+		held = c; /* the kernel closes it at exit */
+	else
+		xcb_disconnect(c);
+	(void)held;
 #endif
 	return pid;
 }
