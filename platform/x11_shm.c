@@ -170,8 +170,8 @@ static int attach(struct x11_shm *s, size_t need)
 	return 0;
 }
 
-/* glReadPixels of the default framebuffer into dst, tightly packed, with
- * the read and pack state the caller had restored. */
+/* glReadPixels of the default framebuffer into dst, tightly packed; the
+ * caller's read framebuffer, pack buffer and pack parameters put back. */
 static int read_frame(int w, int h, void *dst)
 {
 	GLint fb = 0, pbo = 0, align = 4, row = 0, skip_px = 0, skip_rows = 0;
