@@ -5,7 +5,8 @@
  *    sent once the first's handler has run;
  *  - the same for SIGINT;
  *  - a second SIGTERM two seconds after the first, to a child that does
- *    not stop (a stuck frame): the user insists, the signal kills it. */
+ *    not stop (a stuck frame): the user insists, the signal kills it
+ *    (sent again every 0.25 s for 5 s: the test never hangs). */
 #include "app.h"
 #include "tcheck.h"
 
@@ -103,9 +104,20 @@ int main(void)
 	nap_ms(300);
 	CHECK(waitpid(pid, &st, WNOHANG) == 0, "the stuck child survives the first SIGTERM");
 	nap_ms(1900);
-	kill(pid, SIGTERM);
-	reap(pid, &st);
-	CHECK(WIFSIGNALED(st) && WTERMSIG(st) == SIGTERM, "a SIGTERM 2.2 s after the first kills it (status 0x%x)",
-	      (unsigned)st);
+	/* 2.2 s on, and again every 0.25 s for a loaded machine's late
+	 * handler (never a wait that could hang the test): the third at most
+	 * is over two whole seconds after the first's handler */
+	pid_t done = 0;
+	for (int i = 0; i < 20 && done == 0; i++) {
+		kill(pid, SIGTERM);
+		nap_ms(250);
+		done = waitpid(pid, &st, WNOHANG);
+	}
+	if (done == 0) {
+		kill(pid, SIGKILL);
+		reap(pid, &st);
+	}
+	CHECK(done == pid && WIFSIGNALED(st) && WTERMSIG(st) == SIGTERM,
+	      "a SIGTERM 2.2 s after the first kills it (status 0x%x)", (unsigned)st);
 	return tc_done("signals");
 }
