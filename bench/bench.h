@@ -167,8 +167,9 @@ static inline void bench_print_machine(const struct gpu_caps *caps)
 
 /* The GL context every benchmark runs in: the platform (auto, device,
  * surfaceless, or a display at w x h), GLES 3.1 checked, the machine line
- * printed.  NULL after one line on stderr. */
-/* x11_present: how frames reach an X11 window (PLATFORM_X11_PRESENT_*). */
+ * printed; x11_present: how frames reach an X11 window
+ * (PLATFORM_X11_PRESENT_*; bench_open: auto).  NULL after one line on
+ * stderr. */
 static inline struct platform *bench_open_present(const char *plat_name, int w, int h, int x11_present)
 {
 	char err[512];

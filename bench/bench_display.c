@@ -42,18 +42,14 @@ static int x_server_pid(void)
 {
 	int pid = 0;
 #ifdef ISOTERRA_HAVE_X11
-	static xcb_connection_t *held;
 	xcb_connection_t *c = xcb_connect(NULL, NULL);
 	struct ucred cred;
 	socklen_t len = sizeof(cred);
 	if (!xcb_connection_has_error(c) &&
 	    getsockopt(xcb_get_file_descriptor(c), SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 && cred.pid > 0)
-		pid = (int)cred.pid;
-	if (pid > 0)
-		held = c; /* the kernel closes it at exit */
+		pid = (int)cred.pid; /* c stays open: the kernel closes it at exit */
 	else
 		xcb_disconnect(c);
-	(void)held;
 #endif
 	return pid;
 }
@@ -97,6 +93,18 @@ static double run(struct platform *plat, struct renderer *r, const struct pipeli
 }
 
 #define PRESENT_BOTH (-1)
+#define PRESENT_BAD (-2)
+
+/* --x11-present's word: PLATFORM_X11_PRESENT_*, PRESENT_BOTH or PRESENT_BAD
+ * (the program's words, in its order, then both). */
+static int present_arg(const char *s)
+{
+	static const char *const words[] = { "auto", "shm", "swap" };
+	for (int k = 0; k < 3; k++)
+		if (!strcmp(s, words[k]))
+			return k;
+	return strcmp(s, "both") ? PRESENT_BAD : PRESENT_BOTH;
+}
 
 struct options {
 	const char *plat_name, *size;
@@ -124,14 +132,8 @@ static int parse_args(int argc, char **argv, struct options *o)
 			o->rounds = atoi(argv[++i]);
 		else if (!strcmp(argv[i], "--grid") && i + 1 < argc)
 			o->grid = atoi(argv[++i]);
-		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "shm"))
-			o->x11_present = PLATFORM_X11_PRESENT_SHM, i++;
-		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "swap"))
-			o->x11_present = PLATFORM_X11_PRESENT_SWAP, i++;
-		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "auto"))
-			o->x11_present = PLATFORM_X11_PRESENT_AUTO, i++;
-		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && !strcmp(argv[i + 1], "both"))
-			o->x11_present = PRESENT_BOTH, i++;
+		else if (!strcmp(argv[i], "--x11-present") && i + 1 < argc && present_arg(argv[i + 1]) != PRESENT_BAD)
+			o->x11_present = present_arg(argv[++i]);
 		else {
 			fprintf(stderr, "usage: %s [--platform NAME] [--size WxH] [--frames N] [--rounds N] [--grid N] "
 				"[--x11-present auto|shm|swap|both]\n", argv[0]);

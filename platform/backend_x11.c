@@ -31,7 +31,6 @@ struct x11_state {
 	/* the MIT-SHM present: frames drawn into a pbuffer of pb_w x pb_h */
 	struct x11_shm *shm;
 	int pb_w, pb_h;
-	bool debug;
 };
 
 static bool x11_probe(void)
@@ -110,8 +109,8 @@ static int x11_dispatch(struct platform *p)
 	if (x->shm && (p->width != x->pb_w || p->height != x->pb_h)) {
 		/* the next frame is drawn at the window's new size */
 		char err[256];
-		struct platform_options o = { .debug = x->debug };
-		if (egl_common_make_pbuffer_context(p, &o, p->width, p->height, err, sizeof(err)) < 0) {
+		const struct platform_options none = { 0 }; /* read only to make a context: it exists */
+		if (egl_common_make_pbuffer_context(p, &none, p->width, p->height, err, sizeof(err)) < 0) {
 			plog_error("x11: a %dx%d frame for the resized window: %s", p->width, p->height, err);
 			return -1;
 		}
@@ -355,7 +354,6 @@ static int x11_open(struct platform *p, const struct platform_options *opt, char
 		return -1;
 	}
 	p->priv = x;
-	x->debug = opt->debug;
 	EGLint vid;
 	uint8_t depth;
 	const xcb_visualtype_t *vis;

@@ -260,8 +260,8 @@ static int check_gl_version(struct platform *p, char *err, size_t errlen)
 	return 0;
 }
 
-int egl_common_make_context(struct platform *p, const struct platform_options *opt,
-                            EGLint surface_type, char *err, size_t errlen)
+/* EGL 1.5, EGL_KHR_create_context: how a GLES 3 context is asked for. */
+static int context_kind(struct platform *p, bool *egl15, bool *khr_cc, char *err, size_t errlen)
 {
 	EGLint major = 1, minor = 0;
 	const char *ver = eglQueryString(p->dpy, EGL_VERSION);
@@ -270,8 +270,18 @@ int egl_common_make_context(struct platform *p, const struct platform_options *o
 		egl_fail(err, errlen, "eglQueryString");
 		return -1;
 	}
-	bool egl15 = major > 1 || (major == 1 && minor >= 5);
-	bool khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
+	*egl15 = major > 1 || (major == 1 && minor >= 5);
+	*khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
+	return 0;
+}
+
+int egl_common_make_context(struct platform *p, const struct platform_options *opt,
+                            EGLint surface_type, char *err, size_t errlen)
+{
+	bool egl15, khr_cc;
+	if (context_kind(p, &egl15, &khr_cc, err, errlen) < 0)
+		return -1;
+	const char *exts = eglQueryString(p->dpy, EGL_EXTENSIONS);
 	bool surfaceless = egl_common_has_ext(exts, "EGL_KHR_surfaceless_context");
 	bool no_config = egl_common_has_ext(exts, "EGL_KHR_no_config_context") ||
 	                 egl_common_has_ext(exts, "EGL_MESA_configless_context");
@@ -368,21 +378,6 @@ static int choose_window_config(struct platform *p, EGLint renderable, EGLint vi
 	eglGetConfigAttrib(p->dpy, p->config, EGL_NATIVE_VISUAL_ID, &id);
 	eglGetConfigAttrib(p->dpy, p->config, EGL_ALPHA_SIZE, &alpha);
 	plog_debug("EGL window config %d of %d: native visual 0x%x, alpha %d", pick, (int)n, (unsigned)id, (int)alpha);
-	return 0;
-}
-
-/* EGL 1.5, EGL_KHR_create_context: how a GLES 3 context is asked for. */
-static int context_kind(struct platform *p, bool *egl15, bool *khr_cc, char *err, size_t errlen)
-{
-	EGLint major = 1, minor = 0;
-	const char *ver = eglQueryString(p->dpy, EGL_VERSION);
-	const char *exts = eglQueryString(p->dpy, EGL_EXTENSIONS);
-	if (!ver || sscanf(ver, "%d.%d", &major, &minor) != 2 || !exts) {
-		egl_fail(err, errlen, "eglQueryString");
-		return -1;
-	}
-	*egl15 = major > 1 || (major == 1 && minor >= 5);
-	*khr_cc = egl_common_has_ext(exts, "EGL_KHR_create_context");
 	return 0;
 }
 
@@ -545,8 +540,6 @@ void egl_common_release(struct platform *p)
 		plog_warn("eglTerminate failed: %s", egl_common_error_name(eglGetError()));
 	if (!eglReleaseThread())
 		plog_warn("eglReleaseThread failed: %s", egl_common_error_name(eglGetError()));
-	p->ctx = EGL_NO_CONTEXT;
-	p->surface = EGL_NO_SURFACE;
 	p->config = NULL;
 	p->dpy = EGL_NO_DISPLAY;
 }

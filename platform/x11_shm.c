@@ -64,8 +64,9 @@ struct x11_shm *x11_shm_open(xcb_connection_t *conn, xcb_window_t win, uint8_t d
 		return NULL;
 	}
 	bool fd_passing = v->major_version > 1 || (v->major_version == 1 && v->minor_version >= 2);
-	snprintf(why, whylen, "MIT-SHM %u.%u has no segments passed as files (1.2)", v->major_version,
-		 v->minor_version);
+	if (!fd_passing)
+		snprintf(why, whylen, "MIT-SHM %u.%u has no segments passed as files (1.2)", v->major_version,
+			 v->minor_version);
 	free(v);
 	if (!fd_passing)
 		return NULL;
