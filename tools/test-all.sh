@@ -166,7 +166,7 @@ run_suite "release (-Werror)" build-ci -Dwerror=true -Dbuildtype=debugoptimized 
 # llvmpipe only, for the CI's 45-minute budget; so do world_pool (18 s
 # under zink: the pool's bookkeeping, which world exercises there) and
 # notify (5 s: sd_notify, no GL).
-ZINK_TESTS="platform density histopyramid pipeline parts render world world_terms debris shadows shading yuv curves scene_grid
+ZINK_TESTS="platform density histopyramid pipeline parts render world world_terms debris shadows shading yuv curves scene_grid scene_capacity
 	shader_watch platform_no_es31 gl_limits program_cache render_scale cull antialias devices probe"
 if [ -x build-ci/isoterra ]; then
 	# only the tests this build has (notify needs libsystemd, curves GDAL)

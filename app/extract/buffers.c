@@ -198,20 +198,60 @@ int pipeline_check_guards(struct pipeline *pl)
 	return bad ? 1 : 0;
 }
 
+/* The counters of a status block from its word ST_TRIS_NEEDED on. */
+static void stats_from(const uint32_t *s, struct extract_stats *st)
+{
+	memset(st, 0, sizeof(*st));
+	st->triangles_needed = s[ST_TRIS_NEEDED - ST_TRIS_NEEDED];
+	st->vertices_needed = s[ST_VERTS_NEEDED - ST_TRIS_NEEDED];
+	st->triangles = s[ST_TRIS_WRITTEN - ST_TRIS_NEEDED];
+	st->vertices = s[ST_VERTS_WRITTEN - ST_TRIS_NEEDED];
+	st->triangle_capacity = s[ST_TRI_CAP - ST_TRIS_NEEDED];
+	st->vertex_capacity = s[ST_VERT_CAP - ST_TRIS_NEEDED];
+	st->overflow = s[ST_OVERFLOW - ST_TRIS_NEEDED] != 0;
+}
+
+#define WATCH_WORDS (ST_OVERFLOW - ST_TRIS_NEEDED + 1)
+
 int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st)
 {
-	uint32_t s[ST_WORDS];
+	uint32_t s[WATCH_WORDS];
 	memset(st, 0, sizeof(*st));
-	if (gpu_read_buffer(pl->b_status, 0, sizeof(s), s) < 0)
+	if (gpu_read_buffer(pl->b_status, ST_TRIS_NEEDED * 4, sizeof(s), s) < 0)
 		return -1;
-	st->triangles_needed = s[ST_TRIS_NEEDED];
-	st->vertices_needed = s[ST_VERTS_NEEDED];
-	st->triangles = s[ST_TRIS_WRITTEN];
-	st->vertices = s[ST_VERTS_WRITTEN];
-	st->triangle_capacity = s[ST_TRI_CAP];
-	st->vertex_capacity = s[ST_VERT_CAP];
-	st->overflow = s[ST_OVERFLOW] != 0;
+	stats_from(s, st);
 	return 0;
+}
+
+int pipeline_watch_stats(struct pipeline *pl)
+{
+	if (!pl->b_watch)
+		pl->b_watch = extract_buffer(WATCH_WORDS * 4, NULL, GL_STREAM_READ);
+	GLuint src = pl->has_target ? pl->target.status : pl->b_status;
+	GLintptr off = (pl->has_target ? pl->target.status_offset : 0) + ST_TRIS_NEEDED * 4;
+	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+	glBindBuffer(GL_COPY_READ_BUFFER, src);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, pl->b_watch);
+	glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, off, 0, WATCH_WORDS * 4);
+	glBindBuffer(GL_COPY_READ_BUFFER, 0);
+	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+	if (pl->watch_fence)
+		glDeleteSync(pl->watch_fence);
+	pl->watch_fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+	if (!pl->watch_fence)
+		(void)gpu_check("the run's counts: fence");
+	return gpu_check("the run's counts") < 0 || !pl->watch_fence ? -1 : 0;
+}
+
+int pipeline_watched_stats(struct pipeline *pl, bool wait, struct extract_stats *st)
+{
+	if (!pl->watch_fence)
+		return 0;
+	uint32_t s[WATCH_WORDS];
+	int got = gpu_fence_read(&pl->watch_fence, pl->b_watch, sizeof(s), s, wait);
+	if (got > 0)
+		stats_from(s, st);
+	return got;
 }
 
 int pipeline_read_mesh(struct pipeline *pl, struct mesh *m)

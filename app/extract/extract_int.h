@@ -85,6 +85,8 @@ struct pipeline {
 	GLuint p_refine_mark;          /* the refine list (made at the first cut) */
 	GLuint p_debris_flood;         /* the debris filter's second pass (mc_debris_flood.comp) */
 	GLuint b_dens, b_signs, b_hp, b_tables, b_verts, b_idx, b_status;
+	GLuint b_watch;        /* the last run's counts, copied for a read behind watch_fence (buffers.c) */
+	GLsync watch_fence;
 	GLuint b_signs_raw;            /* the density pass's bits; b_signs: less debris */
 	uint32_t owners, words;        /* owner cells, level-0 words */
 	uint32_t sign_words;           /* each sign buffer's capacity (words) */

@@ -185,7 +185,9 @@ void pipeline_destroy(struct pipeline *pl)
 		if (progs[i])
 			glDeleteProgram(progs[i]);
 	GLuint bufs[] = { pl->b_dens, pl->b_signs, pl->b_signs_raw, pl->b_hp, pl->b_cut, pl->b_refine, pl->b_debris, pl->b_tables, pl->b_verts,
-			  pl->b_idx, pl->b_status };
+			  pl->b_idx, pl->b_status, pl->b_watch };
+	if (pl->watch_fence)
+		glDeleteSync(pl->watch_fence);
 	for (size_t i = 0; i < ARRAY_SIZE(bufs); i++)
 		if (bufs[i])
 			glDeleteBuffers(1, &bufs[i]);

@@ -142,6 +142,13 @@ int pipeline_read_density(struct pipeline *pl, float *out);
  * something wrote past a capacity, -1 on read error. */
 int pipeline_check_guards(struct pipeline *pl);
 int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st);
+/* The same counts without a stall, for a frame loop: pipeline_watch_stats
+ * copies the last run's behind a fence (0, or -1 logged);
+ * pipeline_watched_stats gives them once the GPU is past it (1), 0 before
+ * (or when nothing is watched), -1 when they could not be read; wait:
+ * blocks until then (offline). */
+int pipeline_watch_stats(struct pipeline *pl);
+int pipeline_watched_stats(struct pipeline *pl, bool wait, struct extract_stats *st);
 /* The extracted mesh (indexed; for atomic/none the triangles are unshared). */
 int pipeline_read_mesh(struct pipeline *pl, struct mesh *m);
 /* HistoPyramid test hook (histopyramid.c): builds the pyramid over n

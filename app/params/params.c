@@ -367,7 +367,7 @@ const struct preset presets[] = {
 	{ "alien", "strong domain warp: arches, hooks and tunnels", "warp_freq=0.07;warp_amp=12;noise_amp=14;snow_line=16;cam_dist=1;cam_pitch=15" },
 	{ "caves", "endless caves (no ground plane), seen from inside a chamber along a tunnel",
 	  "shape=caves;cave_bias=-2;noise_amp=16;noise_freq=0.04;vol_size=170;vol_height=0.6;floor_strength=0;water=false;snow_line=1000;ambient=0.4;"
-	  "ao_strength=0.6;fov=65;max_triangles=700000;max_vertices=500000" },
+	  "ao_strength=0.6;fov=65" },
 	{ "planet", "a small planet with a round sea, framed whole (the world scene orbits high above it)",
 	  "shape=planet;planet_radius=12;vol_size=34;vol_y=-12;vol_height=1;noise_amp=1.4;noise_freq=0.1;gain=0.38;"
 	  "floor_strength=0;warp_amp=0.5;water_level=-0.2;water_wave=0.3;snow_line=2.2;cam_dist=1.5;cam_pitch=20;"

@@ -28,6 +28,10 @@ struct volume_scene {
 	struct params made_p;
 	unsigned long made_rebuilt;
 	unsigned long long extractions; /* frames that extracted (scene_counts) */
+	/* the capacity the mesh grew to (follow_capacity; 0: the automatic
+	 * one), and whether the GL's buffer limit stopped it */
+	uint32_t grown_tris, grown_verts;
+	bool cap_at_limit;
 	bool inside; /* caves: the camera stands in a chamber, not outside the box */
 	float eye[3], look[3]; /* ... there, looking along the longest tunnel */
 };
@@ -105,14 +109,74 @@ static int follow_grid(struct volume_scene *vs, const struct params *p, char *er
 	vs->pl = pl;
 	vs->g = g;
 	vs->made = false;
+	vs->grown_tris = vs->grown_verts = 0;
+	vs->cap_at_limit = false;
 	return 0;
+}
+
+/* Room for `need` and an eighth more (the next frames' field may ask a
+ * little more), within the parameters' range. */
+static uint32_t with_headroom(uint64_t need)
+{
+	uint64_t c = need + need / 8 + 1024;
+	return c > 100000000u ? 100000000u : (uint32_t)c;
+}
+
+/* The mesh's capacity follows the field: where the last run was clamped
+ * and the capacity is automatic (max_triangles / max_vertices 0: sixteen
+ * triangles a cell of the grid's largest face, which a terrain fills to a
+ * third and endless caves overflow), the pipeline is made again with room
+ * for what the field asked, and the mesh unmade.  Learnt through
+ * pipeline_watch_stats, never by stalling a frame: live, a frame or more
+ * after the run (those frames draw the clamped mesh); offline (wait), at
+ * once.  An explicit capacity stays, as does one the GL's buffer limit
+ * holds (pipeline_create clamps to it) or memory refused: the report
+ * warns that the mesh is clamped.  1 when the pipeline was made again,
+ * 0, or -1 with err. */
+static int follow_capacity(struct volume_scene *vs, const struct params *p, bool wait, char *err, size_t errlen)
+{
+	struct extract_stats st;
+	int got = pipeline_watched_stats(vs->pl, wait, &st);
+	if (got < 0)
+		log_warn("volume: the run's counts could not be read back: the mesh's capacity stays");
+	if (got <= 0 || !st.overflow || vs->cap_at_limit)
+		return 0;
+	bool grow_t = !p->max_triangles && st.triangles_needed > st.triangle_capacity;
+	bool grow_v = !p->max_vertices && st.vertices_needed > st.vertex_capacity;
+	if (!grow_t && !grow_v)
+		return 0;
+	if ((vs->grown_tris && st.triangle_capacity < vs->grown_tris) ||
+	    (vs->grown_verts && st.vertex_capacity < vs->grown_verts)) {
+		vs->cap_at_limit = true; /* the last growth was clamped: the GL's limit */
+		return 0;
+	}
+	struct params q = *p;
+	q.max_triangles = grow_t ? with_headroom(st.triangles_needed) : st.triangle_capacity;
+	q.max_vertices = grow_v ? with_headroom(st.vertices_needed) : st.vertex_capacity;
+	struct pipeline *pl = pipeline_create(&vs->g, &q, terrain_field(vs->tr), err, errlen);
+	if (!pl) {
+		log_warn("volume: the mesh's capacity could not grow to %u triangles / %u vertices (%s): it stays clamped",
+			 q.max_triangles, q.max_vertices, err);
+		err[0] = 0;
+		vs->cap_at_limit = true;
+		return 0;
+	}
+	log_info("volume: the field asks %llu triangles / %llu vertices, over the capacity of %u / %u: grown to %u / %u",
+		 (unsigned long long)st.triangles_needed, (unsigned long long)st.vertices_needed, st.triangle_capacity,
+		 st.vertex_capacity, q.max_triangles, q.max_vertices);
+	pipeline_destroy(vs->pl);
+	vs->pl = pl;
+	vs->made = false;
+	vs->grown_tris = q.max_triangles;
+	vs->grown_verts = q.max_vertices;
+	return 1;
 }
 
 /* The field extracted again unless the mesh already is of it: a static
  * field seen by the orbiting camera is extracted once (the no-flag run on
  * a software rasterizer: 49-51 ms of a 1280x720 frame's 124-140).  0 or
  * -1 with err. */
-static int extract(struct volume_scene *vs, const struct params *p, char *err, size_t errlen)
+static int extract(struct volume_scene *vs, const struct params *p, bool wait, char *err, size_t errlen)
 {
 	/* the edit files reloaded where they changed (as a run's program
 	 * variant does), their change taken */
@@ -124,8 +188,21 @@ static int extract(struct volume_scene *vs, const struct params *p, char *err, s
 	if (vs->made && !edited && rebuilt == vs->made_rebuilt && params_same_extraction(&vs->made_p, p))
 		return 0;
 	vs->made = false;
-	if (pipeline_run(vs->pl, p, err, errlen) < 0)
-		return -1;
+	/* wait (offline, and live the first extraction, which no frame has
+	 * shown yet): a run the capacity clamped is run again at once, grown
+	 * (the pipeline made again holds room for what the field asked: one
+	 * growth is enough) */
+	for (int tries = 0; tries < 4; tries++) {
+		if (pipeline_run(vs->pl, p, err, errlen) < 0)
+			return -1;
+		if (pipeline_watch_stats(vs->pl) < 0)
+			log_warn("volume: the run's counts cannot be watched: the mesh's capacity stays");
+		int grown = wait ? follow_capacity(vs, p, true, err, errlen) : 0;
+		if (grown < 0)
+			return -1;
+		if (!grown)
+			break;
+	}
 	vs->made = true;
 	vs->extractions++;
 	vs->made_p = *p;
@@ -140,7 +217,11 @@ static int volume_frame(struct scene *s, struct params *p, const struct scene_fr
 	p->time = vs->t0 + t;
 	err[0] = 0;
 	double t0 = clock_ms();
-	if (follow_grid(vs, p, err, errlen) < 0 || extract(vs, p, err, errlen) < 0)
+	/* live, after the first extraction: what an earlier frame's run asked,
+	 * never waited for */
+	bool wait = !fr->live || vs->extractions == 0;
+	if (follow_grid(vs, p, err, errlen) < 0 || (!wait && follow_capacity(vs, p, false, err, errlen) < 0) ||
+	    extract(vs, p, wait, err, errlen) < 0)
 		return -1;
 	/* the last picture is drawn without the densities and the pyramid
 	 * (the no-flag run's peak) */
