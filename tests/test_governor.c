@@ -280,8 +280,10 @@ int main(void)
 		CHECK(c.render_scale <= a.render_scale && c.gen_budget <= a.gen_budget && c.ao_rays <= a.ao_rays &&
 			      c.shadow_steps <= a.shadow_steps && c.far_octaves_drop >= a.far_octaves_drop &&
 			      c.view_distance <= a.view_distance && c.framing <= a.framing && c.smoothing <= a.smoothing &&
-			      c.detail <= a.detail,
+			      c.detail <= a.detail && c.near_lod <= a.near_lod,
 		      "ladder step %d only lowers quality", i);
+		CHECK(c.near_lod == 1.0f || c.gen_budget == 0.25f, "step %d: the near LOD after the generation budget", i);
+		CHECK(c.render_scale == 1.0f || c.near_lod < 1.0f, "step %d: the near LOD given up before the scale", i);
 		CHECK(c.view_distance == 1.0f || c.render_scale == 0.5f, "step %d: view distance only after scale", i);
 		CHECK(c.shadow_steps == 1.0f || c.ao_rays == 0.0f, "step %d: shadows only after AO", i);
 		CHECK(c.render_scale == 1.0f || c.smoothing == 0.0f, "step %d: the upscale, not the smoothing, below scale 1", i);
@@ -293,7 +295,7 @@ int main(void)
 		struct governor_quality a = governor_level(0), c = governor_level(1);
 		CHECK(a.smoothing == 1.0f && a.detail == 1.0f && c.smoothing == 0.0f && c.detail == 0.5f &&
 			      c.render_scale == 1.0f && c.framing == 1.0f && c.gen_budget == 1.0f && c.ao_rays == 1.0f &&
-			      c.shadow_steps == 1.0f && c.view_distance == 1.0f,
+			      c.shadow_steps == 1.0f && c.view_distance == 1.0f && c.near_lod == 1.0f,
 		      "the first step gives up the edge smoothing and the close-up detail's finer scale alone");
 		struct governor_quality d = governor_level(2);
 		CHECK(d.detail == 0.0f && d.smoothing == 0.0f && d.render_scale == 1.0f && d.framing == 1.0f &&

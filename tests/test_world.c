@@ -5,6 +5,7 @@
  * default fly-through frame matches its golden image. */
 #include "app.h"
 #include "world.h"
+#include "governor.h"
 #include "tcheck.h"
 #include "gpu_fixture.h"
 #include "terrain.h"
@@ -124,6 +125,67 @@ static void check_no_holes(const struct params *p)
 	renderer_destroy(r);
 	world_destroy(w);
 	edits_destroy(ed);
+}
+
+/* The governor's near-LOD rung (governor.c): the finer levels out to two
+ * thirds of their range, the coarser level nearer the eye.  A low view
+ * straight down, where the finer levels meet the ground, at full quality
+ * and at that rung: fewer triangles drawn, and no background through the
+ * terrain (the coarser level lies beneath wherever a finer one ends). */
+static int near_view(const struct params *p, const struct params *eff, uint64_t *tris)
+{
+	char err[512] = "";
+	struct edits *ed = edits_create();
+	struct world *w = world_create(p, ed, err, sizeof(err));
+	struct renderer *r = renderer_create(160, 160, ANTIALIAS_AUTO, err, sizeof(err));
+	int holes = -1;
+	if (w && r) {
+		renderer_set_clear(r, 1.0f, 0.0f, 1.0f);
+		struct camera c;
+		float eye[3] = { 3.0f, 9.0f, 5.0f }, at[3] = { 3.0f, 0.0f, 5.01f };
+		camera_look(&c, eye, at, 60.0f, 1.0f, 0.1f, 200.0f);
+		struct image img = { 0 };
+		if (world_fill(w, eff, &c, 0.0) == 0 && world_draw(w, r, &c, eff, 100.0) == 0 && renderer_read(r, &img) == 0) {
+			holes = 0;
+			for (int i = 0; i < img.width * img.height; i++)
+				holes += img.rgba[4 * i] > 250 && img.rgba[4 * i + 1] < 5 && img.rgba[4 * i + 2] > 250;
+			struct world_stats st;
+			world_get_stats(w, &st);
+			*tris = st.drawn_tris;
+		}
+		image_free(&img);
+	} else {
+		fprintf(stderr, "world/renderer: %s\n", err);
+	}
+	renderer_destroy(r);
+	world_destroy(w);
+	edits_destroy(ed);
+	return holes;
+}
+
+static void check_near_lod(const struct params *p)
+{
+	int level = 0;
+	while (level < GOVERNOR_LEVELS && governor_level(level).near_lod == 1.0f)
+		level++;
+	CHECK(level < GOVERNOR_LEVELS, "the ladder has a near-LOD rung");
+	if (level == GOVERNOR_LEVELS)
+		return;
+	struct governor_quality full = governor_level(level - 1), near = governor_level(level);
+	struct params e_full, e_near;
+	governor_apply(&full, p, &e_full);
+	governor_apply(&near, p, &e_near);
+	CHECK(e_near.lod_distance < 0.7f * p->lod_distance && e_near.lod_distance > 0.6f * p->lod_distance &&
+		      e_full.lod_distance == p->lod_distance,
+	      "the rung (level %d) takes the finer levels' range to two thirds (%g of %g)", level, e_near.lod_distance,
+	      p->lod_distance);
+	uint64_t t_full = 0, t_near = 0;
+	int h_full = near_view(p, &e_full, &t_full), h_near = near_view(p, &e_near, &t_near);
+	printf("near LOD: a low view down draws %llu triangles at level %d, %llu at level %d; %d and %d magenta pixels\n",
+	       (unsigned long long)t_full, level - 1, (unsigned long long)t_near, level, h_full, h_near);
+	CHECK(h_full == 0 && h_near == 0, "no background through the terrain (%d, %d pixels)", h_full, h_near);
+	CHECK(t_near > 0 && t_near < t_full * 9 / 10, "the rung draws fewer triangles (%llu against %llu)",
+	      (unsigned long long)t_near, (unsigned long long)t_full);
 }
 
 static void check_empty_not_regenerated(const struct params *p)
@@ -532,6 +594,7 @@ int main(void)
 	check_prepass_terms();
 	check_staged_matches_offline(&p);
 	check_no_holes(&p);
+	check_near_lod(&p);
 	check_empty_not_regenerated(&p);
 	check_autopilot(&p);
 	check_manual(&p);

@@ -1,7 +1,8 @@
 /* isoterra — the frame-time governor: holds a target frame time by trading
  * quality, in a fixed order (the edge smoothing after the frame and the
  * close-up detail's finer scale, the rest of the close-up detail, the
- * block generation budget, the render scale and with its first step the
+ * block generation budget, the finer levels of detail's range, the render
+ * scale and with its first step the
  * composed start's view, then AO rays, sun shadow steps, far-LOD octaves,
  * view distance), and gives it back when there is
  * headroom.  It only sees frame times and a clock, so a test
@@ -51,10 +52,12 @@ struct governor_quality {
 	float detail;         /* 1: the close-up detail of the near meshes at both scales (render.frag's
 	                       * DETAIL_NORMALS); 0.5: at the coarser only; 0: every mesh drawn with
 	                       * the far meshes' program */
+	float near_lod;       /* 1: the finer levels of detail out to lod_distance of their blocks; 2/3: out to
+	                       * two thirds of that (the coarser level nearer the eye; docs/WORLD.md) */
 	int level;            /* 0 = full quality .. GOVERNOR_LEVELS - 1 */
 };
 
-#define GOVERNOR_LEVELS 18
+#define GOVERNOR_LEVELS 19
 
 struct governor {
 	double target_ms;

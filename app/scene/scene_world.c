@@ -8,6 +8,7 @@
 #include "governor.h"
 #include "gpu.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -26,12 +27,19 @@ struct world_scene {
 	struct governor gov;
 	struct governor_quality q; /* what it holds for the next frame */
 	double last_work_ms;
+	/* the finer levels' range as it moves to what the governor holds
+	 * (governor_quality.near_lod), and when it last moved (clock_ms) */
+	float near_lod;
+	double near_at;
 	double empty_since;        /* scene time since when no terrain is drawn (< 0: some is) */
 	bool empty_said;
 };
 
 /* A flight that sees no terrain for this long is said once. */
 #define EMPTY_VIEW_S 3.0
+/* Seconds the finer levels' range takes to move between the governor's
+ * two (its step's settle, governor.c SETTLE_S, then reads what it saved) */
+#define NEAR_LOD_S 0.4
 
 /* The frame rate the governor holds: target_fps; else the frame cap's (a
  * power target: quality stepped down to keep the frame within the cap's
@@ -59,11 +67,14 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 		if (level == 0 && ws->q.level == 0) /* full quality, as ever (byte for byte) */
 			return 0;
 		ws->q = governor_level(level);
+		ws->near_lod = ws->q.near_lod;
 		return world_hold_quality(ws->w, fr->r, &ws->q, p, eff, err, errlen);
 	}
 	if (!ws->governed) {
 		governor_init(&ws->gov, 1000.0 / governor_fps(p, fr));
 		ws->q = governor_level(0);
+		ws->near_lod = ws->q.near_lod;
+		ws->near_at = -1.0;
 		ws->governed = true;
 	}
 	ws->gov.target_ms = 1000.0 / governor_fps(p, fr); /* a cap that changed: its budget */
@@ -76,7 +87,18 @@ static int governed_params(struct world_scene *ws, const struct params *p, const
 	}
 	if (ws->q.level < fr->min_quality) /* the low-power profile's floor */
 		ws->q = governor_level(fr->min_quality);
-	return world_hold_quality(ws->w, fr->r, &ws->q, p, eff, err, errlen);
+	if (world_hold_quality(ws->w, fr->r, &ws->q, p, eff, err, errlen) < 0)
+		return -1;
+	/* the finer levels' range moves there over NEAR_LOD_S, not at once:
+	 * the finer blocks near its end sink behind the coarser surface as
+	 * the end passes them (world.c's fade), none pops */
+	double now = clock_ms() / 1e3, dt = ws->near_at > 0 ? now - ws->near_at : 0.0;
+	ws->near_at = now;
+	float step = (float)(dt / NEAR_LOD_S) * (1.0f - governor_level(GOVERNOR_LEVELS - 1).near_lod);
+	ws->near_lod = ws->q.near_lod < ws->near_lod ? fmaxf(ws->q.near_lod, ws->near_lod - step)
+						     : fminf(ws->q.near_lod, ws->near_lod + step);
+	eff->lod_distance = p->lod_distance * ws->near_lod;
+	return 0;
 }
 
 static void world_status(struct scene *s, char *line, size_t len)
@@ -89,10 +111,11 @@ static void world_status(struct scene *s, char *line, size_t len)
 	struct governor_quality q = ws->q;
 	/* held: the smoothed frame time plus its deviation (governor.h) */
 	snprintf(line, len,
-		 "governor %.1f ms held of %.1f (last %.1f): level %d, smoothing %s, detail %s, scale %.2f, budget x%.2f, "
-		 "AO x%.2f, shadows x%.2f, far -%d oct, view x%.2f",
+		 "governor %.1f ms held of %.1f (last %.1f): level %d, smoothing %s, detail %s, near LOD x%.2f, scale %.2f, "
+		 "budget x%.2f, AO x%.2f, shadows x%.2f, far -%d oct, view x%.2f",
 		 governor_held_ms(&ws->gov), ws->gov.target_ms, ws->last_work_ms, q.level, q.smoothing > 0.5f ? "on" : "off",
-		 (const char *[]){ "off", "coarse", "on" }[governor_detail_scales(&q)], q.render_scale, q.gen_budget, q.ao_rays,
+		 (const char *[]){ "off", "coarse", "on" }[governor_detail_scales(&q)], q.near_lod, q.render_scale, q.gen_budget,
+		 q.ao_rays,
 		 q.shadow_steps, q.far_octaves_drop, q.view_distance);
 }
 
