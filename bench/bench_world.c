@@ -315,8 +315,8 @@ static double flythrough(const struct params *p_in, int w, int h, int frames, do
 	       governed ? "governed" : "full", w, h, frames, ft[frames / 2], 1e3 / ft[frames / 2], ft[frames * 95 / 100],
 	       ft[frames * 99 / 100], ft[frames - 1], st.drawn, (unsigned long long)st.generated, cpu_frame);
 	if (governed)
-		printf("  (held: render scale %.2f, view x%.2f on average; level %d at the end)", governor_mean_scale(&gov),
-		       governor_mean_view(&gov), q.level);
+		printf("  (held: render scale %.2f, view x%.2f, near LOD x%.2f on average; level %d at the end)",
+		       governor_mean_scale(&gov), governor_mean_view(&gov), governor_mean_near_lod(&gov), q.level);
 	printf("\n    block arena: %lld KB in %d chunks (%llu added, %llu packed) for %lld KB of meshes\n",
 	       st.arena_bytes >> 10, st.arena_chunks, (unsigned long long)st.arena_grown,
 	       (unsigned long long)st.arena_packed, st.arena_used >> 10);

@@ -238,8 +238,10 @@ static void write_json(struct results_sink *rs, FILE *f, const struct sink_end *
 	json_str(f, rs->status);
 	/* what the governor held on average (quality, beside the times) */
 	if (c.governed)
-		fprintf(f, ",\n  \"held\": {\"render_scale\": %.3f, \"view_distance\": %.3f, \"level_at_end\": %d}",
-			c.held_scale, c.held_view, c.held_level);
+		fprintf(f,
+			",\n  \"held\": {\"render_scale\": %.3f, \"view_distance\": %.3f, \"near_lod\": %.3f, "
+			"\"level_at_end\": %d}",
+			c.held_scale, c.held_view, c.held_near_lod, c.held_level);
 	else
 		fputs(",\n  \"held\": null", f);
 	fputs(",\n  \"power\": {\"battery_percent\": ", f);

@@ -235,6 +235,7 @@ struct governor_quality governor_update(struct governor *g, double frame_ms, dou
 	struct governor_quality q = ladder[g->level];
 	g->scale_sum += q.render_scale;
 	g->view_sum += q.view_distance;
+	g->near_sum += q.near_lod;
 	g->frames++;
 	return q;
 }
@@ -257,4 +258,9 @@ double governor_mean_scale(const struct governor *g)
 double governor_mean_view(const struct governor *g)
 {
 	return g->frames ? g->view_sum / g->frames : 1.0;
+}
+
+double governor_mean_near_lod(const struct governor *g)
+{
+	return g->frames ? g->near_sum / g->frames : 1.0;
 }

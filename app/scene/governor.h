@@ -77,6 +77,7 @@ struct governor {
 	unsigned steps_down, steps_up;
 	double scale_sum;       /* for the mean render scale / view distance held */
 	double view_sum;
+	double near_sum;        /* ... and the near LOD's range */
 	unsigned frames;
 };
 
@@ -98,5 +99,6 @@ double governor_held_ms(const struct governor *g);
 /* Means over every update so far (1 before the first). */
 double governor_mean_scale(const struct governor *g);
 double governor_mean_view(const struct governor *g);
+double governor_mean_near_lod(const struct governor *g);
 
 #endif

@@ -73,7 +73,7 @@ struct scene_counts {
 	/* the world's governor, when it ran: the render scale and view
 	 * distance it held on average, and its level at the end */
 	bool governed;
-	double held_scale, held_view;
+	double held_scale, held_view, held_near_lod;
 	int held_level;
 };
 

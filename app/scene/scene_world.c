@@ -226,10 +226,10 @@ static int world_report(struct scene *s, const struct params *p, char *line, siz
 	(void)wlen;
 	world_get_stats(ws->w, &st);
 	warn[0] = 0; /* nothing to warn about first: an overflow is part of the line */
-	char gov[96] = "";
+	char gov[128] = "";
 	if (ws->governed)
-		snprintf(gov, sizeof(gov), "; governor held render scale %.2f, view distance x%.2f on average",
-			 governor_mean_scale(&ws->gov), governor_mean_view(&ws->gov));
+		snprintf(gov, sizeof(gov), "; governor held render scale %.2f, view distance x%.2f, near LOD x%.2f on average",
+			 governor_mean_scale(&ws->gov), governor_mean_view(&ws->gov), governor_mean_near_lod(&ws->gov));
 	snprintf(line, len,
 		 "world: %llu blocks generated (%llu empty, never regenerated), %llu skipped by the pre-pass (of %llu "
 		 "bounded), %d drawn, %llu evicted%s%s",
@@ -251,6 +251,7 @@ static int world_counts(struct scene *s, struct scene_counts *c)
 	if (ws->governed) {
 		c->held_scale = governor_mean_scale(&ws->gov);
 		c->held_view = governor_mean_view(&ws->gov);
+		c->held_near_lod = governor_mean_near_lod(&ws->gov);
 		c->held_level = ws->q.level;
 	}
 	return 0;

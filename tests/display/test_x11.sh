@@ -181,14 +181,15 @@ wait "$SPID" 2>/dev/null
 #     the same as the run's report line; an offline run says null
 if "$BIN" --platform x11 --scene world --size 160x120 --count 40 --target-fps 30 --results "$T/gov.json" \
 	>"$T/app6.log" 2>&1; then
-	line=$(grep -o 'governor held render scale [0-9.]*, view distance x[0-9.]*' "$T/app6.log")
+	line=$(grep -o 'governor held render scale [0-9.]*, view distance x[0-9.]*, near LOD x[0-9.]*' "$T/app6.log")
 	verdict=$(python3 - "$T/gov.json" "$line" <<'PY'
 import json, sys
 h = json.load(open(sys.argv[1]))["held"]
 w = sys.argv[2].replace(",", "").split()
 ok = (h is not None and 0.5 <= h["render_scale"] <= 1 and 0.55 <= h["view_distance"] <= 1 and
-      0 <= h["level_at_end"] <= 17 and len(w) == 8 and "%.2f" % h["render_scale"] == w[4] and
-      "x%.2f" % h["view_distance"] == w[7])
+      0.6 <= h["near_lod"] <= 1 and 0 <= h["level_at_end"] <= 18 and len(w) == 11 and
+      "%.2f" % h["render_scale"] == w[4] and "x%.2f" % h["view_distance"] == w[7] and
+      "x%.2f" % h["near_lod"] == w[10])
 print("held %s; the report: %s" % (h, sys.argv[2]))
 sys.exit(0 if ok else 1)
 PY
