@@ -25,9 +25,9 @@
  * the triangles it sets up and bins, not only its pixels, and a low flight
  * draws most of them in the finer levels: 281 000 triangles against
  * 162 000 in test_world's low view; the rung leaves the whole picture
- * sharp, where a step of the scale blurs it), then resolution (upscaled with a filter
- * that keeps edges; the upscale replaces the smoothing), and with its
- * first step the autopilot's composed start (the view tilted down onto the
+ * sharp, where a step of the scale blurs it), then resolution (upscaled
+ * with a filter that keeps edges; the upscale replaces the smoothing),
+ * and with its first step the autopilot's composed start (the view tilted down onto the
  * land for a flight's first seconds: land filling the frame is the frame's
  * whole cost on a software rasterizer), then the blocks' AO, then their
  * sun shadows (half the steps, then none), then the far blocks' finest

@@ -115,8 +115,7 @@ static void world_status(struct scene *s, char *line, size_t len)
 		 "budget x%.2f, AO x%.2f, shadows x%.2f, far -%d oct, view x%.2f",
 		 governor_held_ms(&ws->gov), ws->gov.target_ms, ws->last_work_ms, q.level, q.smoothing > 0.5f ? "on" : "off",
 		 (const char *[]){ "off", "coarse", "on" }[governor_detail_scales(&q)], q.near_lod, q.render_scale, q.gen_budget,
-		 q.ao_rays,
-		 q.shadow_steps, q.far_octaves_drop, q.view_distance);
+		 q.ao_rays, q.shadow_steps, q.far_octaves_drop, q.view_distance);
 }
 
 /* A flight that sees no terrain for seconds (in empty sky above the
