@@ -227,12 +227,10 @@ int pipeline_watch_stats(struct pipeline *pl)
 {
 	if (!pl->b_watch)
 		pl->b_watch = extract_buffer(WATCH_WORDS * 4, NULL, GL_STREAM_READ);
-	GLuint src = pl->has_target ? pl->target.status : pl->b_status;
-	GLintptr off = (pl->has_target ? pl->target.status_offset : 0) + ST_TRIS_NEEDED * 4;
 	glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-	glBindBuffer(GL_COPY_READ_BUFFER, src);
+	glBindBuffer(GL_COPY_READ_BUFFER, pl->b_status);
 	glBindBuffer(GL_COPY_WRITE_BUFFER, pl->b_watch);
-	glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, off, 0, WATCH_WORDS * 4);
+	glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, ST_TRIS_NEEDED * 4, 0, WATCH_WORDS * 4);
 	glBindBuffer(GL_COPY_READ_BUFFER, 0);
 	glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 	if (pl->watch_fence)

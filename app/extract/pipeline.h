@@ -143,7 +143,9 @@ int pipeline_read_density(struct pipeline *pl, float *out);
 int pipeline_check_guards(struct pipeline *pl);
 int pipeline_read_stats(struct pipeline *pl, struct extract_stats *st);
 /* The same counts without a stall, for a frame loop: pipeline_watch_stats
- * copies the last run's behind a fence (0, or -1 logged);
+ * copies the last run's (into the pipeline's own buffers: a target's
+ * status block has its owner's read-back, world_gen.c) behind a fence (0,
+ * or -1 logged);
  * pipeline_watched_stats gives them once the GPU is past it (1), 0 before
  * (or when nothing is watched), -1 when they could not be read; wait:
  * blocks until then (offline). */
